@@ -1,0 +1,391 @@
+// Tensor-product rational Bézier patches (Dim = 3: volumes, Dim = 2: surfaces) in homogeneous
+// form, with evaluation, subdivision and degree elevation.
+//
+// A patch stores (degree[0]+1) x ... x (degree[Dim-1]+1) control points, the first parametric
+// direction fastest. Each control point is `channels` consecutive values. Every channel is
+// homogeneous: the standard layout is (w*x, w*y, w*z, w, w*a_0, w*a_1, ...), so attributes are
+// interpolated with the same rational basis as the geometry (as VTK's rational Bézier cells do),
+// and subdivision and degree elevation act on all channels alike.
+#pragma once
+
+#include "iga/Portability.h"
+
+#include <utility>
+#include <vector>
+
+namespace iga
+{
+
+/// Channel indices of the standard layout.
+constexpr int kWeightChannel = 3;
+constexpr int kFirstAttributeChannel = 4;
+
+/// Non-owning view of one patch's coefficients. T may be const.
+template<class T, int Dim>
+struct PatchView
+{
+  static_assert(Dim == 2 || Dim == 3, "patches are bivariate or trivariate");
+  T* coeffs = nullptr;
+  int degree[Dim] = {};
+  int channels = 0;
+
+  PatchView() = default;
+  IGA_HD PatchView(T* c, const int* deg, int ch)
+    : coeffs(c)
+    , channels(ch)
+  {
+    for (int d = 0; d < Dim; ++d)
+    {
+      degree[d] = deg[d];
+    }
+  }
+  /// A mutable view converts to a read-only one.
+  template<class U>
+  IGA_HD PatchView(const PatchView<U, Dim>& other)
+    : PatchView(other.coeffs, other.degree, other.channels)
+  {
+  }
+
+  IGA_HD int order(int d) const { return degree[d] + 1; }
+  IGA_HD int pointCount() const
+  {
+    int n = 1;
+    for (int d = 0; d < Dim; ++d)
+    {
+      n *= order(d);
+    }
+    return n;
+  }
+  IGA_HD int valueCount() const { return pointCount() * channels; }
+  /// Distance in values between neighbouring control points along direction d.
+  IGA_HD int stride(int d) const
+  {
+    int s = channels;
+    for (int e = 0; e < d; ++e)
+    {
+      s *= order(e);
+    }
+    return s;
+  }
+  IGA_HD T* point(int linearIndex) const { return coeffs + linearIndex * channels; }
+};
+
+template<class T>
+using VolumeView = PatchView<T, 3>;
+template<class T>
+using SurfaceView = PatchView<T, 2>;
+
+/// Owning patch for host code.
+template<class T, int Dim>
+class BezierPatch
+{
+public:
+  BezierPatch() = default;
+  BezierPatch(const int* degree, int channels)
+  {
+    for (int d = 0; d < Dim; ++d)
+    {
+      this->Degree[d] = degree[d];
+    }
+    this->Channels = channels;
+    this->Coeffs.assign(static_cast<size_t>(this->view().valueCount()), T(0));
+  }
+
+  PatchView<T, Dim> view()
+  {
+    return PatchView<T, Dim>(this->Coeffs.data(), this->Degree, this->Channels);
+  }
+  PatchView<const T, Dim> view() const
+  {
+    return PatchView<const T, Dim>(this->Coeffs.data(), this->Degree, this->Channels);
+  }
+  int degree(int d) const { return this->Degree[d]; }
+  int channels() const { return this->Channels; }
+  std::vector<T>& coeffs() { return this->Coeffs; }
+  const std::vector<T>& coeffs() const { return this->Coeffs; }
+
+private:
+  std::vector<T> Coeffs;
+  int Degree[Dim] = {};
+  int Channels = 0;
+};
+
+template<class T>
+using BezierVolume = BezierPatch<T, 3>;
+template<class T>
+using BezierSurface = BezierPatch<T, 2>;
+
+/// Bernstein basis B_i^n(t), i = 0..n, by the triangular (de Casteljau) recurrence, and
+/// optionally its derivative. `basis` and `derivative` hold n+1 values.
+template<class T>
+IGA_HD void bernsteinBasis(int n, T t, T* basis, T* derivative)
+{
+  const T s = T(1) - t;
+  basis[0] = T(1);
+  for (int r = 1; r <= n; ++r)
+  {
+    if (r == n && derivative)
+    {
+      // dB_i^n = n (B_{i-1}^{n-1} - B_i^{n-1})
+      for (int i = 0; i <= n; ++i)
+      {
+        const T left = i > 0 ? basis[i - 1] : T(0);
+        const T right = i < n ? basis[i] : T(0);
+        derivative[i] = T(n) * (left - right);
+      }
+    }
+    basis[r] = t * basis[r - 1];
+    for (int i = r - 1; i > 0; --i)
+    {
+      basis[i] = s * basis[i] + t * basis[i - 1];
+    }
+    basis[0] = s * basis[0];
+  }
+  if (n == 0 && derivative)
+  {
+    derivative[0] = T(0);
+  }
+}
+
+/// Evaluates all homogeneous channels at parameter u (Dim values in [0,1]) and, if `derivatives`
+/// is not null, their first partial derivatives: derivatives[d * channels + c] = dC_c/du_d.
+template<class T, int Dim>
+IGA_HD void evaluateHomogeneous(const PatchView<const T, Dim>& patch,
+                                const T* u,
+                                T* values,
+                                T* derivatives)
+{
+  T basis[Dim][kMaxOrder];
+  T dbasis[Dim][kMaxOrder];
+  for (int d = 0; d < Dim; ++d)
+  {
+    bernsteinBasis(patch.degree[d], u[d], basis[d], derivatives ? dbasis[d] : nullptr);
+  }
+  const int channels = patch.channels;
+  for (int c = 0; c < channels; ++c)
+  {
+    values[c] = T(0);
+  }
+  if (derivatives)
+  {
+    for (int c = 0; c < Dim * channels; ++c)
+    {
+      derivatives[c] = T(0);
+    }
+  }
+  const int count = patch.pointCount();
+  int index[Dim] = {};
+  for (int p = 0; p < count; ++p)
+  {
+    T weight = T(1);
+    for (int d = 0; d < Dim; ++d)
+    {
+      weight *= basis[d][index[d]];
+    }
+    const T* point = patch.point(p);
+    for (int c = 0; c < channels; ++c)
+    {
+      values[c] += weight * point[c];
+    }
+    if (derivatives)
+    {
+      for (int d = 0; d < Dim; ++d)
+      {
+        T dweight = dbasis[d][index[d]];
+        for (int e = 0; e < Dim; ++e)
+        {
+          if (e != d)
+          {
+            dweight *= basis[e][index[e]];
+          }
+        }
+        for (int c = 0; c < channels; ++c)
+        {
+          derivatives[d * channels + c] += dweight * point[c];
+        }
+      }
+    }
+    for (int d = 0; d < Dim; ++d) // advance the multi-index, first direction fastest
+    {
+      if (++index[d] < patch.order(d))
+      {
+        break;
+      }
+      index[d] = 0;
+    }
+  }
+}
+
+/// The rational function numerator/denominator from homogeneous values, with its gradient by the
+/// quotient rule: d(N/D) = (dN D - N dD) / D^2.
+template<class T, int Dim>
+IGA_HD T rationalValue(const T* values,
+                       const T* derivatives,
+                       int channels,
+                       int numerator,
+                       int denominator,
+                       T* gradient)
+{
+  const T n = values[numerator];
+  const T den = values[denominator];
+  const T f = n / den;
+  if (gradient)
+  {
+    for (int d = 0; d < Dim; ++d)
+    {
+      const T dn = derivatives[d * channels + numerator];
+      const T dden = derivatives[d * channels + denominator];
+      gradient[d] = (dn - f * dden) / den;
+    }
+  }
+  return f;
+}
+
+/// Calls fn(base) for the first control point of every line of control points along direction
+/// `dir`; the line's points are then base + i * stride(dir), i = 0..degree[dir].
+template<class T, int Dim, class Fn>
+IGA_HD void forEachLine(const PatchView<T, Dim>& patch, int dir, Fn fn)
+{
+  int below = 1;
+  for (int d = 0; d < dir; ++d)
+  {
+    below *= patch.order(d);
+  }
+  const int lines = patch.pointCount() / patch.order(dir);
+  const int blockSize = below * patch.order(dir);
+  for (int line = 0; line < lines; ++line)
+  {
+    fn((line % below) + (line / below) * blockSize);
+  }
+}
+
+/// Splits a patch at parameter t of direction dir into the parts [0,t] (left) and [t,1] (right),
+/// both reparametrised to [0,1]. `left` may alias `patch` (each line is read before it is
+/// written); all three share degrees and channels.
+template<class T, int Dim>
+IGA_HD void split(const PatchView<const T, Dim>& patch,
+                  int dir,
+                  T t,
+                  const PatchView<T, Dim>& left,
+                  const PatchView<T, Dim>& right)
+{
+  const int n = patch.degree[dir];
+  const int stride = patch.stride(dir);
+  const int channels = patch.channels;
+  const T s = T(1) - t;
+  forEachLine(patch,
+              dir,
+              [&](int base)
+              {
+                const int offset = base * channels;
+                for (int c = 0; c < channels; ++c)
+                {
+                  T work[kMaxOrder] = {};
+                  for (int i = 0; i <= n; ++i)
+                  {
+                    work[i] = patch.coeffs[offset + i * stride + c];
+                  }
+                  left.coeffs[offset + c] = work[0];
+                  right.coeffs[offset + n * stride + c] = work[n];
+                  for (int r = 1; r <= n; ++r)
+                  {
+                    for (int i = 0; i <= n - r; ++i)
+                    {
+                      work[i] = s * work[i] + t * work[i + 1];
+                    }
+                    left.coeffs[offset + r * stride + c] = work[0];
+                    right.coeffs[offset + (n - r) * stride + c] = work[n - r];
+                  }
+                }
+              });
+}
+
+/// Splits a patch at the parametric midpoint in every direction into 2^Dim children written to
+/// `out` (2^Dim consecutive blocks of patch.valueCount() values). Bit d of a child's index is set
+/// when it covers the upper half [0.5, 1] of direction d.
+template<class T, int Dim>
+IGA_HD void splitMidpoint(const PatchView<const T, Dim>& patch, T* out)
+{
+  const int size = patch.valueCount();
+  for (int i = 0; i < size; ++i)
+  {
+    out[i] = patch.coeffs[i];
+  }
+  for (int d = 0; d < Dim; ++d)
+  {
+    for (int child = 0; child < (1 << d); ++child)
+    {
+      const PatchView<T, Dim> lower(out + child * size, patch.degree, patch.channels);
+      const PatchView<T, Dim> upper(out + (child | (1 << d)) * size, patch.degree, patch.channels);
+      split<T, Dim>(lower, d, T(0.5), lower, upper);
+    }
+  }
+}
+
+/// Maps a child's parameter to its parent's for a child of splitMidpoint.
+template<class T, int Dim>
+IGA_HD void childToParentParameter(int child, const T* childU, T* parentU)
+{
+  for (int d = 0; d < Dim; ++d)
+  {
+    parentU[d] = T(0.5) * (childU[d] + T((child >> d) & 1));
+  }
+}
+
+/// Raises the degree of direction dir by one. `out` has degree[dir] + 1 there and must not alias.
+template<class T, int Dim>
+IGA_HD void elevateDegree(const PatchView<const T, Dim>& patch,
+                          int dir,
+                          const PatchView<T, Dim>& out)
+{
+  const int n = patch.degree[dir];
+  const int inStride = patch.stride(dir);
+  const int outStride = out.stride(dir);
+  const int channels = patch.channels;
+  // Lines of `out` correspond one to one (same enumeration order) to lines of `patch`.
+  int below = 1;
+  for (int d = 0; d < dir; ++d)
+  {
+    below *= patch.order(d);
+  }
+  const int lines = patch.pointCount() / patch.order(dir);
+  for (int line = 0; line < lines; ++line)
+  {
+    const int inBase = (line % below) + (line / below) * below * (n + 1);
+    const int outBase = (line % below) + (line / below) * below * (n + 2);
+    const T* in = patch.coeffs + inBase * channels;
+    T* result = out.coeffs + outBase * channels;
+    for (int i = 0; i <= n + 1; ++i)
+    {
+      // Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i
+      const T a = T(i) / T(n + 1);
+      for (int c = 0; c < channels; ++c)
+      {
+        const T previous = i > 0 ? in[(i - 1) * inStride + c] : T(0);
+        const T current = i <= n ? in[i * inStride + c] : T(0);
+        result[i * outStride + c] = a * previous + (T(1) - a) * current;
+      }
+    }
+  }
+}
+
+/// Host convenience: elevates direction dir by `times` steps.
+template<class T, int Dim>
+BezierPatch<T, Dim> elevateDegree(const BezierPatch<T, Dim>& patch, int dir, int times = 1)
+{
+  BezierPatch<T, Dim> current = patch;
+  for (int step = 0; step < times; ++step)
+  {
+    int degree[Dim];
+    for (int d = 0; d < Dim; ++d)
+    {
+      degree[d] = current.degree(d) + (d == dir ? 1 : 0);
+    }
+    BezierPatch<T, Dim> next(degree, current.channels());
+    elevateDegree<T, Dim>(current.view(), dir, next.view());
+    current = std::move(next);
+  }
+  return current;
+}
+
+} // namespace iga

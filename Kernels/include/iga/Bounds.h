@@ -1,0 +1,320 @@
+// Conservative bounds of rational Bézier patches: boxes after a projective transform, attribute
+// ranges, and a test that certifies at most one root of the pixel problem in a patch.
+#pragma once
+
+#include "iga/BezierPatch.h"
+
+namespace iga
+{
+
+/// Row-major 4x4 matrix acting on column vectors (x, y, z, w).
+template<class T>
+struct Matrix4
+{
+  T m[4][4];
+
+  IGA_HD static Matrix4 identity()
+  {
+    Matrix4 r;
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = 0; j < 4; ++j)
+      {
+        r.m[i][j] = i == j ? T(1) : T(0);
+      }
+    }
+    return r;
+  }
+  IGA_HD void apply(const T* in, T* out) const
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      out[i] = m[i][0] * in[0] + m[i][1] * in[1] + m[i][2] * in[2] + m[i][3] * in[3];
+    }
+  }
+};
+
+template<class T>
+struct Box3
+{
+  T lo[3];
+  T hi[3];
+};
+
+enum class ProjectionStatus
+{
+  InFront,           ///< every projected weight is positive: the box is a valid bound
+  StraddlesEyePlane, ///< some projected weights are <= 0: no finite bound exists
+  BehindEye,         ///< every projected weight is <= 0: the patch cannot be visible
+};
+
+/// Box of the patch's control points after the projective map M (e.g. world to clip space)
+/// followed by the perspective division. Uses channels 0..3 of the standard layout. Because the
+/// projected patch is a rational Bézier patch whose weights are the projected w's, the box bounds
+/// the patch exactly when all of them are positive; otherwise the status says why it does not.
+template<class T, int Dim>
+IGA_HD ProjectionStatus projectedBounds(const PatchView<const T, Dim>& patch,
+                                        const Matrix4<T>& M,
+                                        Box3<T>& box)
+{
+  int positive = 0;
+  const int count = patch.pointCount();
+  for (int d = 0; d < 3; ++d)
+  {
+    box.lo[d] = T(0);
+    box.hi[d] = T(0);
+  }
+  for (int p = 0; p < count; ++p)
+  {
+    T clip[4];
+    M.apply(patch.point(p), clip);
+    if (!(clip[3] > T(0)))
+    {
+      continue;
+    }
+    for (int d = 0; d < 3; ++d)
+    {
+      const T v = clip[d] / clip[3];
+      box.lo[d] = positive == 0 ? v : minValue(box.lo[d], v);
+      box.hi[d] = positive == 0 ? v : maxValue(box.hi[d], v);
+    }
+    ++positive;
+  }
+  if (positive == count)
+  {
+    return ProjectionStatus::InFront;
+  }
+  return positive == 0 ? ProjectionStatus::BehindEye : ProjectionStatus::StraddlesEyePlane;
+}
+
+/// Range [lo, hi] of the rational function numerator/denominator over the patch, valid when every
+/// denominator coefficient is positive (returns false otherwise): the function is a convex
+/// combination of the coefficient ratios.
+template<class T, int Dim>
+IGA_HD bool rationalRange(const PatchView<const T, Dim>& patch,
+                          int numerator,
+                          int denominator,
+                          T& lo,
+                          T& hi)
+{
+  lo = hi = T(0);
+  const int count = patch.pointCount();
+  for (int p = 0; p < count; ++p)
+  {
+    const T* point = patch.point(p);
+    if (!(point[denominator] > T(0)))
+    {
+      return false;
+    }
+    const T v = point[numerator] / point[denominator];
+    lo = p == 0 ? v : minValue(lo, v);
+    hi = p == 0 ? v : maxValue(hi, v);
+  }
+  return true;
+}
+
+/// The "no sign change, no surface" test: false when attribute channel `attribute` (standard
+/// layout, weight in kWeightChannel) stays strictly on one side of `isovalue` over the patch.
+template<class T, int Dim>
+IGA_HD bool mayContainIsovalue(const PatchView<const T, Dim>& patch, int attribute, T isovalue)
+{
+  T lo = T(0), hi = T(0);
+  if (!rationalRange(patch, attribute, kWeightChannel, lo, hi))
+  {
+    return true;
+  }
+  return lo <= isovalue && isovalue <= hi;
+}
+
+/// One equation of a pixel problem: the rational function numerator/denominator of two channels.
+struct RationalRow
+{
+  int numerator;
+  int denominator;
+};
+
+/// Closed interval.
+template<class T>
+struct Interval
+{
+  T lo;
+  T hi;
+  IGA_HD T mid() const { return T(0.5) * (lo + hi); }
+  IGA_HD T radius() const { return T(0.5) * (hi - lo); }
+};
+
+template<class T>
+IGA_HD Interval<T> operator*(Interval<T> a, Interval<T> b)
+{
+  const T p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
+  return { minValue(minValue(p0, p1), minValue(p2, p3)),
+           maxValue(maxValue(p0, p1), maxValue(p2, p3)) };
+}
+
+template<class T>
+IGA_HD Interval<T> operator-(Interval<T> a, Interval<T> b)
+{
+  return { a.lo - b.hi, a.hi - b.lo };
+}
+
+/// Inverse of a Dim x Dim matrix (Dim 2 or 3) by cofactors; false when the determinant is zero
+/// relative to the entries' scale.
+template<class T, int Dim>
+IGA_HD bool invertMatrix(const T (&a)[Dim][Dim], T (&inverse)[Dim][Dim])
+{
+  T scale = T(0);
+  for (int i = 0; i < Dim; ++i)
+  {
+    for (int j = 0; j < Dim; ++j)
+    {
+      scale = maxValue(scale, absValue(a[i][j]));
+    }
+  }
+  T det;
+  if (Dim == 2)
+  {
+    det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    inverse[0][0] = a[1][1];
+    inverse[0][1] = -a[0][1];
+    inverse[1][0] = -a[1][0];
+    inverse[1][1] = a[0][0];
+  }
+  else
+  {
+    for (int i = 0; i < Dim; ++i)
+    {
+      for (int j = 0; j < Dim; ++j)
+      {
+        // cofactor of a[j][i] (transposed: adjugate)
+        const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+        inverse[i][j] = a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0];
+      }
+    }
+    det = a[0][0] * inverse[0][0] + a[0][1] * inverse[1][0] + a[0][2] * inverse[2][0];
+  }
+  T scalePower = scale;
+  for (int i = 1; i < Dim; ++i)
+  {
+    scalePower *= scale;
+  }
+  if (!(absValue(det) > T(64) * Epsilon<T>::value * scalePower))
+  {
+    return false;
+  }
+  for (int i = 0; i < Dim; ++i)
+  {
+    for (int j = 0; j < Dim; ++j)
+    {
+      inverse[i][j] /= det;
+    }
+  }
+  return true;
+}
+
+/// Certifies that F(u) = (N_r(u) / D_r(u))_r, r < Dim, is injective on the patch, so that
+/// F(u) = target has at most one solution in it for every target (and Newton's root, when found,
+/// is the only one).
+///
+/// Why it holds: with G_r = D_r dN_r - N_r dD_r, row r of the Jacobian is G_r / D_r^2. For two
+/// parameters a, b the mean value theorem gives F(a) - F(b) = J' (a - b), where row r of J' is a
+/// positive multiple of a convex combination of values of G_r on the segment, hence lies in the
+/// interval hull [G_r] over the patch. If every matrix of the interval matrix [G] is regular, J' is
+/// regular and F(a) != F(b). Regularity is checked with Beeck's sufficient condition
+/// ||mid([G])^-1| rad([G])|_inf < 1. Interval bounds come from Bernstein coefficient ranges; each
+/// numerator is first shifted by its mean ratio (N - c D has the same quotient derivative) so the
+/// product terms stay tight.
+template<class T, int Dim>
+IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const RationalRow* rows)
+{
+  Interval<T> G[Dim][Dim];
+  const int count = patch.pointCount();
+  for (int r = 0; r < Dim; ++r)
+  {
+    const int num = rows[r].numerator;
+    const int den = rows[r].denominator;
+    T ratioLo = T(0), ratioHi = T(0);
+    if (!rationalRange(patch, num, den, ratioLo, ratioHi))
+    {
+      return false;
+    }
+    const T shift = T(0.5) * (ratioLo + ratioHi);
+    Interval<T> N = { T(0), T(0) }, D = { T(0), T(0) };
+    Interval<T> dN[Dim], dD[Dim];
+    for (int p = 0; p < count; ++p)
+    {
+      const T* point = patch.point(p);
+      const T n = point[num] - shift * point[den];
+      N = p == 0 ? Interval<T>{ n, n } : Interval<T>{ minValue(N.lo, n), maxValue(N.hi, n) };
+      D = p == 0 ? Interval<T>{ point[den], point[den] }
+                 : Interval<T>{ minValue(D.lo, point[den]), maxValue(D.hi, point[den]) };
+    }
+    for (int d = 0; d < Dim; ++d)
+    {
+      // Derivative coefficients along d: degree * (P_{i+1} - P_i).
+      const int stride = patch.stride(d) / patch.channels;
+      const T degree = T(patch.degree[d]);
+      bool first = true;
+      int index[Dim] = {};
+      for (int p = 0; p < count; ++p)
+      {
+        if (index[d] < patch.degree[d])
+        {
+          const T* a = patch.point(p);
+          const T* b = patch.point(p + stride);
+          const T dn = degree * ((b[num] - shift * b[den]) - (a[num] - shift * a[den]));
+          const T dd = degree * (b[den] - a[den]);
+          dN[d] = first ? Interval<T>{ dn, dn }
+                        : Interval<T>{ minValue(dN[d].lo, dn), maxValue(dN[d].hi, dn) };
+          dD[d] = first ? Interval<T>{ dd, dd }
+                        : Interval<T>{ minValue(dD[d].lo, dd), maxValue(dD[d].hi, dd) };
+          first = false;
+        }
+        for (int e = 0; e < Dim; ++e)
+        {
+          if (++index[e] < patch.order(e))
+          {
+            break;
+          }
+          index[e] = 0;
+        }
+      }
+      if (first) // degree 0 in this direction: the row does not depend on u_d
+      {
+        dN[d] = { T(0), T(0) };
+        dD[d] = { T(0), T(0) };
+      }
+      G[r][d] = D * dN[d] - N * dD[d];
+    }
+  }
+  T mid[Dim][Dim], inverse[Dim][Dim];
+  for (int i = 0; i < Dim; ++i)
+  {
+    for (int j = 0; j < Dim; ++j)
+    {
+      mid[i][j] = G[i][j].mid();
+    }
+  }
+  if (!invertMatrix<T, Dim>(mid, inverse))
+  {
+    return false;
+  }
+  for (int i = 0; i < Dim; ++i)
+  {
+    T rowSum = T(0);
+    for (int j = 0; j < Dim; ++j)
+    {
+      for (int k = 0; k < Dim; ++k)
+      {
+        rowSum += absValue(inverse[i][k]) * G[k][j].radius();
+      }
+    }
+    // A margin below 1 absorbs the rounding of the bounds themselves.
+    if (!(rowSum < T(0.9)))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+} // namespace iga

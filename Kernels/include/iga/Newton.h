@@ -1,0 +1,135 @@
+// Newton's method for the SST pixel problem: find u in a patch's domain with
+// F(u) = (N_r(u) / D_r(u))_r = target, each row within its tolerance. Dim = 3 for volumes
+// ((x, y, attribute) against (b_s, b_t, isovalue)), Dim = 2 for surfaces ((x, y) against a pixel).
+#pragma once
+
+#include "iga/Bounds.h"
+
+namespace iga
+{
+
+enum class NewtonStatus
+{
+  Converged,
+  SingularJacobian, ///< the Jacobian became numerically singular
+  LeftDomain,       ///< an iterate left the patch's parameter domain
+  NoConvergence,    ///< the iteration limit was reached
+  InvalidValue,     ///< a denominator vanished or a value was not finite
+};
+
+template<class T, int Dim>
+struct NewtonResult
+{
+  NewtonStatus status = NewtonStatus::NoConvergence;
+  T u[Dim] = {};
+  T residual[Dim] = {}; ///< F(u) - target at the returned u
+  int iterations = 0;
+};
+
+template<class T>
+struct NewtonSettings
+{
+  int maxIterations = 20;
+  /// How far outside [0,1] an iterate may stray before the patch is declared left; neighbouring
+  /// patches own solutions beyond that.
+  T domainSlack = T(1e-3);
+  /// Parametric step size below which the iteration has converged.
+  T stepTolerance = T(64) * Epsilon<T>::value;
+};
+
+/// Solves F(u) = target from the start point u0. Converged means |F_r(u) - target_r| <=
+/// tolerance_r for every row and, besides, the last step was below the step tolerance or the
+/// residual is 1000 times smaller than the tolerance, so the root is accurate well beyond the
+/// acceptance window. A converged u lies in [0,1]^Dim widened by the domain slack: a root on a
+/// face shared by two patches is found in both, and callers that keep every hit merge them.
+template<class T, int Dim>
+IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
+                                        const RationalRow* rows,
+                                        const T* target,
+                                        const T* tolerance,
+                                        const T* u0,
+                                        const NewtonSettings<T>& settings = {})
+{
+  NewtonResult<T, Dim> result;
+  constexpr int kMaxChannels = 16;
+  const int channels = patch.channels;
+  if (channels > kMaxChannels)
+  {
+    result.status = NewtonStatus::InvalidValue;
+    return result;
+  }
+  for (int d = 0; d < Dim; ++d)
+  {
+    result.u[d] = u0[d];
+  }
+  T values[kMaxChannels];
+  T derivatives[Dim * kMaxChannels];
+  T lastStep = T(1);
+  for (int iteration = 0; iteration <= settings.maxIterations; ++iteration)
+  {
+    result.iterations = iteration;
+    evaluateHomogeneous(patch, result.u, values, derivatives);
+    T J[Dim][Dim];
+    bool small = true, tiny = true;
+    for (int r = 0; r < Dim; ++r)
+    {
+      if (!(absValue(values[rows[r].denominator]) > T(0)))
+      {
+        result.status = NewtonStatus::InvalidValue;
+        return result;
+      }
+      const T f = rationalValue<T, Dim>(
+        values, derivatives, channels, rows[r].numerator, rows[r].denominator, J[r]);
+      result.residual[r] = f - target[r];
+      if (!isFinite(result.residual[r]))
+      {
+        result.status = NewtonStatus::InvalidValue;
+        return result;
+      }
+      small = small && absValue(result.residual[r]) <= tolerance[r];
+      tiny = tiny && absValue(result.residual[r]) <= T(1e-3) * tolerance[r];
+    }
+    if (tiny || (small && lastStep <= settings.stepTolerance))
+    {
+      result.status = NewtonStatus::Converged;
+      return result;
+    }
+    if (iteration == settings.maxIterations)
+    {
+      break;
+    }
+    T inverse[Dim][Dim];
+    if (!invertMatrix<T, Dim>(J, inverse))
+    {
+      result.status = NewtonStatus::SingularJacobian;
+      return result;
+    }
+    T stepNorm = T(0);
+    bool outside = false;
+    for (int d = 0; d < Dim; ++d)
+    {
+      T step = T(0);
+      for (int r = 0; r < Dim; ++r)
+      {
+        step -= inverse[d][r] * result.residual[r];
+      }
+      result.u[d] += step;
+      stepNorm = maxValue(stepNorm, absValue(step));
+      if (result.u[d] < -settings.domainSlack || result.u[d] > T(1) + settings.domainSlack ||
+          !isFinite(result.u[d]))
+      {
+        outside = true;
+      }
+    }
+    if (outside)
+    {
+      result.status = NewtonStatus::LeftDomain;
+      return result;
+    }
+    lastStep = stepNorm;
+  }
+  result.status = NewtonStatus::NoConvergence;
+  return result;
+}
+
+} // namespace iga

@@ -1,0 +1,51 @@
+// Checks of patch data before it reaches the numeric kernels (host only: messages are strings).
+#pragma once
+
+#include "iga/BezierPatch.h"
+
+#include <string>
+
+namespace iga
+{
+
+/// Empty when the patch (standard layout) is usable; otherwise one sentence naming the first
+/// problem: degree outside 1..kMaxDegree, too few channels, a non-finite value or a non-positive
+/// weight, with the control point's index.
+template<class T, int Dim>
+std::string checkPatch(const PatchView<const T, Dim>& patch)
+{
+  for (int d = 0; d < Dim; ++d)
+  {
+    if (patch.degree[d] < 1 || patch.degree[d] > kMaxDegree)
+    {
+      return "degree " + std::to_string(patch.degree[d]) + " in direction " + std::to_string(d) +
+             " is outside 1.." + std::to_string(kMaxDegree);
+    }
+  }
+  if (patch.channels < kFirstAttributeChannel)
+  {
+    return "control points have " + std::to_string(patch.channels) +
+           " values, need at least 4 (w*x, w*y, w*z, w)";
+  }
+  const int count = patch.pointCount();
+  for (int p = 0; p < count; ++p)
+  {
+    const T* point = patch.point(p);
+    for (int c = 0; c < patch.channels; ++c)
+    {
+      if (!isFinite(point[c]))
+      {
+        return "control point " + std::to_string(p) + " has a non-finite value in channel " +
+               std::to_string(c);
+      }
+    }
+    if (!(point[kWeightChannel] > T(0)))
+    {
+      return "control point " + std::to_string(p) + " has non-positive weight " +
+             std::to_string(point[kWeightChannel]);
+    }
+  }
+  return std::string();
+}
+
+} // namespace iga

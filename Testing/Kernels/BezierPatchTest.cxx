@@ -1,0 +1,278 @@
+// Evaluation, derivatives, subdivision and degree elevation of rational Bézier patches, checked
+// against explicit Bernstein sums in long double and central differences.
+#include "TestPatches.h"
+
+#include "iga/BezierPatch.h"
+
+using namespace igatest;
+
+namespace
+{
+
+template<class T>
+class BezierPatchTest : public ::testing::Test
+{
+};
+TYPED_TEST_SUITE(BezierPatchTest, ScalarTypes);
+
+/// Largest difference between the Euclidean values of `a` at ua and `b` at ub, relative to the
+/// values' magnitude.
+template<class A, class B, int Dim>
+double euclideanDifference(const iga::PatchView<A, Dim>& a,
+                           const double* ua,
+                           const iga::PatchView<B, Dim>& b,
+                           const double* ub)
+{
+  const auto va = evaluateEuclidean(a, ua);
+  const auto vb = evaluateEuclidean(b, ub);
+  double diff = 0;
+  for (size_t c = 0; c < va.size(); ++c)
+  {
+    diff = std::max(diff, double(std::fabs(va[c] - vb[c])));
+  }
+  return diff / std::max(1.0, maxAbs(va));
+}
+
+template<class T, int Dim>
+void checkEvaluation(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> param(0.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial)
+  {
+    int degree[Dim];
+    randomDegrees<Dim>(rng, degree, 6);
+    const auto patch = randomPatch<T, Dim>(rng, degree, 2);
+    const auto view = patch.view();
+    double u[Dim];
+    T uT[Dim];
+    for (int d = 0; d < Dim; ++d)
+    {
+      u[d] = param(rng);
+      uT[d] = T(u[d]);
+      u[d] = double(uT[d]); // evaluate the reference at exactly the same parameter
+    }
+    std::vector<T> values(view.channels);
+    iga::evaluateHomogeneous<T, Dim>(view, uT, values.data(), nullptr);
+    const auto reference = evaluateDirect(view, u);
+    for (int c = 0; c < view.channels; ++c)
+    {
+      EXPECT_NEAR(double(values[c]),
+                  double(reference[c]),
+                  Tolerance<T>::relative * std::max(1.0, maxAbs(reference)))
+        << "channel " << c << " trial " << trial;
+    }
+  }
+}
+
+TYPED_TEST(BezierPatchTest, EvaluationMatchesExplicitBernsteinSum)
+{
+  std::mt19937 rng(1);
+  checkEvaluation<TypeParam, 3>(rng);
+  checkEvaluation<TypeParam, 2>(rng);
+}
+
+template<class T, int Dim>
+void checkDerivatives(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> param(0.05, 0.95);
+  for (int trial = 0; trial < 50; ++trial)
+  {
+    int degree[Dim];
+    randomDegrees<Dim>(rng, degree);
+    const auto patch = randomPatch<T, Dim>(rng, degree, 1);
+    const auto reference = toDouble(patch);
+    const auto view = patch.view();
+    T uT[Dim];
+    double u[Dim];
+    for (int d = 0; d < Dim; ++d)
+    {
+      uT[d] = T(param(rng));
+      u[d] = double(uT[d]);
+    }
+    std::vector<T> values(view.channels), derivatives(Dim * view.channels);
+    iga::evaluateHomogeneous<T, Dim>(view, uT, values.data(), derivatives.data());
+    const double h = 1e-5;
+    for (int c = 0; c < view.channels; ++c)
+    {
+      if (c == iga::kWeightChannel)
+        continue;
+      T gradient[Dim];
+      iga::rationalValue<T, Dim>(
+        values.data(), derivatives.data(), view.channels, c, iga::kWeightChannel, gradient);
+      for (int d = 0; d < Dim; ++d)
+      {
+        double up[Dim], down[Dim];
+        for (int e = 0; e < Dim; ++e)
+        {
+          up[e] = down[e] = u[e];
+        }
+        up[d] += h;
+        down[d] -= h;
+        const double central = double(evaluateEuclidean(reference.view(), up)[c] -
+                                      evaluateEuclidean(reference.view(), down)[c]) /
+                               (2 * h);
+        EXPECT_NEAR(double(gradient[d]),
+                    central,
+                    Tolerance<T>::derivative * std::max(1.0, std::fabs(central)))
+          << "channel " << c << " direction " << d << " trial " << trial;
+      }
+    }
+  }
+}
+
+TYPED_TEST(BezierPatchTest, RationalDerivativesMatchCentralDifferences)
+{
+  std::mt19937 rng(2);
+  checkDerivatives<TypeParam, 3>(rng);
+  checkDerivatives<TypeParam, 2>(rng);
+}
+
+template<class T, int Dim>
+void checkSplit(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> param(0.0, 1.0), cut(0.1, 0.9);
+  std::uniform_int_distribution<int> pickDir(0, Dim - 1);
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    int degree[Dim];
+    randomDegrees<Dim>(rng, degree, 5);
+    const auto parent = randomPatch<T, Dim>(rng, degree, 2);
+    const int dir = pickDir(rng);
+    const T t = T(cut(rng));
+    // Left child computed in place in a copy of the parent: the aliasing the kernels allow.
+    auto left = parent;
+    auto right = parent;
+    iga::split<T, Dim>(left.view(), dir, t, left.view(), right.view());
+    for (int sample = 0; sample < 10; ++sample)
+    {
+      double u[Dim], parentLeft[Dim], parentRight[Dim];
+      for (int d = 0; d < Dim; ++d)
+      {
+        u[d] = parentLeft[d] = parentRight[d] = param(rng);
+      }
+      parentLeft[dir] = double(t) * u[dir];
+      parentRight[dir] = double(t) + (1 - double(t)) * u[dir];
+      EXPECT_LT(euclideanDifference(left.view(), u, parent.view(), parentLeft),
+                Tolerance<T>::relative);
+      EXPECT_LT(euclideanDifference(right.view(), u, parent.view(), parentRight),
+                Tolerance<T>::relative);
+    }
+  }
+}
+
+TYPED_TEST(BezierPatchTest, SplitChildrenReproduceParent)
+{
+  std::mt19937 rng(3);
+  checkSplit<TypeParam, 3>(rng);
+  checkSplit<TypeParam, 2>(rng);
+}
+
+template<class T, int Dim>
+void checkMidpointSplit(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> param(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    int degree[Dim];
+    randomDegrees<Dim>(rng, degree, 5);
+    const auto parent = randomPatch<T, Dim>(rng, degree, 1);
+    const auto view = parent.view();
+    std::vector<T> children(static_cast<size_t>(view.valueCount()) << Dim);
+    iga::splitMidpoint<T, Dim>(view, children.data());
+    for (int child = 0; child < (1 << Dim); ++child)
+    {
+      const iga::PatchView<const T, Dim> childView(
+        children.data() + child * view.valueCount(), view.degree, view.channels);
+      for (int sample = 0; sample < 5; ++sample)
+      {
+        double u[Dim], parentU[Dim];
+        for (int d = 0; d < Dim; ++d)
+        {
+          u[d] = param(rng);
+        }
+        iga::childToParentParameter<double, Dim>(child, u, parentU);
+        EXPECT_LT(euclideanDifference(childView, u, view, parentU), Tolerance<T>::relative)
+          << "child " << child;
+      }
+    }
+  }
+}
+
+TYPED_TEST(BezierPatchTest, MidpointSplitChildrenReproduceParent)
+{
+  std::mt19937 rng(4);
+  checkMidpointSplit<TypeParam, 3>(rng);
+  checkMidpointSplit<TypeParam, 2>(rng);
+}
+
+template<class T, int Dim>
+void checkElevation(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> param(0.0, 1.0);
+  std::uniform_int_distribution<int> pickDir(0, Dim - 1), pickTimes(1, 3);
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    int degree[Dim];
+    randomDegrees<Dim>(rng, degree, 4);
+    const auto patch = randomPatch<T, Dim>(rng, degree, 2);
+    const int dir = pickDir(rng);
+    const int times = pickTimes(rng);
+    const auto elevated = iga::elevateDegree(patch, dir, times);
+    ASSERT_EQ(elevated.degree(dir), degree[dir] + times);
+    for (int sample = 0; sample < 10; ++sample)
+    {
+      double u[Dim];
+      for (int d = 0; d < Dim; ++d)
+      {
+        u[d] = param(rng);
+      }
+      EXPECT_LT(euclideanDifference(elevated.view(), u, patch.view(), u), Tolerance<T>::relative);
+    }
+  }
+}
+
+TYPED_TEST(BezierPatchTest, DegreeElevationIsExact)
+{
+  std::mt19937 rng(5);
+  checkElevation<TypeParam, 3>(rng);
+  checkElevation<TypeParam, 2>(rng);
+}
+
+TYPED_TEST(BezierPatchTest, HighestDegreeEvaluatesAndSplits)
+{
+  using T = TypeParam;
+  std::mt19937 rng(6);
+  const int degree[3] = { iga::kMaxDegree, 2, iga::kMaxDegree };
+  const auto patch = randomPatch<T, 3>(rng, degree, 1);
+  auto left = patch, right = patch;
+  iga::split<T, 3>(patch.view(), 0, T(0.5), left.view(), right.view());
+  const double u[3] = { 0.3, 0.7, 0.55 }, parentU[3] = { 0.15, 0.7, 0.55 };
+  EXPECT_LT(euclideanDifference(left.view(), u, patch.view(), parentU), Tolerance<T>::relative);
+  const T uT[3] = { T(0.3), T(0.7), T(0.55) };
+  std::vector<T> values(patch.channels());
+  iga::evaluateHomogeneous<T, 3>(patch.view(), uT, values.data(), nullptr);
+  const double uExact[3] = { double(uT[0]), double(uT[1]), double(uT[2]) };
+  const auto reference = evaluateDirect(patch.view(), uExact);
+  EXPECT_NEAR(double(values[0]), double(reference[0]), Tolerance<T>::relative * maxAbs(reference));
+}
+
+TEST(BernsteinBasis, PartitionOfUnityAndDerivativeSum)
+{
+  for (int n = 0; n <= iga::kMaxDegree; ++n)
+  {
+    double basis[iga::kMaxOrder], derivative[iga::kMaxOrder];
+    iga::bernsteinBasis(n, 0.37, basis, derivative);
+    double sum = 0, dsum = 0;
+    for (int i = 0; i <= n; ++i)
+    {
+      sum += basis[i];
+      dsum += derivative[i];
+      const double exact = iga::binomial(n, i) * std::pow(0.37, i) * std::pow(0.63, n - i);
+      EXPECT_NEAR(basis[i], exact, 1e-14) << "n " << n << " i " << i;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-14);
+    EXPECT_NEAR(dsum, 0.0, 1e-12);
+  }
+}
+
+} // namespace

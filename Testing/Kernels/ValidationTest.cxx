@@ -1,0 +1,51 @@
+// Bad patch data is named before it reaches the numeric kernels.
+#include "TestPatches.h"
+
+#include "iga/Validation.h"
+
+using namespace igatest;
+
+namespace
+{
+
+TEST(PatchValidation, AcceptsGoodPatchesAndNamesEachProblem)
+{
+  std::mt19937 rng(50);
+  const int degree[3] = { 2, 3, 1 };
+  auto patch = randomPatch<double, 3>(rng, degree);
+  const iga::VolumeView<const double> view = patch.view();
+  EXPECT_EQ(iga::checkPatch(view), "");
+
+  auto negative = patch;
+  negative.view().point(7)[iga::kWeightChannel] = -0.5;
+  EXPECT_NE(
+    (iga::checkPatch<double, 3>(negative.view())).find("control point 7 has non-positive weight"),
+    std::string::npos);
+
+  auto zero = patch;
+  zero.view().point(0)[iga::kWeightChannel] = 0.0;
+  EXPECT_NE(
+    (iga::checkPatch<double, 3>(zero.view())).find("control point 0 has non-positive weight"),
+    std::string::npos);
+
+  auto nan = patch;
+  nan.view().point(5)[1] = NAN;
+  EXPECT_NE((iga::checkPatch<double, 3>(nan.view()))
+              .find("control point 5 has a non-finite value in channel 1"),
+            std::string::npos);
+
+  auto inf = patch;
+  inf.view().point(2)[4] = INFINITY;
+  EXPECT_NE((iga::checkPatch<double, 3>(inf.view())).find("non-finite"), std::string::npos);
+
+  iga::VolumeView<const double> absurd = view;
+  absurd.degree[1] = 40;
+  EXPECT_NE(iga::checkPatch(absurd).find("degree 40 in direction 1 is outside 1..16"),
+            std::string::npos);
+
+  iga::VolumeView<const double> narrow = view;
+  narrow.channels = 3;
+  EXPECT_NE(iga::checkPatch(narrow).find("need at least 4"), std::string::npos);
+}
+
+} // namespace
