@@ -1,0 +1,248 @@
+#include "vtkIGABezierHexahedra.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDoubleArray.h"
+#include "vtkHigherOrderHexahedron.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "iga/Validation.h"
+
+namespace
+{
+const char* const kWeightsName = "RationalWeights";
+const char* const kDegreesName = "HigherOrderDegrees";
+
+/// Calls fn(i, j, k, linear Kernels index, VTK point index within the cell) for every control
+/// point of a hexahedron of the given degrees.
+template<class Fn>
+void forEachControlPoint(const int* degree, Fn fn)
+{
+  int linear = 0;
+  for (int k = 0; k <= degree[2]; ++k)
+  {
+    for (int j = 0; j <= degree[1]; ++j)
+    {
+      for (int i = 0; i <= degree[0]; ++i, ++linear)
+      {
+        fn(linear, vtkHigherOrderHexahedron::PointIndexFromIJK(i, j, k, degree));
+      }
+    }
+  }
+}
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
+  const iga::VolumeSet<double>& set)
+{
+  vtkIdType total = 0;
+  for (const auto& patch : set.patches)
+  {
+    total += patch.view().pointCount();
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(total);
+  vtkNew<vtkDoubleArray> weights;
+  weights->SetName(kWeightsName);
+  weights->SetNumberOfTuples(total);
+  std::vector<vtkSmartPointer<vtkDoubleArray>> attributes;
+  for (const auto& name : set.attributeNames)
+  {
+    attributes.push_back(vtkSmartPointer<vtkDoubleArray>::New());
+    attributes.back()->SetName(name.c_str());
+    attributes.back()->SetNumberOfTuples(total);
+  }
+  vtkNew<vtkIntArray> degrees;
+  degrees->SetName(kDegreesName);
+  degrees->SetNumberOfComponents(3);
+  degrees->SetNumberOfTuples(static_cast<vtkIdType>(set.patches.size()));
+  vtkNew<vtkCellArray> cells;
+
+  vtkIdType offset = 0;
+  std::vector<vtkIdType> ids;
+  for (size_t c = 0; c < set.patches.size(); ++c)
+  {
+    const auto view = set.patches[c].view();
+    const int* degree = view.degree;
+    ids.resize(view.pointCount());
+    forEachControlPoint(degree,
+                        [&](int linear, int vtkIndex)
+                        {
+                          const double* cp = view.point(linear);
+                          const double w = cp[iga::kWeightChannel];
+                          const vtkIdType id = offset + vtkIndex;
+                          points->SetPoint(id, cp[0] / w, cp[1] / w, cp[2] / w);
+                          weights->SetValue(id, w);
+                          for (size_t a = 0; a < attributes.size(); ++a)
+                          {
+                            attributes[a]->SetValue(id, cp[iga::kFirstAttributeChannel + a] / w);
+                          }
+                          ids[vtkIndex] = id;
+                        });
+    cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    degrees->SetTypedTuple(static_cast<vtkIdType>(c), degree);
+    offset += view.pointCount();
+  }
+
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->SetCells(VTK_BEZIER_HEXAHEDRON, cells);
+  grid->GetPointData()->SetRationalWeights(weights);
+  for (const auto& array : attributes)
+  {
+    grid->GetPointData()->AddArray(array);
+  }
+  if (!attributes.empty())
+  {
+    grid->GetPointData()->SetActiveScalars(attributes.front()->GetName());
+  }
+  grid->GetCellData()->SetHigherOrderDegrees(degrees);
+  return grid;
+}
+
+bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
+                                                 iga::VolumeSet<double>& set,
+                                                 std::string& error,
+                                                 std::vector<std::string>& warnings)
+{
+  set = iga::VolumeSet<double>();
+  if (!grid || grid->GetNumberOfCells() == 0)
+  {
+    error = "the grid has no cells";
+    return false;
+  }
+  vtkPointData* pd = grid->GetPointData();
+  vtkDataArray* weights = pd->GetRationalWeights();
+  if (!weights && (weights = pd->GetArray(kWeightsName)))
+  {
+    warnings.push_back(
+      std::string("point array '") + kWeightsName +
+      "' is not flagged as the active rational weights; VTK ignores it, IGAView uses it");
+  }
+  if (!weights)
+  {
+    warnings.push_back("no rational weights: all weights are taken as 1 (polynomial cells)");
+  }
+  vtkDataArray* degrees = grid->GetCellData()->GetHigherOrderDegrees();
+  if (!degrees && (degrees = grid->GetCellData()->GetArray(kDegreesName)))
+  {
+    warnings.push_back(
+      std::string("cell array '") + kDegreesName +
+      "' is not flagged as the active higher-order degrees; VTK ignores it, IGAView uses it");
+  }
+  if (degrees && degrees->GetNumberOfComponents() != 3)
+  {
+    error = std::string("cell array '") + kDegreesName + "' has " +
+            std::to_string(degrees->GetNumberOfComponents()) + " components, expected 3";
+    return false;
+  }
+  std::vector<vtkDataArray*> attributes;
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pd->GetArray(a);
+    if (array && array != weights && array->GetNumberOfComponents() == 1 && array->GetName())
+    {
+      attributes.push_back(array);
+      set.attributeNames.emplace_back(array->GetName());
+    }
+  }
+  const int channels = iga::kFirstAttributeChannel + static_cast<int>(attributes.size());
+  const vtkIdType pointCount = grid->GetNumberOfPoints();
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    const std::string where = "cell " + std::to_string(c) + ": ";
+    const int type = grid->GetCellType(c);
+    vtkIdType npts;
+    const vtkIdType* pts;
+    grid->GetCellPoints(c, npts, pts);
+    int degree[3] = { 1, 1, 1 };
+    if (type == VTK_BEZIER_HEXAHEDRON)
+    {
+      if (degrees)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          const double value = degrees->GetComponent(c, d);
+          if (!(value >= 1 && value <= iga::kMaxDegree))
+          {
+            error = where + "degree " + std::to_string(value) + " in direction " +
+                    std::to_string(d) + " is outside 1.." + std::to_string(iga::kMaxDegree);
+            return false;
+          }
+          degree[d] = static_cast<int>(value);
+        }
+      }
+      else
+      {
+        // VTK's own fallback: equal degrees from the point count.
+        const int order = static_cast<int>(std::lround(std::cbrt(static_cast<double>(npts))));
+        if (order < 2 || order * order * order != npts)
+        {
+          error = where + std::to_string(npts) +
+                  " points are no cube of an order and there is no HigherOrderDegrees array";
+          return false;
+        }
+        degree[0] = degree[1] = degree[2] = order - 1;
+      }
+    }
+    else if (type != VTK_HEXAHEDRON)
+    {
+      error = where + "cell type " + std::to_string(type) +
+              " is not a hexahedron (expected VTK_BEZIER_HEXAHEDRON = 79 or VTK_HEXAHEDRON = 12)";
+      return false;
+    }
+    iga::BezierVolume<double> patch(degree, channels);
+    const auto view = patch.view();
+    if (npts != view.pointCount())
+    {
+      error = where + "has " + std::to_string(npts) + " points, degrees " +
+              std::to_string(degree[0]) + "x" + std::to_string(degree[1]) + "x" +
+              std::to_string(degree[2]) + " need " + std::to_string(view.pointCount());
+      return false;
+    }
+    bool badId = false;
+    forEachControlPoint(degree,
+                        [&](int linear, int vtkIndex)
+                        {
+                          const vtkIdType id = pts[vtkIndex];
+                          if (id < 0 || id >= pointCount)
+                          {
+                            badId = true;
+                            return;
+                          }
+                          double x[3];
+                          grid->GetPoint(id, x);
+                          const double w = weights ? weights->GetComponent(id, 0) : 1.0;
+                          double* cp = view.point(linear);
+                          for (int d = 0; d < 3; ++d)
+                          {
+                            cp[d] = w * x[d];
+                          }
+                          cp[iga::kWeightChannel] = w;
+                          for (size_t a = 0; a < attributes.size(); ++a)
+                          {
+                            cp[iga::kFirstAttributeChannel + a] =
+                              w * attributes[a]->GetComponent(id, 0);
+                          }
+                        });
+    if (badId)
+    {
+      error = where + "refers to a point outside 0.." + std::to_string(pointCount - 1);
+      return false;
+    }
+    const std::string problem = iga::checkPatch<double, 3>(view);
+    if (!problem.empty())
+    {
+      error = where + problem;
+      return false;
+    }
+    set.patches.push_back(std::move(patch));
+  }
+  return true;
+}

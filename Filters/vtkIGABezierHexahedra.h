@@ -1,0 +1,44 @@
+/**
+ * @class   vtkIGABezierHexahedra
+ * @brief   Converts between Kernels rational Bézier volumes and vtkUnstructuredGrid cells of type
+ *          VTK_BEZIER_HEXAHEDRON.
+ *
+ * The grid side follows VTK's conventions: points in VTK's higher-order hexahedron ordering
+ * (vtkHigherOrderHexahedron::PointIndexFromIJK), Euclidean coordinates, a point array
+ * "RationalWeights" and a 3-component cell array "HigherOrderDegrees", both flagged as the active
+ * rational weights / higher-order degrees (VTK silently ignores them otherwise), and one point
+ * array per attribute. Patches do not share points: each cell owns its control points, so
+ * patches of different degrees and discontinuous attributes convert without loss.
+ *
+ * Reading accepts VTK_BEZIER_HEXAHEDRON (and linear VTK_HEXAHEDRON as degree 1). Every
+ * single-component point array other than the weights becomes an attribute. Problems are
+ * reported as one sentence naming the cell and the problem; missing or inactive weight and
+ * degree arrays are reported as warnings, as VTK would otherwise drop them without a word.
+ */
+#ifndef vtkIGABezierHexahedra_h
+#define vtkIGABezierHexahedra_h
+
+#include "IGAViewFiltersModule.h" // for export macro
+#include "iga/Datasets.h"         // for VolumeSet
+#include "vtkSmartPointer.h"      // for return value
+
+#include <string>
+#include <vector>
+
+class vtkUnstructuredGrid;
+
+class IGAVIEWFILTERS_EXPORT vtkIGABezierHexahedra
+{
+public:
+  /// Patches (standard layout, every attribute named) to a grid of Bézier hexahedra.
+  static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(const iga::VolumeSet<double>& set);
+
+  /// Grid to patches. Returns false and sets `error` when the grid cannot be converted; appends
+  /// non-fatal notes to `warnings`.
+  static bool FromUnstructuredGrid(vtkUnstructuredGrid* grid,
+                                   iga::VolumeSet<double>& set,
+                                   std::string& error,
+                                   std::vector<std::string>& warnings);
+};
+
+#endif

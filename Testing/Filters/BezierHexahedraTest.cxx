@@ -1,0 +1,160 @@
+// Kernels patches <-> VTK Bézier hexahedra, checked against VTK's own rational interpolation
+// (vtkBezierHexahedron), which is an independent implementation of the point ordering and
+// the rational basis.
+#include "TestPatches.h"
+#include "vtkIGABezierHexahedra.h"
+
+#include "vtkBezierHexahedron.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDataArray.h"
+#include "vtkGenericCell.h"
+#include "vtkPointData.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <cmath>
+
+using namespace igatest;
+
+namespace
+{
+
+iga::VolumeSet<double> randomSet(std::mt19937& rng, int count)
+{
+  iga::VolumeSet<double> set;
+  set.attributeNames = { "pressure", "temperature" };
+  for (int c = 0; c < count; ++c)
+  {
+    int degree[3];
+    randomDegrees<3>(rng, degree, 4);
+    set.patches.push_back(randomPatch<double, 3>(rng, degree, 2));
+  }
+  return set;
+}
+
+TEST(BezierHexahedra, VTKInterpolationOfConvertedCellsMatchesKernels)
+{
+  std::mt19937 rng(100);
+  const auto set = randomSet(rng, 12);
+  const auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(set);
+  ASSERT_EQ(grid->GetNumberOfCells(), 12);
+  ASSERT_NE(grid->GetPointData()->GetRationalWeights(), nullptr);
+  ASSERT_NE(grid->GetCellData()->GetHigherOrderDegrees(), nullptr);
+  std::uniform_real_distribution<double> unit(0, 1);
+  vtkNew<vtkGenericCell> cell;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    EXPECT_EQ(grid->GetCellType(c), VTK_BEZIER_HEXAHEDRON);
+    grid->GetCell(c, cell);
+    const auto view = set.patches[c].view();
+    std::vector<double> weights(cell->GetNumberOfPoints());
+    for (int s = 0; s < 10; ++s)
+    {
+      double pcoords[3] = { unit(rng), unit(rng), unit(rng) };
+      double x[3];
+      int subId = 0;
+      cell->EvaluateLocation(subId, pcoords, x, weights.data());
+      const auto reference = evaluateEuclidean(view, pcoords);
+      for (int d = 0; d < 3; ++d)
+      {
+        EXPECT_NEAR(x[d], double(reference[d]), 1e-10) << "cell " << c << " coordinate " << d;
+      }
+      for (int a = 0; a < 2; ++a)
+      {
+        vtkDataArray* array = grid->GetPointData()->GetArray(set.attributeNames[a].c_str());
+        double value = 0;
+        for (vtkIdType p = 0; p < cell->GetNumberOfPoints(); ++p)
+        {
+          value += weights[p] * array->GetComponent(cell->GetPointId(p), 0);
+        }
+        EXPECT_NEAR(value, double(reference[iga::kFirstAttributeChannel + a]), 1e-10)
+          << "cell " << c << " attribute " << a;
+      }
+    }
+  }
+}
+
+TEST(BezierHexahedra, RoundTripIsExact)
+{
+  std::mt19937 rng(101);
+  const auto set = randomSet(rng, 5);
+  iga::VolumeSet<double> back;
+  std::string error;
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(vtkIGABezierHexahedra::FromUnstructuredGrid(
+    vtkIGABezierHexahedra::ToUnstructuredGrid(set), back, error, warnings))
+    << error;
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_EQ(back.attributeNames, set.attributeNames);
+  ASSERT_EQ(back.patches.size(), set.patches.size());
+  for (size_t c = 0; c < set.patches.size(); ++c)
+  {
+    for (int d = 0; d < 3; ++d)
+      EXPECT_EQ(back.patches[c].degree(d), set.patches[c].degree(d));
+    for (size_t v = 0; v < set.patches[c].coeffs().size(); ++v)
+      EXPECT_NEAR(back.patches[c].coeffs()[v], set.patches[c].coeffs()[v], 1e-12);
+  }
+}
+
+/// The error from converting a grid that `damage` modified, or "" if it converted.
+template<class Fn>
+std::string conversionError(Fn damage, std::vector<std::string>* warnings = nullptr)
+{
+  std::mt19937 rng(102);
+  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(randomSet(rng, 3));
+  damage(grid.Get());
+  iga::VolumeSet<double> set;
+  std::string error;
+  std::vector<std::string> localWarnings;
+  vtkIGABezierHexahedra::FromUnstructuredGrid(
+    grid, set, error, warnings ? *warnings : localWarnings);
+  return error;
+}
+
+TEST(BezierHexahedra, BadInputIsNamed)
+{
+  EXPECT_NE(conversionError([](vtkUnstructuredGrid* g)
+                            { g->GetPointData()->GetRationalWeights()->SetComponent(5, 0, -1.0); })
+              .find("cell 0: control point"),
+            std::string::npos);
+  EXPECT_NE(
+    conversionError(
+      [](vtkUnstructuredGrid* g) {
+        g->GetPointData()->GetArray("pressure")->SetComponent(g->GetNumberOfPoints() - 1, 0, NAN);
+      })
+      .find("cell 2: control point"),
+    std::string::npos);
+  EXPECT_NE(conversionError([](vtkUnstructuredGrid* g)
+                            { g->GetCellData()->GetHigherOrderDegrees()->SetComponent(1, 2, 40); })
+              .find("cell 1: degree 40"),
+            std::string::npos);
+  EXPECT_NE(conversionError(
+              [](vtkUnstructuredGrid* g)
+              {
+                auto* degrees = g->GetCellData()->GetHigherOrderDegrees();
+                degrees->SetComponent(0, 0, degrees->GetComponent(0, 0) + 1);
+              })
+              .find("cell 0: has"),
+            std::string::npos);
+  EXPECT_NE(conversionError([](vtkUnstructuredGrid* g) { g->Initialize(); }).find("no cells"),
+            std::string::npos);
+}
+
+TEST(BezierHexahedra, InactiveWeightsAreUsedWithAWarning)
+{
+  std::vector<std::string> warnings;
+  const std::string error = conversionError(
+    [](vtkUnstructuredGrid* g)
+    {
+      // Keep the array but drop its "active rational weights" flag, as many writers do.
+      vtkSmartPointer<vtkDataArray> weights = g->GetPointData()->GetRationalWeights();
+      g->GetPointData()->SetRationalWeights(nullptr);
+      g->GetPointData()->AddArray(weights);
+    },
+    &warnings);
+  EXPECT_EQ(error, "");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("not flagged as the active rational weights"), std::string::npos);
+}
+
+} // namespace

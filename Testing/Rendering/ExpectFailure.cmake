@@ -1,0 +1,12 @@
+# Runs COMMAND (a ;-list) and passes when it exits non-zero with MESSAGE on stderr in one line.
+execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "expected a non-zero exit, got 0")
+endif()
+if(NOT err MATCHES "${MESSAGE}")
+  message(FATAL_ERROR "expected '${MESSAGE}' on stderr, got: ${err}")
+endif()
+string(STRIP "${err}" stripped)
+if(stripped MATCHES "\n")
+  message(FATAL_ERROR "expected a one-line error, got: ${err}")
+endif()
