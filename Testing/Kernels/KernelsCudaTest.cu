@@ -2,7 +2,9 @@
 // results. Without a usable CUDA device every test reports SKIPPED.
 #include "TestPatches.h"
 
-#include "iga/Newton.h"
+#include "iga/Camera.h"
+#include "iga/Datasets.h"
+#include "iga/sst/PixelProblem.h"
 
 #include <cuda_runtime.h>
 
@@ -132,6 +134,112 @@ TEST(KernelsCuda, DeviceResultsMatchHost)
     const bool hostCertified = iga::certifyUniqueRoot<float, 3>(patches[i].view(), kPixelRows);
     EXPECT_EQ(out[i * 15 + 14] == 1.0f, hostCertified) << "patch " << i;
   }
+}
+
+/// The SST pixel stage on the device: node analysis and tuple solves for every pixel of a small
+/// image against the screen patch of a Marsden sphere's octant.
+__global__ void tupleKernel(const double* node, int width, int height, int* outcome, double* depth)
+{
+  const int p = blockIdx.x * blockDim.x + threadIdx.x;
+  if (p >= width * height)
+    return;
+  const int degree[3] = { 3, 3, 3 };
+  const iga::VolumeView<const double> view(node, degree, iga::sst::kScreenChannels);
+  const auto info = iga::sst::analyzeNode(view, 0.0);
+  const double tolerance[3] = { 1e-3, 1e-3, 1e-9 };
+  double u[3], ndc = 0;
+  outcome[p] = int(iga::sst::solveTuple(view, info, p % width, p / width, 0.0, tolerance, u, ndc));
+  depth[p] = ndc;
+}
+
+/// Screen-space sub-patches of the degree-3 sphere volume at subdivision level 3, seen by a
+/// 48x48 camera; returns the first that is certified and hit by some pixel, with its analysis.
+std::vector<double> pickCertifiedNode(int width, int height)
+{
+  const auto set = iga::makeMarsdenSphere<double>(3);
+  iga::Camera camera;
+  const double position[3] = { 3, 2.5, 2 };
+  for (int d = 0; d < 3; ++d)
+    camera.position[d] = position[d], camera.focalPoint[d] = 0, camera.viewUp[d] = d == 2;
+  camera.clippingRange[0] = 1;
+  camera.clippingRange[1] = 10;
+  iga::Matrix4<double> window = iga::Matrix4<double>::identity();
+  window.m[0][0] = window.m[0][3] = 0.5 * width;
+  window.m[1][1] = window.m[1][3] = 0.5 * height;
+  const auto M = iga::multiply(window, iga::worldToClip(camera, double(width) / height));
+  const auto world = set.patches[0].view();
+  const int count = world.pointCount() * iga::sst::kScreenChannels;
+  std::vector<double> nodes(count);
+  iga::sst::makeScreenPatch<double>(world, M, iga::kFirstAttributeChannel, nodes.data());
+  const int degree[3] = { 3, 3, 3 };
+  for (int level = 0; level < 3; ++level)
+  {
+    std::vector<double> children(nodes.size() * 8);
+    for (size_t n = 0; n < nodes.size() / count; ++n)
+      iga::splitMidpoint<double, 3>(
+        iga::VolumeView<const double>(nodes.data() + n * count, degree, iga::sst::kScreenChannels),
+        children.data() + 8 * n * count);
+    nodes.swap(children);
+  }
+  const double tolerance[3] = { 1e-3, 1e-3, 1e-9 };
+  for (size_t n = 0; n < nodes.size() / count; ++n)
+  {
+    const iga::VolumeView<const double> view(
+      nodes.data() + n * count, degree, iga::sst::kScreenChannels);
+    const auto info = iga::sst::analyzeNode(view, 0.0);
+    if (!info.certified)
+      continue;
+    for (int p = 0; p < width * height; ++p)
+    {
+      double u[3], ndc;
+      if (iga::sst::solveTuple(view, info, p % width, p / width, 0.0, tolerance, u, ndc) ==
+          iga::sst::TupleOutcome::Hit)
+        return std::vector<double>(nodes.begin() + n * count, nodes.begin() + (n + 1) * count);
+    }
+  }
+  return {};
+}
+
+TEST(KernelsCuda, PixelStageMatchesHost)
+{
+  REQUIRE_DEVICE();
+  const int width = 48, height = 48;
+  const std::vector<double> screen = pickCertifiedNode(width, height);
+  ASSERT_FALSE(screen.empty()) << "no certified sub-patch with hits in the test scene";
+  double *dNode, *dDepth;
+  int* dOutcome;
+  ASSERT_EQ(cudaMalloc(&dNode, screen.size() * sizeof(double)), cudaSuccess);
+  ASSERT_EQ(cudaMalloc(&dDepth, width * height * sizeof(double)), cudaSuccess);
+  ASSERT_EQ(cudaMalloc(&dOutcome, width * height * sizeof(int)), cudaSuccess);
+  cudaMemcpy(dNode, screen.data(), screen.size() * sizeof(double), cudaMemcpyHostToDevice);
+  tupleKernel<<<(width * height + 63) / 64, 64>>>(dNode, width, height, dOutcome, dDepth);
+  ASSERT_EQ(cudaDeviceSynchronize(), cudaSuccess);
+  std::vector<int> outcome(width * height);
+  std::vector<double> depth(width * height);
+  cudaMemcpy(outcome.data(), dOutcome, outcome.size() * sizeof(int), cudaMemcpyDeviceToHost);
+  cudaMemcpy(depth.data(), dDepth, depth.size() * sizeof(double), cudaMemcpyDeviceToHost);
+  cudaFree(dNode);
+  cudaFree(dDepth);
+  cudaFree(dOutcome);
+
+  const int degree[3] = { 3, 3, 3 };
+  const iga::VolumeView<const double> view(screen.data(), degree, iga::sst::kScreenChannels);
+  const auto info = iga::sst::analyzeNode(view, 0.0);
+  const double tolerance[3] = { 1e-3, 1e-3, 1e-9 };
+  int hits = 0;
+  for (int p = 0; p < width * height; ++p)
+  {
+    double u[3], ndc = 0;
+    const int host =
+      int(iga::sst::solveTuple(view, info, p % width, p / width, 0.0, tolerance, u, ndc));
+    EXPECT_EQ(outcome[p], host) << "pixel " << p;
+    if (host == int(iga::sst::TupleOutcome::Hit))
+    {
+      ++hits;
+      EXPECT_NEAR(depth[p], ndc, 1e-9) << "pixel " << p;
+    }
+  }
+  EXPECT_GT(hits, 0);
 }
 
 } // namespace

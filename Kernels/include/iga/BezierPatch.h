@@ -153,15 +153,89 @@ template<class T, int Dim>
 IGA_HD void evaluateHomogeneous(const PatchView<const T, Dim>& patch,
                                 const T* u,
                                 T* values,
+                                T* derivatives);
+
+namespace detail
+{
+/// Scratch limit of the sum-factorised trivariate evaluation (orders up to 6, 8 channels).
+constexpr int kFactorisedScratch = 6 * 6 * 8;
+
+/// Trivariate evaluation contracting one direction at a time (sum factorisation): about
+/// (p+1)^2 (2 + ...) C operations instead of 4 (p+1)^3 C for value and gradient.
+template<class T>
+IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch,
+                               const T (&basis)[3][kMaxOrder],
+                               const T (&dbasis)[3][kMaxOrder],
+                               T* values,
+                               T* derivatives)
+{
+  const int n0 = patch.order(0), n1 = patch.order(1), n2 = patch.order(2), C = patch.channels;
+  T line[kFactorisedScratch], dline[kFactorisedScratch]; // contracted along u: (j, k, c)
+  for (int jk = 0; jk < n1 * n2; ++jk)
+  {
+    for (int c = 0; c < C; ++c)
+    {
+      T v = T(0), dv = T(0);
+      const T* p = patch.coeffs + (jk * n0) * C + c;
+      for (int i = 0; i < n0; ++i)
+      {
+        v += basis[0][i] * p[i * C];
+        dv += dbasis[0][i] * p[i * C];
+      }
+      line[jk * C + c] = v;
+      dline[jk * C + c] = dv;
+    }
+  }
+  for (int c = 0; c < C; ++c)
+  {
+    T value = T(0), du = T(0), dv = T(0), dw = T(0);
+    for (int k = 0; k < n2; ++k)
+    {
+      T v = T(0), vu = T(0), vv = T(0);
+      for (int j = 0; j < n1; ++j)
+      {
+        const int index = (k * n1 + j) * C + c;
+        v += basis[1][j] * line[index];
+        vu += basis[1][j] * dline[index];
+        vv += dbasis[1][j] * line[index];
+      }
+      value += basis[2][k] * v;
+      du += basis[2][k] * vu;
+      dv += basis[2][k] * vv;
+      dw += dbasis[2][k] * v;
+    }
+    values[c] = value;
+    if (derivatives)
+    {
+      derivatives[c] = du;
+      derivatives[C + c] = dv;
+      derivatives[2 * C + c] = dw;
+    }
+  }
+}
+} // namespace detail
+
+template<class T, int Dim>
+IGA_HD void evaluateHomogeneous(const PatchView<const T, Dim>& patch,
+                                const T* u,
+                                T* values,
                                 T* derivatives)
 {
   T basis[Dim][kMaxOrder];
   T dbasis[Dim][kMaxOrder];
   for (int d = 0; d < Dim; ++d)
   {
-    bernsteinBasis(patch.degree[d], u[d], basis[d], derivatives ? dbasis[d] : nullptr);
+    bernsteinBasis(patch.degree[d], u[d], basis[d], dbasis[d]);
   }
   const int channels = patch.channels;
+  if constexpr (Dim == 3)
+  {
+    if (patch.order(1) * patch.order(2) * channels <= detail::kFactorisedScratch)
+    {
+      detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
+      return;
+    }
+  }
   for (int c = 0; c < channels; ++c)
   {
     values[c] = T(0);

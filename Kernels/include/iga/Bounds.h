@@ -211,22 +211,17 @@ IGA_HD bool invertMatrix(const T (&a)[Dim][Dim], T (&inverse)[Dim][Dim])
   return true;
 }
 
-/// Certifies that F(u) = (N_r(u) / D_r(u))_r, r < Dim, is injective on the patch, so that
-/// F(u) = target has at most one solution in it for every target (and Newton's root, when found,
-/// is the only one).
-///
-/// Why it holds: with G_r = D_r dN_r - N_r dD_r, row r of the Jacobian is G_r / D_r^2. For two
-/// parameters a, b the mean value theorem gives F(a) - F(b) = J' (a - b), where row r of J' is a
-/// positive multiple of a convex combination of values of G_r on the segment, hence lies in the
-/// interval hull [G_r] over the patch. If every matrix of the interval matrix [G] is regular, J' is
-/// regular and F(a) != F(b). Regularity is checked with Beeck's sufficient condition
-/// ||mid([G])^-1| rad([G])|_inf < 1. Interval bounds come from Bernstein coefficient ranges; each
-/// numerator is first shifted by its mean ratio (N - c D has the same quotient derivative) so the
-/// product terms stay tight.
+/// Interval hulls over a patch of the rows of F(u) = (N_r(u) / D_r(u))_r, r < Dim:
+/// `scaled` bounds G_r = D_r dN_r - N_r dD_r (row r of the Jacobian times D_r^2 > 0) and
+/// `jacobian` the Jacobian itself. Bounds come from Bernstein coefficient ranges; each numerator
+/// is first shifted by its mean ratio (N - c D has the same quotient derivative) so the product
+/// terms stay tight. False when a denominator coefficient is not positive.
 template<class T, int Dim>
-IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const RationalRow* rows)
+IGA_HD bool rationalJacobianHull(const PatchView<const T, Dim>& patch,
+                                 const RationalRow* rows,
+                                 Interval<T> (&scaled)[Dim][Dim],
+                                 Interval<T> (&jacobian)[Dim][Dim])
 {
-  Interval<T> G[Dim][Dim];
   const int count = patch.pointCount();
   for (int r = 0; r < Dim; ++r)
   {
@@ -283,15 +278,27 @@ IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const Ration
         dN[d] = { T(0), T(0) };
         dD[d] = { T(0), T(0) };
       }
-      G[r][d] = D * dN[d] - N * dD[d];
+      scaled[r][d] = D * dN[d] - N * dD[d];
+      const Interval<T> inverseSquare = { T(1) / (D.hi * D.hi), T(1) / (D.lo * D.lo) };
+      jacobian[r][d] = scaled[r][d] * inverseSquare;
     }
   }
-  T mid[Dim][Dim], inverse[Dim][Dim];
+  return true;
+}
+
+/// Midpoint inverse of an interval matrix and the row sums of |mid^-1| rad: the ingredients of
+/// Beeck's regularity test and of the Krawczyk operator. False when the midpoint is singular.
+template<class T, int Dim>
+IGA_HD bool preconditioner(const Interval<T> (&M)[Dim][Dim],
+                           T (&inverse)[Dim][Dim],
+                           T (&spread)[Dim][Dim])
+{
+  T mid[Dim][Dim];
   for (int i = 0; i < Dim; ++i)
   {
     for (int j = 0; j < Dim; ++j)
     {
-      mid[i][j] = G[i][j].mid();
+      mid[i][j] = M[i][j].mid();
     }
   }
   if (!invertMatrix<T, Dim>(mid, inverse))
@@ -300,13 +307,40 @@ IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const Ration
   }
   for (int i = 0; i < Dim; ++i)
   {
+    for (int j = 0; j < Dim; ++j)
+    {
+      spread[i][j] = T(0);
+      for (int k = 0; k < Dim; ++k)
+      {
+        spread[i][j] += absValue(inverse[i][k]) * M[k][j].radius();
+      }
+    }
+  }
+  return true;
+}
+
+/// Certifies that F is injective on the patch, so that F(u) = target has at most one solution in
+/// it for every target (and Newton's root, when found, is the only one).
+///
+/// Why it holds: for two parameters a, b the mean value theorem gives F(a) - F(b) = J' (a - b),
+/// where row r of J' is a positive multiple (1 / D_r^2 > 0) of a convex combination of values of
+/// G_r on the segment, hence lies in the interval hull [G_r]. If every matrix of the interval
+/// matrix [G] is regular, J' is regular and F(a) != F(b). Regularity is checked with Beeck's
+/// sufficient condition ||mid([G])^-1| rad([G])|_inf < 1.
+template<class T, int Dim>
+IGA_HD bool certifyUniqueRoot(const Interval<T> (&scaled)[Dim][Dim])
+{
+  T inverse[Dim][Dim], spread[Dim][Dim];
+  if (!preconditioner<T, Dim>(scaled, inverse, spread))
+  {
+    return false;
+  }
+  for (int i = 0; i < Dim; ++i)
+  {
     T rowSum = T(0);
     for (int j = 0; j < Dim; ++j)
     {
-      for (int k = 0; k < Dim; ++k)
-      {
-        rowSum += absValue(inverse[i][k]) * G[k][j].radius();
-      }
+      rowSum += spread[i][j];
     }
     // A margin below 1 absorbs the rounding of the bounds themselves.
     if (!(rowSum < T(0.9)))
@@ -315,6 +349,41 @@ IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const Ration
     }
   }
   return true;
+}
+
+template<class T, int Dim>
+IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const RationalRow* rows)
+{
+  Interval<T> scaled[Dim][Dim], jacobian[Dim][Dim];
+  return rationalJacobianHull(patch, rows, scaled, jacobian) && certifyUniqueRoot<T, Dim>(scaled);
+}
+
+/// The Krawczyk operator's exclusion test on the box [0,1]^Dim widened by `slack`: every root of
+/// F(u) = target in the box lies in K = c - Y r + (I - Y [J]) (X - c), with c the centre,
+/// r = F(c) - target and Y = mid([J])^-1. When K misses the box in some direction there is no
+/// root. `inverse` and `spread` come from preconditioner([J]). Proves the misses that would
+/// otherwise fail Newton and force subdivision (rays grazing a surface piece, say).
+template<class T, int Dim>
+IGA_HD bool krawczykExcludes(const T (&inverse)[Dim][Dim],
+                             const T (&spread)[Dim][Dim],
+                             const T* residualAtCentre,
+                             T slack)
+{
+  const T half = T(0.5) + slack;
+  for (int i = 0; i < Dim; ++i)
+  {
+    T step = T(0), radius = T(0);
+    for (int j = 0; j < Dim; ++j)
+    {
+      step += inverse[i][j] * residualAtCentre[j];
+      radius += spread[i][j] * half;
+    }
+    if (absValue(step) > radius + half)
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 } // namespace iga

@@ -1,0 +1,112 @@
+// The isosurface rasterizer's host interface: world-space rational Bézier volumes and a camera
+// in, a G-buffer of sorted hits per pixel and a frame report out.
+#pragma once
+
+#include "iga/BezierPatch.h"
+#include "iga/Camera.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace iga
+{
+namespace sst
+{
+
+enum class Method
+{
+  SharedSubdivisionTree, ///< the paper's algorithm: one subdivision tree per patch, shared by
+                         ///< pixels
+  BasicScheme,           ///< one subdivision tree per pixel (the paper's comparison baseline)
+  BruteForce,            ///< uniform subdivision and multi-start Newton: slow, for tests only
+};
+
+struct Settings
+{
+  int width = 512;
+  int height = 512;
+  std::vector<double> isovalues; ///< at least one
+  int surfaceAttribute = 0;      ///< attribute index (channel kFirstAttributeChannel + index)
+  int colorAttribute = -1;       ///< attribute sampled at each hit, -1 for none
+  bool firstHitOnly = true;      ///< the fast path: keep only the nearest hit per pixel
+  int maxSubdivisionDepth = 22;  ///< levels below an input patch before a pixel is given up
+  size_t memoryBudgetBytes = size_t(2) << 30; ///< cap on subdivision storage
+  int threads = 0;                            ///< 0: all hardware threads
+  /// Newton's acceptance window: a fraction of a pixel, and of the attribute's range.
+  double pixelTolerance = 1e-3;
+  double isoTolerance = 1e-7;
+  /// Brute force only: uniform subdivision levels per patch.
+  int bruteForceLevels = 4;
+};
+
+/// One ray/isosurface intersection.
+struct Hit
+{
+  double ndcDepth;    ///< NDC depth in [-1, 1]; window depth is (ndcDepth + 1) / 2
+  double eyeDepth;    ///< distance from the eye along the view direction
+  double position[3]; ///< world position
+  double normal[3];   ///< unit world normal of the isosurface, facing the viewer
+  double uvw[3];      ///< parameter in the input patch
+  int patch;          ///< input patch index
+  int isovalue;       ///< index into Settings::isovalues
+  double color;       ///< colour attribute at the hit (NaN without one)
+};
+
+/// Per pixel, all hits sorted front to back. Pixel (i, j) has index j * width + i, row 0 at the
+/// bottom (OpenGL and VTK convention), and samples the ray through the pixel's centre.
+struct GBuffer
+{
+  int width = 0;
+  int height = 0;
+  std::vector<uint32_t> offsets; ///< width * height + 1 entries into hits
+  std::vector<Hit> hits;
+
+  const Hit* firstHit(int i, int j) const
+  {
+    const size_t p = size_t(j) * width + i;
+    return offsets[p] < offsets[p + 1] ? &hits[offsets[p]] : nullptr;
+  }
+  int hitCount(int i, int j) const
+  {
+    const size_t p = size_t(j) * width + i;
+    return int(offsets[p + 1] - offsets[p]);
+  }
+  size_t coveredPixels() const;
+};
+
+struct FrameReport
+{
+  std::string method;
+  int threads = 0;
+  int iterations = 0;          ///< solution/subdivision rounds
+  size_t unresolvedPixels = 0; ///< pixels with work left when a cap was hit
+  size_t unresolvedAtDepthCap = 0;
+  size_t unresolvedAtBudget = 0;
+  size_t droppedAtEyePlane = 0; ///< sub-patches at the depth cap still straddling the eye plane
+  size_t newtonSolves = 0;
+  size_t subdividedPatches = 0;
+  size_t maxTuples = 0;
+  size_t maxPatches = 0;
+  size_t peakBytes = 0; ///< largest engine-owned working set
+  double msSetup = 0, msSweepAndGroup = 0, msOverlap = 0, msSolution = 0, msSubdivision = 0,
+         msCompaction = 0, msGBuffer = 0, msTotal = 0;
+};
+
+/// Renders the isosurfaces of `patches` (world space, standard layout). Throws
+/// std::invalid_argument naming the patch and the problem for bad input (degree, non-finite
+/// values, non-positive weights, missing attributes) or bad settings.
+FrameReport render(const std::vector<BezierVolume<double>>& patches,
+                   const Camera& camera,
+                   const Settings& settings,
+                   Method method,
+                   GBuffer& out);
+
+/// Data bounds (xmin, xmax, ymin, ymax, zmin, zmax) of the patches' control points, which contain
+/// the patches (convex hull property).
+void patchBounds(const std::vector<BezierVolume<double>>& patches, double* bounds);
+
+const char* methodName(Method method);
+
+} // namespace sst
+} // namespace iga

@@ -1,0 +1,274 @@
+// The SST pixel problem, shared by every driver (CPU SST, basic scheme, brute force, CUDA).
+//
+// A world-space patch (standard layout) is mapped to "screen patches" with the channels below:
+// X, Y, Z, W are the homogeneous window coordinates (pixel units in x and y, NDC depth in z) of
+// the control points, A and V the homogeneous surface attribute and its weight. A pixel (i, j)
+// with centre (i + 0.5, j + 0.5) then asks for u with X/W = i + 0.5, Y/W = j + 0.5, A/V = iso,
+// the paper's s(u) - o_st = 0 with the pixel offset o_st applied to a patch shared by all pixels.
+#pragma once
+
+#include "iga/Newton.h"
+
+namespace iga
+{
+namespace sst
+{
+
+constexpr int kScreenX = 0;
+constexpr int kScreenY = 1;
+constexpr int kScreenZ = 2;
+constexpr int kScreenW = 3;
+constexpr int kScreenAttribute = 4;
+constexpr int kScreenWeight = 5;
+constexpr int kScreenChannels = 6;
+
+/// Rows of the pixel problem in the screen layout (by value: no static data in device code).
+struct PixelRows
+{
+  RationalRow rows[3];
+};
+IGA_HD inline PixelRows pixelRows()
+{
+  return {
+    { { kScreenX, kScreenW }, { kScreenY, kScreenW }, { kScreenAttribute, kScreenWeight } }
+  };
+}
+
+/// Writes the screen patch of a world patch: `windowFromWorld` maps homogeneous world points to
+/// homogeneous window coordinates; `attributeChannel` is the world channel of the surface
+/// attribute. `out` holds pointCount * kScreenChannels values.
+template<class T>
+IGA_HD void makeScreenPatch(const VolumeView<const double>& world,
+                            const Matrix4<double>& windowFromWorld,
+                            int attributeChannel,
+                            T* out)
+{
+  const int count = world.pointCount();
+  for (int p = 0; p < count; ++p)
+  {
+    const double* cp = world.point(p);
+    double window[4];
+    windowFromWorld.apply(cp, window);
+    T* s = out + p * kScreenChannels;
+    for (int c = 0; c < 4; ++c)
+    {
+      s[c] = T(window[c]);
+    }
+    s[kScreenAttribute] = T(cp[attributeChannel]);
+    s[kScreenWeight] = T(cp[kWeightChannel]);
+  }
+}
+
+/// What a node of a subdivision tree knows about itself for the pixel problem.
+template<class T>
+struct NodeInfo
+{
+  Box3<T> box;             ///< window x, y (pixels) and NDC depth, valid when status is InFront
+  ProjectionStatus status; ///< where the node lies relative to the eye plane
+  bool mayContainSurface;  ///< the attribute's Bernstein range contains the isovalue
+  bool visibleDepth;       ///< not entirely in front of the near or beyond the far plane
+  bool certified;          ///< at most one root for every pixel (certifyUniqueRoot)
+  bool canExclude;         ///< the Krawczyk data below is valid
+  T inverse[3][3];         ///< mid([J])^-1 of the pixel problem's Jacobian hull
+  T spread[3][3];          ///< |mid([J])^-1| rad([J])
+};
+
+/// The cheap part of a node's analysis: window box, eye-plane status, sign change, clip depth.
+template<class T>
+IGA_HD NodeInfo<T> analyzeNodeBounds(const VolumeView<const T>& node, T isovalue)
+{
+  NodeInfo<T> info;
+  info.status = projectedBounds(node, Matrix4<T>::identity(), info.box);
+  T lo = T(0), hi = T(0);
+  info.mayContainSurface = !rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi) ||
+                           (lo <= isovalue && isovalue <= hi);
+  // Z + W < 0 in front of the near plane, Z - W > 0 beyond the far one; both are linear in the
+  // homogeneous coefficients, so all coefficients on one side put the whole node there (parts
+  // behind the eye are invisible anyway). Valid whatever the signs of W.
+  bool nearSide = true, farSide = true;
+  for (int p = 0; p < node.pointCount(); ++p)
+  {
+    const T* cp = node.point(p);
+    nearSide = nearSide && cp[kScreenZ] + cp[kScreenW] < T(0);
+    farSide = farSide && cp[kScreenZ] - cp[kScreenW] > T(0);
+  }
+  info.visibleDepth = !nearSide && !farSide;
+  info.certified = false;
+  info.canExclude = false;
+  return info;
+}
+
+/// The solver part: the Jacobian hull of the pixel problem, the unique-root certificate and the
+/// Krawczyk preconditioner, shared by every pixel of the node.
+template<class T>
+IGA_HD void analyzeNodeSolver(const VolumeView<const T>& node, NodeInfo<T>& info)
+{
+  if (info.status != ProjectionStatus::InFront || !info.mayContainSurface)
+  {
+    return;
+  }
+  Interval<T> scaled[3][3], jacobian[3][3];
+  if (!rationalJacobianHull(node, pixelRows().rows, scaled, jacobian))
+  {
+    return;
+  }
+  info.certified = certifyUniqueRoot<T, 3>(scaled);
+  info.canExclude = preconditioner<T, 3>(jacobian, info.inverse, info.spread);
+}
+
+template<class T>
+IGA_HD NodeInfo<T> analyzeNode(const VolumeView<const T>& node, T isovalue)
+{
+  NodeInfo<T> info = analyzeNodeBounds(node, isovalue);
+  analyzeNodeSolver(node, info);
+  return info;
+}
+
+/// The pixel centre lies in the node's window box (widened by a rounding margin).
+template<class T>
+IGA_HD bool boxCoversPixel(const Box3<T>& box, int i, int j)
+{
+  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
+  const T margin = T(1e-6) + T(8) * Epsilon<T>::value * (absValue(x) + absValue(y));
+  return box.lo[0] - margin <= x && x <= box.hi[0] + margin && box.lo[1] - margin <= y &&
+         y <= box.hi[1] + margin;
+}
+
+/// True when the pixel's ray provably misses the isosurface inside the node: the residual
+/// G(u) = (X - x W, Y - y W, A - iso V) is a polynomial whose Bernstein coefficients G_i span a
+/// convex hull that holds every value of G, so a direction n with n . G_i > 0 for all i excludes
+/// a root. Tried: the coefficients' mean, in 3D and in the window plane. This drops (pixel,
+/// node) pairs whose box covers the pixel although the surface piece inside does not, which
+/// would otherwise fail Newton and force subdivision.
+template<class T>
+IGA_HD bool excludesPixel(const VolumeView<const T>& node, int i, int j, T isovalue)
+{
+  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
+  const int count = node.pointCount();
+  T mean[3] = { T(0), T(0), T(0) };
+  for (int p = 0; p < count; ++p)
+  {
+    const T* cp = node.point(p);
+    mean[0] += cp[kScreenX] - x * cp[kScreenW];
+    mean[1] += cp[kScreenY] - y * cp[kScreenW];
+    mean[2] += cp[kScreenAttribute] - isovalue * cp[kScreenWeight];
+  }
+  bool separated3 = true, separated2 = true;
+  for (int p = 0; p < count && (separated3 || separated2); ++p)
+  {
+    const T* cp = node.point(p);
+    const T g0 = cp[kScreenX] - x * cp[kScreenW], g1 = cp[kScreenY] - y * cp[kScreenW];
+    const T g2 = cp[kScreenAttribute] - isovalue * cp[kScreenWeight];
+    const T planar = mean[0] * g0 + mean[1] * g1;
+    separated2 = separated2 && planar > T(0);
+    separated3 = separated3 && planar + mean[2] * g2 > T(0);
+  }
+  return separated3 || separated2;
+}
+
+/// Newton on one (pixel, node) tuple from `start`. On success `ndcDepth` is the hit's NDC depth;
+/// hits outside the clip range [-1, 1] are not hits.
+template<class T>
+IGA_HD bool solvePixel(const VolumeView<const T>& node,
+                       int i,
+                       int j,
+                       T isovalue,
+                       const T* tolerance,
+                       const T* start,
+                       T* u,
+                       T& ndcDepth)
+{
+  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
+  const NewtonResult<T, 3> result =
+    solveNewton<T, 3>(node, pixelRows().rows, target, tolerance, start);
+  if (result.status != NewtonStatus::Converged)
+  {
+    return false;
+  }
+  T values[kScreenChannels];
+  evaluateHomogeneous<T, 3>(node, result.u, values, nullptr);
+  if (!(values[kScreenW] > T(0)))
+  {
+    return false;
+  }
+  ndcDepth = values[kScreenZ] / values[kScreenW];
+  for (int d = 0; d < 3; ++d)
+  {
+    u[d] = result.u[d];
+  }
+  return ndcDepth >= T(-1) && ndcDepth <= T(1);
+}
+
+enum class TupleOutcome
+{
+  Hit,       ///< a root, within the clip range
+  Miss,      ///< provably no root of this pixel in this node
+  Undecided, ///< no certificate or Newton failed: the node must be split for this pixel
+};
+
+/// One (pixel, node) tuple of the solution stage: cheap exclusions first, then Newton on
+/// certified nodes.
+template<class T>
+IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node,
+                               const NodeInfo<T>& info,
+                               int i,
+                               int j,
+                               T isovalue,
+                               const T* tolerance,
+                               T* u,
+                               T& ndcDepth)
+{
+  // A large uncertified node is split whatever its pixels' exclusions say, and its children's
+  // boxes shed most of those pixels anyway: skip the tests there. Small ones keep them, as
+  // silhouette nodes are rarely certified.
+  if (!info.certified &&
+      (info.box.hi[0] - info.box.lo[0]) * (info.box.hi[1] - info.box.lo[1]) > T(256))
+  {
+    return TupleOutcome::Undecided;
+  }
+  if (excludesPixel(node, i, j, isovalue))
+  {
+    return TupleOutcome::Miss;
+  }
+  // One evaluation at the centre serves the Krawczyk test and Newton's first step.
+  const T centre[3] = { T(0.5), T(0.5), T(0.5) };
+  const PixelRows rows = pixelRows();
+  T values[kScreenChannels], derivatives[3 * kScreenChannels], J[3][3], residual[3];
+  evaluateHomogeneous<T, 3>(node, centre, values, derivatives);
+  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
+  for (int r = 0; r < 3; ++r)
+  {
+    residual[r] = rationalValue<T, 3>(values,
+                                      derivatives,
+                                      kScreenChannels,
+                                      rows.rows[r].numerator,
+                                      rows.rows[r].denominator,
+                                      J[r]) -
+                  target[r];
+  }
+  const T slack = NewtonSettings<T>().domainSlack;
+  if (info.canExclude && krawczykExcludes<T, 3>(info.inverse, info.spread, residual, slack))
+  {
+    return TupleOutcome::Miss;
+  }
+  T inverse[3][3];
+  if (!info.certified || !invertMatrix<T, 3>(J, inverse))
+  {
+    return TupleOutcome::Undecided;
+  }
+  T start[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    start[d] = centre[d] - (inverse[d][0] * residual[0] + inverse[d][1] * residual[1] +
+                            inverse[d][2] * residual[2]);
+    if (!(start[d] >= -slack && start[d] <= T(1) + slack))
+    {
+      return TupleOutcome::Undecided;
+    }
+  }
+  return solvePixel(node, i, j, isovalue, tolerance, start, u, ndcDepth) ? TupleOutcome::Hit
+                                                                         : TupleOutcome::Undecided;
+}
+
+} // namespace sst
+} // namespace iga

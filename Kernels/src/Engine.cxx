@@ -1,0 +1,1254 @@
+// CPU drivers of the isosurface rasterizer: the Shared Subdivision Tree algorithm (Liu et al.),
+// the per-pixel basic scheme and a brute-force reference, over the shared pixel-problem kernels.
+#include "iga/sst/Engine.h"
+
+#include "iga/Validation.h"
+#include "iga/sst/PixelProblem.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <thread>
+
+namespace iga
+{
+namespace sst
+{
+
+size_t GBuffer::coveredPixels() const
+{
+  size_t covered = 0;
+  for (size_t p = 0; p + 1 < this->offsets.size(); ++p)
+  {
+    covered += this->offsets[p + 1] > this->offsets[p] ? 1 : 0;
+  }
+  return covered;
+}
+
+const char* methodName(Method method)
+{
+  switch (method)
+  {
+    case Method::SharedSubdivisionTree:
+      return "sst";
+    case Method::BasicScheme:
+      return "basic";
+    case Method::BruteForce:
+      return "brute-force";
+  }
+  return "unknown";
+}
+
+void patchBounds(const std::vector<BezierVolume<double>>& patches, double* bounds)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    bounds[2 * d] = std::numeric_limits<double>::infinity();
+    bounds[2 * d + 1] = -std::numeric_limits<double>::infinity();
+  }
+  for (const auto& patch : patches)
+  {
+    const auto view = patch.view();
+    for (int p = 0; p < view.pointCount(); ++p)
+    {
+      const double* cp = view.point(p);
+      for (int d = 0; d < 3; ++d)
+      {
+        bounds[2 * d] = std::min(bounds[2 * d], cp[d] / cp[kWeightChannel]);
+        bounds[2 * d + 1] = std::max(bounds[2 * d + 1], cp[d] / cp[kWeightChannel]);
+      }
+    }
+  }
+}
+
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// Sub-patches per level kept while splitting a patch at the eye plane.
+constexpr size_t kMaxEyePlaneNodes = size_t(1) << 16;
+
+double millisecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// Runs fn(begin, end) over [0, n) on `threads` threads pulling chunks. Callers write results
+/// per index, so outputs never depend on the thread count or scheduling.
+template<class Fn>
+void parallelFor(size_t n, int threads, Fn&& fn)
+{
+  const size_t grain = std::max<size_t>(1, n / (size_t(std::max(threads, 1)) * 16));
+  if (threads <= 1 || n <= grain)
+  {
+    if (n > 0)
+    {
+      fn(size_t(0), n);
+    }
+    return;
+  }
+  std::atomic<size_t> next{ 0 };
+  auto worker = [&]()
+  {
+    for (;;)
+    {
+      const size_t begin = next.fetch_add(grain);
+      if (begin >= n)
+      {
+        break;
+      }
+      fn(begin, std::min(n, begin + grain));
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t)
+  {
+    pool.emplace_back(worker);
+  }
+  worker();
+  for (auto& thread : pool)
+  {
+    thread.join();
+  }
+}
+
+/// Exclusive prefix sum in place; returns the total.
+size_t exclusiveScan(std::vector<uint32_t>& counts)
+{
+  size_t total = 0;
+  for (auto& c : counts)
+  {
+    const size_t n = c;
+    c = static_cast<uint32_t>(total);
+    total += n;
+  }
+  return total;
+}
+
+template<class V>
+size_t bytesOf(const V& v)
+{
+  return v.capacity() * sizeof(typename V::value_type);
+}
+
+/// A sub-patch of an input patch for one isovalue: level and integer offsets locate it in the
+/// input patch's parameter cube ([offset, offset + 1] / 2^level per direction).
+struct Node
+{
+  int patch;
+  int iso;
+  int level;
+  int offset[3];
+  size_t coeff; ///< start of its screen coefficients in the owning pool
+  NodeInfo<double> info;
+};
+
+/// A ray/isosurface root before shading.
+struct RawHit
+{
+  uint32_t pixel;
+  int patch;
+  int iso;
+  double ndcDepth;
+  double u[3]; ///< in the input patch's parameter cube
+};
+
+class Renderer
+{
+public:
+  Renderer(const std::vector<BezierVolume<double>>& patches,
+           const Camera& camera,
+           const Settings& settings,
+           FrameReport& report)
+    : Patches(patches)
+    , TheCamera(camera)
+    , Config(settings)
+    , Report(report)
+  {
+  }
+
+  void run(Method method, GBuffer& out)
+  {
+    const Clock::time_point start = Clock::now();
+    this->setup();
+    this->Report.msSetup = millisecondsSince(start);
+    Clock::time_point stage = Clock::now();
+    this->sweepAndGroup();
+    this->Report.msSweepAndGroup = millisecondsSince(stage);
+    switch (method)
+    {
+      case Method::SharedSubdivisionTree:
+        this->sharedSubdivisionTrees();
+        break;
+      case Method::BasicScheme:
+        this->basicScheme();
+        break;
+      case Method::BruteForce:
+        this->bruteForce();
+        break;
+    }
+    stage = Clock::now();
+    this->fillGBuffer(out);
+    this->Report.msGBuffer = millisecondsSince(stage);
+    for (uint8_t flag : this->Unresolved)
+    {
+      this->Report.unresolvedPixels += flag ? 1 : 0;
+    }
+    this->Report.msTotal = millisecondsSince(start);
+  }
+
+private:
+  // ---- frame setup -------------------------------------------------------------------------
+
+  void setup()
+  {
+    const Settings& s = this->Config;
+    if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
+    {
+      throw std::invalid_argument("image size " + std::to_string(s.width) + "x" +
+                                  std::to_string(s.height) + " is outside 1..16384 per side");
+    }
+    if (s.isovalues.empty())
+    {
+      throw std::invalid_argument("no isovalue given");
+    }
+    for (double iso : s.isovalues)
+    {
+      if (!std::isfinite(iso))
+      {
+        throw std::invalid_argument("isovalue is not finite");
+      }
+    }
+    if (s.maxSubdivisionDepth < 0 || s.maxSubdivisionDepth > 40)
+    {
+      throw std::invalid_argument("maximum subdivision depth must lie in 0..40");
+    }
+    this->Threads = s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency());
+    this->Report.threads = this->Threads;
+    const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
+    double attributeLo = kInfinity, attributeHi = -kInfinity;
+    for (size_t p = 0; p < this->Patches.size(); ++p)
+    {
+      const auto view = this->Patches[p].view();
+      const std::string problem = checkPatch<double, 3>(view);
+      if (!problem.empty())
+      {
+        throw std::invalid_argument("patch " + std::to_string(p) + ": " + problem);
+      }
+      if (s.surfaceAttribute < 0 || attribute >= view.channels ||
+          (s.colorAttribute >= 0 && kFirstAttributeChannel + s.colorAttribute >= view.channels))
+      {
+        throw std::invalid_argument("patch " + std::to_string(p) + " has " +
+                                    std::to_string(view.channels - kFirstAttributeChannel) +
+                                    " attributes; the surface uses " +
+                                    std::to_string(s.surfaceAttribute) + ", the colour " +
+                                    std::to_string(s.colorAttribute));
+      }
+      double lo, hi;
+      rationalRange(view, attribute, kWeightChannel, lo, hi);
+      attributeLo = std::min(attributeLo, lo);
+      attributeHi = std::max(attributeHi, hi);
+    }
+    const double range = attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
+    this->Tolerance[0] = this->Tolerance[1] = s.pixelTolerance;
+    this->Tolerance[2] = s.isoTolerance * range;
+
+    // Window coordinates: x, y in pixels (pixel i covers [i, i+1]), z the NDC depth.
+    const double W = s.width, H = s.height;
+    Matrix4<double> window = Matrix4<double>::identity();
+    window.m[0][0] = 0.5 * W;
+    window.m[0][3] = 0.5 * W;
+    window.m[1][1] = 0.5 * H;
+    window.m[1][3] = 0.5 * H;
+    this->WindowFromWorld = multiply(window, worldToClip(this->TheCamera, W / H));
+    this->PixelCount = size_t(s.width) * s.height;
+    this->Unresolved.assign(this->PixelCount, 0);
+    this->BestDepth.assign(this->PixelCount, kInfinity);
+
+    // Screen patches of every input patch, then the subdivision-tree roots: one per (patch,
+    // isovalue) with a possible sign change. Roots straddling the eye plane are split until
+    // their parts lie in front of or behind it.
+    for (size_t p = 0; p < this->Patches.size(); ++p)
+    {
+      const auto world = this->Patches[p].view();
+      std::vector<double> screen(size_t(world.pointCount()) * kScreenChannels);
+      makeScreenPatch<double>(world, this->WindowFromWorld, attribute, screen.data());
+      for (int iso = 0; iso < int(s.isovalues.size()); ++iso)
+      {
+        Node root{ int(p), iso, 0, { 0, 0, 0 }, 0, {} };
+        this->addInitialNode(root, screen.data());
+      }
+    }
+    this->trackMemory(bytesOf(this->InitialPool));
+  }
+
+  int valueCount(int patch) const
+  {
+    return this->Patches[patch].view().pointCount() * kScreenChannels;
+  }
+
+  VolumeView<const double> nodeView(const Node& node, const std::vector<double>& pool) const
+  {
+    return VolumeView<const double>(
+      pool.data() + node.coeff, this->Patches[node.patch].view().degree, kScreenChannels);
+  }
+
+  bool onScreen(const Box3<double>& box) const
+  {
+    return box.hi[0] >= 0 && box.lo[0] <= this->Config.width && box.hi[1] >= 0 &&
+           box.lo[1] <= this->Config.height;
+  }
+
+  /// Whether a node may hold visible surface: sign change, not behind the eye, depth and window
+  /// ranges meeting the view volume.
+  bool worthKeeping(const NodeInfo<double>& info) const
+  {
+    return info.mayContainSurface && info.status != ProjectionStatus::BehindEye &&
+           info.visibleDepth &&
+           (info.status != ProjectionStatus::InFront || this->onScreen(info.box));
+  }
+
+  /// Adds a root to the initial nodes if it may show surface. A root straddling the eye plane
+  /// has no finite window box: it is split breadth first until its parts lie in front of the
+  /// eye, behind it, or in front of the near plane (all invisible but the first). Parts still
+  /// straddling at the depth cap or beyond the node budget are counted, not drawn.
+  void addInitialNode(Node root, const double* coeffs)
+  {
+    const int count = this->valueCount(root.patch);
+    const auto rootView = this->Patches[root.patch].view();
+    const int* degree = rootView.degree;
+    std::vector<Node> level = { root };
+    std::vector<double> pool(coeffs, coeffs + count);
+    while (!level.empty())
+    {
+      std::vector<Node> straddling;
+      std::vector<double> straddlingPool;
+      for (Node node : level)
+      {
+        const VolumeView<const double> view(pool.data() + node.coeff, degree, kScreenChannels);
+        node.info = analyzeNode(view, this->Config.isovalues[node.iso]);
+        if (!this->worthKeeping(node.info))
+        {
+          continue;
+        }
+        if (node.info.status == ProjectionStatus::InFront)
+        {
+          const size_t offset = this->InitialPool.size();
+          this->InitialPool.insert(this->InitialPool.end(), view.coeffs, view.coeffs + count);
+          node.coeff = offset;
+          this->InitialNodes.push_back(node);
+          continue;
+        }
+        if (node.level >= this->Config.maxSubdivisionDepth ||
+            straddling.size() + 8 > kMaxEyePlaneNodes)
+        {
+          ++this->Report.droppedAtEyePlane;
+          continue;
+        }
+        const size_t offset = straddlingPool.size();
+        straddlingPool.resize(offset + size_t(8) * count);
+        splitMidpoint<double, 3>(view, straddlingPool.data() + offset);
+        for (int c = 0; c < 8; ++c)
+        {
+          Node child = childOf(node, c);
+          child.coeff = offset + size_t(c) * count;
+          straddling.push_back(child);
+        }
+      }
+      level.swap(straddling);
+      pool.swap(straddlingPool);
+    }
+  }
+
+  static Node childOf(const Node& parent, int child)
+  {
+    Node node = parent;
+    node.level = parent.level + 1;
+    for (int d = 0; d < 3; ++d)
+    {
+      node.offset[d] = 2 * parent.offset[d] + ((child >> d) & 1);
+    }
+    return node;
+  }
+
+  // ---- sweep and group ---------------------------------------------------------------------
+
+  /// Pixel ranges [i0, i1] x [j0, j1] whose centres the box covers.
+  void pixelRange(const Box3<double>& box, int* range) const
+  {
+    range[0] = std::max(0, int(std::ceil(box.lo[0] - 0.5 - 1e-6)));
+    range[1] = std::min(this->Config.width - 1, int(std::floor(box.hi[0] - 0.5 + 1e-6)));
+    range[2] = std::max(0, int(std::ceil(box.lo[1] - 0.5 - 1e-6)));
+    range[3] = std::min(this->Config.height - 1, int(std::floor(box.hi[1] - 0.5 + 1e-6)));
+  }
+
+  /// Per pixel, the initial nodes whose boxes cover it, sorted by nearest depth: the work items
+  /// of SAG. Stored as one array with per-pixel offsets.
+  void sweepAndGroup()
+  {
+    std::vector<uint32_t> counts(this->PixelCount + 1, 0);
+    auto forEachCovered = [&](size_t n, auto fn)
+    {
+      int range[4];
+      this->pixelRange(this->InitialNodes[n].info.box, range);
+      for (int j = range[2]; j <= range[3]; ++j)
+      {
+        for (int i = range[0]; i <= range[1]; ++i)
+        {
+          if (boxCoversPixel(this->InitialNodes[n].info.box, i, j))
+          {
+            fn(size_t(j) * this->Config.width + i);
+          }
+        }
+      }
+    };
+    for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+    {
+      forEachCovered(n, [&](size_t p) { ++counts[p]; });
+    }
+    const size_t total = exclusiveScan(counts);
+    this->ItemOffsets = counts;
+    this->Items.resize(total);
+    std::vector<uint32_t> fill(counts.begin(), counts.end() - 1);
+    for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+    {
+      forEachCovered(n, [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
+    }
+    parallelFor(this->PixelCount,
+                this->Threads,
+                [&](size_t begin, size_t end)
+                {
+                  for (size_t p = begin; p < end; ++p)
+                  {
+                    std::sort(this->Items.begin() + this->ItemOffsets[p],
+                              this->Items.begin() + this->ItemOffsets[p + 1],
+                              [&](uint32_t a, uint32_t b)
+                              {
+                                const double za = this->InitialNodes[a].info.box.lo[2],
+                                             zb = this->InitialNodes[b].info.box.lo[2];
+                                return za < zb || (za == zb && a < b);
+                              });
+                  }
+                });
+    this->trackMemory(bytesOf(this->Items) + bytesOf(this->ItemOffsets) +
+                      bytesOf(this->InitialPool));
+  }
+
+  /// The next group of a pixel's work items from `cursor`: in first-hit mode the nearest item
+  /// and all items overlapping it in depth (none when the best hit is nearer), else all items.
+  size_t groupEnd(size_t pixel, size_t cursor) const
+  {
+    const size_t end = this->ItemOffsets[pixel + 1];
+    if (!this->Config.firstHitOnly)
+    {
+      return end;
+    }
+    if (cursor >= end ||
+        this->InitialNodes[this->Items[cursor]].info.box.lo[2] > this->BestDepth[pixel])
+    {
+      return cursor;
+    }
+    double groupFar = this->InitialNodes[this->Items[cursor]].info.box.hi[2];
+    size_t last = cursor + 1;
+    while (last < end && this->InitialNodes[this->Items[last]].info.box.lo[2] <= groupFar)
+    {
+      groupFar = std::max(groupFar, this->InitialNodes[this->Items[last]].info.box.hi[2]);
+      ++last;
+    }
+    return last;
+  }
+
+  // ---- shared subdivision trees ------------------------------------------------------------
+
+  struct Tuple
+  {
+    uint32_t pixel;
+    uint32_t node;
+  };
+
+  enum Outcome : uint8_t
+  {
+    Solved,
+    Failed,
+    Dropped
+  };
+
+  void sharedSubdivisionTrees()
+  {
+    std::vector<uint32_t> cursor(this->ItemOffsets.begin(), this->ItemOffsets.end() - 1);
+    for (;;)
+    {
+      // Each round takes every pixel's next depth group (the SAG work sets).
+      Clock::time_point stage = Clock::now();
+      std::vector<uint32_t> counts(this->PixelCount, 0), ends(this->PixelCount);
+      parallelFor(this->PixelCount,
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t p = begin; p < end; ++p)
+                    {
+                      ends[p] = uint32_t(this->groupEnd(p, cursor[p]));
+                      counts[p] = ends[p] - cursor[p];
+                    }
+                  });
+      std::vector<uint32_t> offsets = counts;
+      const size_t total = exclusiveScan(offsets);
+      if (total == 0)
+      {
+        break;
+      }
+      std::vector<Tuple> tuples(total);
+      parallelFor(this->PixelCount,
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t p = begin; p < end; ++p)
+                    {
+                      for (uint32_t k = 0; k < counts[p]; ++k)
+                      {
+                        tuples[offsets[p] + k] = { uint32_t(p), this->Items[cursor[p] + k] };
+                      }
+                    }
+                  });
+      cursor = ends;
+      this->Report.msSweepAndGroup += millisecondsSince(stage);
+      this->solveRound(std::move(tuples));
+    }
+  }
+
+  /// The SST loop of the paper over one round's tuples (pixel, initial node): solution,
+  /// subdivision and compaction until no tuple is left.
+  void solveRound(std::vector<Tuple> tuples)
+  {
+    // Copy the referenced initial nodes into this round's node list.
+    std::vector<Node> nodes;
+    std::vector<double> pool;
+    {
+      std::vector<int> remap(this->InitialNodes.size(), -1);
+      for (auto& t : tuples)
+      {
+        if (remap[t.node] < 0)
+        {
+          remap[t.node] = int(nodes.size());
+          Node node = this->InitialNodes[t.node];
+          const double* src = this->InitialPool.data() + node.coeff;
+          node.coeff = pool.size();
+          pool.insert(pool.end(), src, src + this->valueCount(node.patch));
+          nodes.push_back(node);
+        }
+        t.node = uint32_t(remap[t.node]);
+      }
+    }
+    const bool firstHit = this->Config.firstHitOnly;
+    std::vector<uint8_t> outcome;
+    std::vector<double> solution; // per tuple: u[3], ndc depth
+    while (!tuples.empty())
+    {
+      ++this->Report.iterations;
+      this->Report.maxTuples = std::max(this->Report.maxTuples, tuples.size());
+      this->Report.maxPatches = std::max(this->Report.maxPatches, nodes.size());
+
+      // Solution stage: Newton on tuples whose node certifies a unique root.
+      Clock::time_point stage = Clock::now();
+      outcome.assign(tuples.size(), Failed);
+      solution.resize(tuples.size() * 4);
+      std::atomic<size_t> solves{ 0 };
+      parallelFor(tuples.size(),
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    size_t local = 0;
+                    for (size_t t = begin; t < end; ++t)
+                    {
+                      const Node& node = nodes[tuples[t].node];
+                      const uint32_t pixel = tuples[t].pixel;
+                      if (firstHit && node.info.box.lo[2] > this->BestDepth[pixel])
+                      {
+                        outcome[t] = Dropped;
+                        continue;
+                      }
+                      const int i = int(pixel % this->Config.width),
+                                j = int(pixel / this->Config.width);
+                      local += node.info.certified ? 1 : 0;
+                      switch (solveTuple(this->nodeView(node, pool),
+                                         node.info,
+                                         i,
+                                         j,
+                                         this->Config.isovalues[node.iso],
+                                         this->Tolerance,
+                                         &solution[4 * t],
+                                         solution[4 * t + 3]))
+                      {
+                        case TupleOutcome::Hit:
+                          outcome[t] = Solved;
+                          break;
+                        case TupleOutcome::Miss:
+                          outcome[t] = Dropped;
+                          break;
+                        case TupleOutcome::Undecided:
+                          break;
+                      }
+                    }
+                    solves += local;
+                  });
+      this->Report.newtonSolves += solves;
+      for (size_t t = 0; t < tuples.size(); ++t)
+      {
+        if (outcome[t] == Solved)
+        {
+          this->recordHit(
+            tuples[t].pixel, nodes[tuples[t].node], &solution[4 * t], solution[4 * t + 3]);
+        }
+      }
+      this->Report.msSolution += millisecondsSince(stage);
+
+      // Subdivision stage: split the nodes some pixel failed on (and only those).
+      stage = Clock::now();
+      std::vector<uint8_t> split(nodes.size(), 0);
+      for (size_t t = 0; t < tuples.size(); ++t)
+      {
+        if (outcome[t] == Failed && firstHit &&
+            nodes[tuples[t].node].info.box.lo[2] > this->BestDepth[tuples[t].pixel])
+        {
+          outcome[t] = Dropped; // a nearer hit was found this iteration
+        }
+        if (outcome[t] == Failed)
+        {
+          split[tuples[t].node] = 1;
+        }
+      }
+      std::vector<uint32_t> toSplit;
+      for (size_t n = 0; n < nodes.size(); ++n)
+      {
+        if (split[n] && nodes[n].level >= this->Config.maxSubdivisionDepth)
+        {
+          split[n] = 2; // at the depth cap: its pixels stay unresolved
+        }
+        else if (split[n])
+        {
+          toSplit.push_back(uint32_t(n));
+        }
+      }
+      // Memory cap: split as many nodes as the budget allows, in order.
+      size_t childBytes = 0, allowed = 0;
+      for (; allowed < toSplit.size(); ++allowed)
+      {
+        const size_t bytes =
+          size_t(8) * this->valueCount(nodes[toSplit[allowed]].patch) * sizeof(double) +
+          8 * sizeof(Node);
+        if (childBytes + bytes + bytesOf(pool) + bytesOf(tuples) > this->Config.memoryBudgetBytes)
+        {
+          break;
+        }
+        childBytes += bytes;
+      }
+      for (size_t k = allowed; k < toSplit.size(); ++k)
+      {
+        split[toSplit[k]] = 3; // over budget
+      }
+      toSplit.resize(allowed);
+      std::vector<uint32_t> poolOffset(toSplit.size() + 1, 0);
+      for (size_t k = 0; k < toSplit.size(); ++k)
+      {
+        poolOffset[k + 1] = poolOffset[k] + 8 * this->valueCount(nodes[toSplit[k]].patch);
+      }
+      std::vector<double> childPool(poolOffset.back());
+      std::vector<Node> children(toSplit.size() * 8);
+      std::vector<uint8_t> keep(children.size(), 0);
+      parallelFor(toSplit.size(),
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t k = begin; k < end; ++k)
+                    {
+                      const Node& parent = nodes[toSplit[k]];
+                      const int count = this->valueCount(parent.patch);
+                      splitMidpoint<double, 3>(this->nodeView(parent, pool),
+                                               childPool.data() + poolOffset[k]);
+                      for (int c = 0; c < 8; ++c)
+                      {
+                        Node child = childOf(parent, c);
+                        child.coeff = poolOffset[k] + size_t(c) * count;
+                        // The solver analysis waits until the child is known to receive pixels.
+                        child.info = analyzeNodeBounds(this->nodeView(child, childPool),
+                                                       this->Config.isovalues[child.iso]);
+                        keep[8 * k + c] = this->worthKeeping(child.info) ? 1 : 0;
+                        children[8 * k + c] = child;
+                      }
+                    }
+                  });
+      this->Report.subdividedPatches += toSplit.size();
+      this->trackMemory(bytesOf(pool) + bytesOf(childPool) + bytesOf(tuples) + bytesOf(children) +
+                        bytesOf(outcome) + bytesOf(solution) + this->baseBytes());
+      this->Report.msSubdivision += millisecondsSince(stage);
+
+      // Compaction: failed tuples move to the kept children covering their pixel; solved and
+      // dropped tuples and unsplit nodes leave.
+      stage = Clock::now();
+      std::vector<uint32_t> firstChild(nodes.size(), 0);
+      for (size_t k = 0; k < toSplit.size(); ++k)
+      {
+        firstChild[toSplit[k]] = uint32_t(8 * k);
+      }
+      std::vector<uint32_t> newIndex(children.size());
+      {
+        uint32_t next = 0;
+        for (size_t c = 0; c < children.size(); ++c)
+        {
+          newIndex[c] = keep[c] ? next++ : 0;
+        }
+      }
+      auto childCovers = [&](const Tuple& t, size_t c)
+      {
+        const Node& child = children[c];
+        // Children of nodes in front of the eye are in front too (positive weights stay positive).
+        return keep[c] &&
+               boxCoversPixel(child.info.box,
+                              int(t.pixel % this->Config.width),
+                              int(t.pixel / this->Config.width)) &&
+               !(firstHit && child.info.box.lo[2] > this->BestDepth[t.pixel]);
+      };
+      std::vector<uint32_t> newCounts(tuples.size(), 0);
+      parallelFor(tuples.size(),
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t t = begin; t < end; ++t)
+                    {
+                      if (outcome[t] != Failed || split[tuples[t].node] != 1)
+                      {
+                        continue;
+                      }
+                      const size_t base = firstChild[tuples[t].node];
+                      for (size_t c = base; c < base + 8; ++c)
+                      {
+                        newCounts[t] += childCovers(tuples[t], c) ? 1 : 0;
+                      }
+                    }
+                  });
+      for (size_t t = 0; t < tuples.size(); ++t)
+      {
+        if (outcome[t] == Failed && split[tuples[t].node] >= 2)
+        {
+          this->Unresolved[tuples[t].pixel] = 1;
+          ++(split[tuples[t].node] == 2 ? this->Report.unresolvedAtDepthCap
+                                        : this->Report.unresolvedAtBudget);
+        }
+      }
+      std::vector<uint32_t> newOffsets = newCounts;
+      std::vector<Tuple> next(exclusiveScan(newOffsets));
+      parallelFor(tuples.size(),
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t t = begin; t < end; ++t)
+                    {
+                      if (newCounts[t] == 0)
+                      {
+                        continue;
+                      }
+                      uint32_t write = newOffsets[t];
+                      const size_t base = firstChild[tuples[t].node];
+                      for (size_t c = base; c < base + 8; ++c)
+                      {
+                        if (childCovers(tuples[t], c))
+                        {
+                          next[write++] = { tuples[t].pixel, newIndex[c] };
+                        }
+                      }
+                    }
+                  });
+      // The next nodes are the children that received pixels, stored contiguously.
+      std::vector<uint32_t> used(children.size(), 0);
+      for (const auto& t : next)
+      {
+        used[t.node] = 1;
+      }
+      std::vector<uint32_t> usedIndex = used;
+      const size_t usedCount = exclusiveScan(usedIndex);
+      std::vector<Node> kept(usedCount);
+      std::vector<size_t> keptOffset(usedCount + 1, 0);
+      {
+        size_t write = 0;
+        for (size_t c = 0; c < children.size(); ++c)
+        {
+          if (keep[c] && used[newIndex[c]])
+          {
+            kept[write] = children[c];
+            keptOffset[write + 1] = keptOffset[write] + size_t(this->valueCount(children[c].patch));
+            ++write;
+          }
+        }
+      }
+      std::vector<double> keptPool(keptOffset.back());
+      parallelFor(usedCount,
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t n = begin; n < end; ++n)
+                    {
+                      const size_t count = keptOffset[n + 1] - keptOffset[n];
+                      std::copy(childPool.begin() + kept[n].coeff,
+                                childPool.begin() + kept[n].coeff + count,
+                                keptPool.begin() + keptOffset[n]);
+                      kept[n].coeff = keptOffset[n];
+                      analyzeNodeSolver(this->nodeView(kept[n], keptPool), kept[n].info);
+                    }
+                  });
+      for (auto& t : next)
+      {
+        t.node = usedIndex[t.node];
+      }
+      nodes.swap(kept);
+      pool.swap(keptPool);
+      tuples.swap(next);
+      this->Report.msCompaction += millisecondsSince(stage);
+    }
+  }
+
+  size_t baseBytes() const
+  {
+    return bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->InitialPool) +
+           bytesOf(this->Hits) + bytesOf(this->BestDepth) + bytesOf(this->Unresolved);
+  }
+
+  void trackMemory(size_t bytes)
+  {
+    this->Report.peakBytes = std::max(this->Report.peakBytes, bytes);
+  }
+
+  void recordHit(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
+  {
+    RawHit hit{ pixel, node.patch, node.iso, ndcDepth, {} };
+    const double scale = std::ldexp(1.0, -node.level);
+    for (int d = 0; d < 3; ++d)
+    {
+      hit.u[d] = std::min(1.0, std::max(0.0, (node.offset[d] + u[d]) * scale));
+    }
+    this->Hits.push_back(hit);
+    this->BestDepth[pixel] = std::min(this->BestDepth[pixel], ndcDepth);
+  }
+
+  // ---- basic scheme ------------------------------------------------------------------------
+
+  /// One subdivision tree per pixel, depth first, with the same node tests and Newton solves.
+  void basicScheme()
+  {
+    const Clock::time_point stage = Clock::now();
+    std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
+    std::vector<size_t> peak(this->PixelCount, 0);
+    std::atomic<size_t> solves{ 0 }, splits{ 0 }, capped{ 0 };
+    parallelFor(
+      this->PixelCount,
+      this->Threads,
+      [&](size_t begin, size_t end)
+      {
+        // The arena holds exactly the stacked nodes' coefficient blocks, in stack order.
+        std::vector<Node> stack;
+        std::vector<double> arena, current, children;
+        size_t localSolves = 0, localSplits = 0;
+        for (size_t p = begin; p < end; ++p)
+        {
+          const int i = int(p % this->Config.width), j = int(p / this->Config.width);
+          double best = kInfinity;
+          for (uint32_t item = this->ItemOffsets[p]; item < this->ItemOffsets[p + 1]; ++item)
+          {
+            const Node& initial = this->InitialNodes[this->Items[item]];
+            if (this->Config.firstHitOnly && initial.info.box.lo[2] > best)
+            {
+              break;
+            }
+            const int count = this->valueCount(initial.patch);
+            stack.assign(1, initial);
+            stack.back().coeff = 0;
+            arena.assign(this->InitialPool.begin() + initial.coeff,
+                         this->InitialPool.begin() + initial.coeff + count);
+            while (!stack.empty())
+            {
+              Node node = stack.back();
+              stack.pop_back();
+              current.assign(arena.begin() + node.coeff, arena.begin() + node.coeff + count);
+              arena.resize(node.coeff);
+              node.coeff = 0;
+              if (!boxCoversPixel(node.info.box, i, j) ||
+                  (this->Config.firstHitOnly && node.info.box.lo[2] > best))
+              {
+                continue;
+              }
+              localSolves += node.info.certified ? 1 : 0;
+              double u[3], ndc;
+              const TupleOutcome result = solveTuple(this->nodeView(node, current),
+                                                     node.info,
+                                                     i,
+                                                     j,
+                                                     this->Config.isovalues[node.iso],
+                                                     this->Tolerance,
+                                                     u,
+                                                     ndc);
+              if (result == TupleOutcome::Hit)
+              {
+                perPixel[p].push_back(this->makeRawHit(uint32_t(p), node, u, ndc));
+                best = std::min(best, ndc);
+              }
+              if (result != TupleOutcome::Undecided)
+              {
+                continue;
+              }
+              if (node.level >= this->Config.maxSubdivisionDepth)
+              {
+                this->Unresolved[p] = 1;
+                ++capped;
+                continue;
+              }
+              ++localSplits;
+              children.resize(size_t(8) * count);
+              splitMidpoint<double, 3>(this->nodeView(node, current), children.data());
+              // Push far children first so that the near ones are explored first.
+              for (int c = 7; c >= 0; --c)
+              {
+                Node child = childOf(node, c);
+                child.coeff = size_t(c) * count;
+                child.info =
+                  analyzeNode(this->nodeView(child, children), this->Config.isovalues[child.iso]);
+                if (this->worthKeeping(child.info))
+                {
+                  child.coeff = arena.size();
+                  arena.insert(arena.end(),
+                               children.begin() + size_t(c) * count,
+                               children.begin() + size_t(c + 1) * count);
+                  stack.push_back(child);
+                }
+              }
+              peak[p] = std::max(peak[p], bytesOf(arena) + bytesOf(stack) + bytesOf(children));
+            }
+          }
+        }
+        solves += localSolves;
+        splits += localSplits;
+      });
+    this->Report.newtonSolves = solves;
+    this->Report.subdividedPatches = splits;
+    this->Report.unresolvedAtDepthCap = capped;
+    for (auto& hits : perPixel)
+    {
+      this->Hits.insert(this->Hits.end(), hits.begin(), hits.end());
+    }
+    this->trackMemory(this->baseBytes() +
+                      *std::max_element(peak.begin(), peak.end()) * size_t(this->Threads));
+    this->Report.msSolution = millisecondsSince(stage);
+  }
+
+  RawHit makeRawHit(uint32_t pixel, const Node& node, const double* u, double ndc) const
+  {
+    RawHit hit{ pixel, node.patch, node.iso, ndc, {} };
+    const double scale = std::ldexp(1.0, -node.level);
+    for (int d = 0; d < 3; ++d)
+    {
+      hit.u[d] = std::min(1.0, std::max(0.0, (node.offset[d] + u[d]) * scale));
+    }
+    return hit;
+  }
+
+  // ---- brute force -------------------------------------------------------------------------
+
+  /// Uniform subdivision of every initial node to a fixed depth and Newton from nine starts in
+  /// every leaf covering the pixel, without certificates: slow, independent of the tree logic.
+  void bruteForce()
+  {
+    const Clock::time_point stage = Clock::now();
+    std::vector<Node> leaves;
+    std::vector<double> leafPool;
+    std::vector<uint32_t> leafOffsets(this->InitialNodes.size() + 1, 0);
+    for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+    {
+      std::vector<Node> level = { this->InitialNodes[n] };
+      level[0].coeff = 0;
+      const int count = this->valueCount(level[0].patch);
+      std::vector<double> pool(this->InitialPool.begin() + this->InitialNodes[n].coeff,
+                               this->InitialPool.begin() + this->InitialNodes[n].coeff + count);
+      for (int depth = 0; depth < this->Config.bruteForceLevels; ++depth)
+      {
+        std::vector<Node> next;
+        std::vector<double> nextPool(level.size() * 8 * size_t(count));
+        for (size_t k = 0; k < level.size(); ++k)
+        {
+          splitMidpoint<double, 3>(this->nodeView(level[k], pool), nextPool.data() + k * 8 * count);
+          for (int c = 0; c < 8; ++c)
+          {
+            Node child = childOf(level[k], c);
+            child.coeff = (k * 8 + c) * size_t(count);
+            child.info =
+              analyzeNode(this->nodeView(child, nextPool), this->Config.isovalues[child.iso]);
+            if (this->worthKeeping(child.info) && child.info.status == ProjectionStatus::InFront)
+            {
+              next.push_back(child);
+            }
+          }
+        }
+        level.swap(next);
+        pool.swap(nextPool);
+      }
+      for (auto& leaf : level)
+      {
+        const size_t offset = leafPool.size();
+        leafPool.insert(
+          leafPool.end(), pool.begin() + leaf.coeff, pool.begin() + leaf.coeff + count);
+        leaf.coeff = offset;
+        leaves.push_back(leaf);
+      }
+      leafOffsets[n + 1] = uint32_t(leaves.size());
+    }
+    this->trackMemory(this->baseBytes() + bytesOf(leafPool) + bytesOf(leaves));
+    std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
+    std::atomic<size_t> solves{ 0 };
+    parallelFor(this->PixelCount,
+                this->Threads,
+                [&](size_t begin, size_t end)
+                {
+                  size_t local = 0;
+                  for (size_t p = begin; p < end; ++p)
+                  {
+                    const int i = int(p % this->Config.width), j = int(p / this->Config.width);
+                    for (uint32_t item = this->ItemOffsets[p]; item < this->ItemOffsets[p + 1];
+                         ++item)
+                    {
+                      const uint32_t n = this->Items[item];
+                      for (uint32_t l = leafOffsets[n]; l < leafOffsets[n + 1]; ++l)
+                      {
+                        const Node& leaf = leaves[l];
+                        if (!boxCoversPixel(leaf.info.box, i, j))
+                        {
+                          continue;
+                        }
+                        for (int s = 0; s < 9; ++s)
+                        {
+                          const double start[3] = { s == 8 ? 0.5 : 0.2 + 0.6 * (s & 1),
+                                                    s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 1) & 1),
+                                                    s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 2) & 1) };
+                          double u[3], ndc;
+                          ++local;
+                          // Roots up to Newton's domain slack outside the leaf count (those on
+                          // shared faces would otherwise be lost to rounding); duplicates are
+                          // merged later.
+                          if (solvePixel<double>(this->nodeView(leaf, leafPool),
+                                                 i,
+                                                 j,
+                                                 this->Config.isovalues[leaf.iso],
+                                                 this->Tolerance,
+                                                 start,
+                                                 u,
+                                                 ndc))
+                          {
+                            perPixel[p].push_back(this->makeRawHit(uint32_t(p), leaf, u, ndc));
+                          }
+                        }
+                      }
+                    }
+                  }
+                  solves += local;
+                });
+    this->Report.newtonSolves = solves;
+    for (auto& hits : perPixel)
+    {
+      this->Hits.insert(this->Hits.end(), hits.begin(), hits.end());
+    }
+    this->Report.msSolution = millisecondsSince(stage);
+  }
+
+  // ---- G-buffer ----------------------------------------------------------------------------
+
+  void fillGBuffer(GBuffer& out)
+  {
+    // Group by pixel, shade, sort front to back, merge duplicates (a root on a face shared by
+    // two sub-patches is found in both), keep the first in first-hit mode.
+    std::vector<uint32_t> offsets(this->PixelCount + 1, 0);
+    for (const auto& hit : this->Hits)
+    {
+      ++offsets[hit.pixel];
+    }
+    exclusiveScan(offsets);
+    std::vector<uint32_t> source(this->Hits.size());
+    {
+      std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+      for (size_t h = 0; h < this->Hits.size(); ++h)
+      {
+        source[fill[this->Hits[h].pixel]++] = uint32_t(h);
+      }
+    }
+    double eye[3], forward[3];
+    viewDirection(this->TheCamera, forward);
+    for (int d = 0; d < 3; ++d)
+    {
+      eye[d] = this->TheCamera.position[d];
+    }
+    // Two roots closer along the ray than this fraction of a pixel's footprint are one root:
+    // Newton places roots within 1e-6 pixel of the ray.
+    const double footprint =
+      this->TheCamera.parallelProjection
+        ? 2 * this->TheCamera.parallelScale / this->Config.height
+        : 2 * std::tan(this->TheCamera.viewAngle * 3.14159265358979323846 / 360.0) /
+            this->Config.height;
+    std::vector<Hit> shaded(this->Hits.size());
+    std::vector<uint32_t> keptCount(this->PixelCount, 0);
+    parallelFor(this->PixelCount,
+                this->Threads,
+                [&](size_t begin, size_t end)
+                {
+                  for (size_t p = begin; p < end; ++p)
+                  {
+                    const auto first = shaded.begin() + offsets[p],
+                               last = shaded.begin() + offsets[p + 1];
+                    for (uint32_t k = offsets[p]; k < offsets[p + 1]; ++k)
+                    {
+                      shaded[k] = this->shade(this->Hits[source[k]], eye, forward);
+                    }
+                    std::sort(first,
+                              last,
+                              [](const Hit& a, const Hit& b)
+                              {
+                                if (a.eyeDepth != b.eyeDepth)
+                                  return a.eyeDepth < b.eyeDepth;
+                                if (a.isovalue != b.isovalue)
+                                  return a.isovalue < b.isovalue;
+                                return a.patch < b.patch;
+                              });
+                    auto write = first;
+                    for (auto it = first; it != last; ++it)
+                    {
+                      const double tolerance =
+                        1e-4 * footprint *
+                        (this->TheCamera.parallelProjection ? 1.0 : std::abs(it->eyeDepth));
+                      bool duplicate = false;
+                      for (auto previous = first; previous != write && !duplicate; ++previous)
+                      {
+                        duplicate = previous->isovalue == it->isovalue &&
+                                    it->eyeDepth - previous->eyeDepth <= tolerance;
+                      }
+                      if (!duplicate)
+                      {
+                        *write++ = *it;
+                      }
+                    }
+                    keptCount[p] = uint32_t(write - first);
+                    if (this->Config.firstHitOnly)
+                    {
+                      keptCount[p] = std::min<uint32_t>(keptCount[p], 1);
+                    }
+                  }
+                });
+    out.width = this->Config.width;
+    out.height = this->Config.height;
+    out.offsets.assign(keptCount.begin(), keptCount.end());
+    out.offsets.push_back(0);
+    out.hits.resize(exclusiveScan(out.offsets));
+    for (size_t p = 0; p < this->PixelCount; ++p)
+    {
+      std::copy(shaded.begin() + offsets[p],
+                shaded.begin() + offsets[p] + keptCount[p],
+                out.hits.begin() + out.offsets[p]);
+    }
+  }
+
+  /// World position, normal, depth and colour value of a root, evaluated on the input patch in
+  /// double precision.
+  Hit shade(const RawHit& raw, const double* eye, const double* forward) const
+  {
+    const auto world = this->Patches[raw.patch].view();
+    const int channels = world.channels;
+    std::vector<double> values(channels), derivatives(3 * channels);
+    evaluateHomogeneous<double, 3>(world, raw.u, values.data(), derivatives.data());
+    Hit hit;
+    hit.ndcDepth = raw.ndcDepth;
+    hit.patch = raw.patch;
+    hit.isovalue = raw.iso;
+    double J[3][3], gradient[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      hit.uvw[d] = raw.u[d];
+      hit.position[d] = rationalValue<double, 3>(
+        values.data(), derivatives.data(), channels, d, kWeightChannel, J[d]);
+    }
+    rationalValue<double, 3>(values.data(),
+                             derivatives.data(),
+                             channels,
+                             kFirstAttributeChannel + this->Config.surfaceAttribute,
+                             kWeightChannel,
+                             gradient);
+    // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J). The cofactor form
+    // stays defined where J is singular (collapsed faces); the orientation is fixed below.
+    double normal[3] = { 0, 0, 0 };
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
+        normal[r] += (J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0]) * gradient[c];
+      }
+    }
+    double toEye[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      toEye[d] = this->TheCamera.parallelProjection ? -forward[d] : eye[d] - hit.position[d];
+    }
+    normalize3(normal);
+    if (dot3(normal, normal) == 0 || !std::isfinite(normal[0]))
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        normal[d] = toEye[d];
+      }
+      normalize3(normal);
+    }
+    const double sign = dot3(normal, toEye) < 0 ? -1.0 : 1.0;
+    double offset[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      hit.normal[d] = sign * normal[d];
+      offset[d] = hit.position[d] - eye[d];
+    }
+    hit.eyeDepth = dot3(offset, forward);
+    hit.color =
+      this->Config.colorAttribute >= 0
+        ? values[kFirstAttributeChannel + this->Config.colorAttribute] / values[kWeightChannel]
+        : std::numeric_limits<double>::quiet_NaN();
+    return hit;
+  }
+
+  const std::vector<BezierVolume<double>>& Patches;
+  const Camera& TheCamera;
+  const Settings& Config;
+  FrameReport& Report;
+  int Threads = 1;
+  double Tolerance[3] = {};
+  Matrix4<double> WindowFromWorld;
+  size_t PixelCount = 0;
+  std::vector<Node> InitialNodes;
+  std::vector<double> InitialPool;
+  std::vector<uint32_t> ItemOffsets;
+  std::vector<uint32_t> Items;
+  std::vector<double> BestDepth;
+  std::vector<uint8_t> Unresolved;
+  std::vector<RawHit> Hits;
+};
+
+} // namespace
+
+FrameReport render(const std::vector<BezierVolume<double>>& patches,
+                   const Camera& camera,
+                   const Settings& settings,
+                   Method method,
+                   GBuffer& out)
+{
+  FrameReport report;
+  report.method = methodName(method);
+  Renderer(patches, camera, settings, report).run(method, out);
+  return report;
+}
+
+} // namespace sst
+} // namespace iga

@@ -1,0 +1,527 @@
+// The isosurface engine against analytic surfaces (spheres, exact rational cylinders, planes
+// across a collapsed axis), the three methods against each other, and its failure modes.
+#include "iga/sst/Engine.h"
+#include "iga/Datasets.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+namespace
+{
+
+using iga::sst::GBuffer;
+using iga::sst::Method;
+using iga::sst::Settings;
+
+iga::Camera makeCamera(const double* position,
+                       const double* focal,
+                       const double* up,
+                       double angle,
+                       const double* bounds)
+{
+  iga::Camera camera;
+  for (int d = 0; d < 3; ++d)
+  {
+    camera.position[d] = position[d];
+    camera.focalPoint[d] = focal[d];
+    camera.viewUp[d] = up[d];
+  }
+  camera.viewAngle = angle;
+  iga::fitClippingRange(camera, bounds);
+  return camera;
+}
+
+/// The ray through pixel (i, j)'s centre from the camera's geometry (not from its matrices).
+void pixelRay(const iga::Camera& camera,
+              int width,
+              int height,
+              int i,
+              int j,
+              double* origin,
+              double* direction)
+{
+  double forward[3], side[3], up[3];
+  iga::viewDirection(camera, forward);
+  iga::cross3(forward, camera.viewUp, side);
+  iga::normalize3(side);
+  iga::cross3(side, forward, up);
+  const double t = std::tan(camera.viewAngle * M_PI / 360.0);
+  const double x = (i + 0.5) / width * 2 - 1, y = (j + 0.5) / height * 2 - 1;
+  for (int d = 0; d < 3; ++d)
+  {
+    origin[d] = camera.position[d];
+    direction[d] = forward[d] + x * t * double(width) / height * side[d] + y * t * up[d];
+  }
+}
+
+/// An analytic first hit: ray parameter (inf for none) and whether the ray passes so close to the
+/// surface's boundary or silhouette that a pixel may go either way.
+struct Truth
+{
+  double t;
+  bool ambiguous;
+};
+
+struct Comparison
+{
+  int covered = 0, mismatched = 0, ambiguous = 0;
+  double maxPositionError = 0, maxNormalError = 0;
+};
+
+/// Compares the first hits with the truth at every pixel; `normalAt` gives the true unit normal
+/// at a point (up to sign).
+Comparison compare(const GBuffer& gbuffer,
+                   const iga::Camera& camera,
+                   std::function<Truth(const double*, const double*)> truth,
+                   std::function<void(const double*, double*)> normalAt)
+{
+  Comparison result;
+  for (int j = 0; j < gbuffer.height; ++j)
+  {
+    for (int i = 0; i < gbuffer.width; ++i)
+    {
+      double o[3], dir[3];
+      pixelRay(camera, gbuffer.width, gbuffer.height, i, j, o, dir);
+      const Truth expected = truth(o, dir);
+      const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
+      if (expected.ambiguous)
+      {
+        ++result.ambiguous;
+        continue;
+      }
+      if ((hit != nullptr) != std::isfinite(expected.t))
+      {
+        ++result.mismatched;
+        continue;
+      }
+      if (!hit)
+        continue;
+      ++result.covered;
+      double n[3], p[3];
+      for (int d = 0; d < 3; ++d)
+        p[d] = o[d] + expected.t * dir[d];
+      normalAt(p, n);
+      double error = 0, dotn = 0;
+      for (int d = 0; d < 3; ++d)
+      {
+        error = std::max(error, std::abs(hit->position[d] - p[d]));
+        dotn += hit->normal[d] * n[d];
+      }
+      result.maxPositionError = std::max(result.maxPositionError, error);
+      result.maxNormalError = std::max(result.maxNormalError, 1 - std::abs(dotn));
+    }
+  }
+  return result;
+}
+
+/// Nearest t > tMin solving the quadratic a t^2 + b t + c = 0 that passes `accept`.
+double firstRoot(double a,
+                 double b,
+                 double c,
+                 std::function<bool(double)> accept,
+                 double& discriminant)
+{
+  discriminant = b * b - 4 * a * c;
+  if (discriminant < 0)
+    return INFINITY;
+  const double s = std::sqrt(discriminant);
+  double roots[2] = { (-b - s) / (2 * a), (-b + s) / (2 * a) };
+  for (double t : roots)
+    if (t > 0 && accept(t))
+      return t;
+  return INFINITY;
+}
+
+Truth sphereTruth(const double* o, const double* d)
+{
+  const double a = iga::dot3(d, d), b = 2 * iga::dot3(o, d), c = iga::dot3(o, o) - 1;
+  double disc;
+  const double t = firstRoot(
+    a, b, c, [](double) { return true; }, disc);
+  // Grazing rays (within 1e-7 of tangency, relative) may fall either way.
+  return { t, std::abs(disc) < 1e-6 * b * b };
+}
+
+void sphereNormal(const double* p, double* n)
+{
+  for (int d = 0; d < 3; ++d)
+    n[d] = p[d];
+  iga::normalize3(n);
+}
+
+GBuffer renderSet(const iga::VolumeSet<double>& set,
+                  const iga::Camera& camera,
+                  Settings settings,
+                  Method method = Method::SharedSubdivisionTree,
+                  iga::sst::FrameReport* report = nullptr)
+{
+  GBuffer gbuffer;
+  const auto r = iga::sst::render(set.patches, camera, settings, method, gbuffer);
+  if (report)
+    *report = r;
+  return gbuffer;
+}
+
+class MarsdenSphere : public ::testing::TestWithParam<int>
+{
+};
+
+TEST_P(MarsdenSphere, MatchesTheAnalyticSphere)
+{
+  const auto set = iga::makeMarsdenSphere<double>(GetParam());
+  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
+  const double position[3] = { 1.2, -3.5, 2.1 }, focal[3] = { 0.1, 0, 0 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 40, bounds);
+  Settings settings;
+  settings.width = 80;
+  settings.height = 64;
+  settings.isovalues = { 0.0 };
+  iga::sst::FrameReport report;
+  const GBuffer gbuffer = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  const Comparison c = compare(gbuffer, camera, sphereTruth, sphereNormal);
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  EXPECT_GT(c.covered, 1000);
+  EXPECT_EQ(c.mismatched, 0) << "coverage differs from the analytic silhouette";
+  EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
+  EXPECT_LT(c.maxNormalError, 1e-9);
+  // Depths agree with the hit's own projection.
+  const auto* hit = gbuffer.firstHit(40, 32);
+  ASSERT_NE(hit, nullptr);
+  double toHit[3], forward[3];
+  iga::viewDirection(camera, forward);
+  for (int d = 0; d < 3; ++d)
+    toHit[d] = hit->position[d] - camera.position[d];
+  EXPECT_NEAR(hit->eyeDepth, iga::dot3(toHit, forward), 1e-12);
+  const auto M = iga::worldToClip(camera, 80.0 / 64.0);
+  const double world[4] = { hit->position[0], hit->position[1], hit->position[2], 1 };
+  double clip[4];
+  M.apply(world, clip);
+  EXPECT_NEAR(hit->ndcDepth, clip[2] / clip[3], 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(Degrees2To5, MarsdenSphere, ::testing::Values(2, 3, 4, 5));
+
+TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
+{
+  const auto set = iga::makeMarsdenSphere<double>(2);
+  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
+  const double position[3] = { 0, -4, 0.5 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 35, bounds);
+  Settings settings;
+  settings.width = settings.height = 48;
+  settings.isovalues = { 0.0 };
+  settings.firstHitOnly = false;
+  const GBuffer gbuffer = renderSet(set, camera, settings);
+  int twoHits = 0, covered = 0;
+  for (int j = 0; j < 48; ++j)
+    for (int i = 0; i < 48; ++i)
+    {
+      double o[3], d[3];
+      pixelRay(camera, 48, 48, i, j, o, d);
+      const Truth truth = sphereTruth(o, d);
+      if (truth.ambiguous || !std::isfinite(truth.t))
+        continue;
+      ++covered;
+      ASSERT_EQ(gbuffer.hitCount(i, j), 2) << "pixel " << i << "," << j;
+      const auto* front = gbuffer.firstHit(i, j);
+      EXPECT_LT(front[0].ndcDepth, front[1].ndcDepth);
+      EXPECT_LT(front[0].eyeDepth, front[1].eyeDepth);
+      ++twoHits;
+    }
+  EXPECT_GT(twoHits, 500);
+  EXPECT_EQ(twoHits, covered);
+}
+
+/// First hit on the lateral surface x^2 + y^2 = r^2, z in [z0, z1].
+Truth cylinderTruth(const double* o, const double* d, double r, double z0, double z1)
+{
+  const double a = d[0] * d[0] + d[1] * d[1], b = 2 * (o[0] * d[0] + o[1] * d[1]),
+               c = o[0] * o[0] + o[1] * o[1] - r * r;
+  double disc;
+  bool nearRim = false;
+  const double t = firstRoot(
+    a,
+    b,
+    c,
+    [&](double t)
+    {
+      const double z = o[2] + t * d[2];
+      nearRim = nearRim || std::abs(z - z0) < 1e-6 || std::abs(z - z1) < 1e-6;
+      return z >= z0 && z <= z1;
+    },
+    disc);
+  return { t, nearRim || std::abs(disc) < 1e-6 * b * b };
+}
+
+void cylinderNormal(const double* p, double* n)
+{
+  n[0] = p[0];
+  n[1] = p[1];
+  n[2] = 0;
+  iga::normalize3(n);
+}
+
+TEST(Engine, ExactRationalCylinderInTheTube)
+{
+  const auto set = iga::makeTube<double>(0.5, 0.0);
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  const double position[3] = { 2.6, -3.1, 3.4 }, focal[3] = { 0, 0, 1 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 35, bounds);
+  Settings settings;
+  settings.width = 72;
+  settings.height = 64;
+  settings.isovalues = { 0.75 };
+  settings.surfaceAttribute = 1; // radius
+  settings.colorAttribute = 2;   // height
+  const GBuffer gbuffer = renderSet(set, camera, settings);
+  const Comparison c = compare(
+    gbuffer,
+    camera,
+    [](const double* o, const double* d) { return cylinderTruth(o, d, 0.75, 0, 2); },
+    cylinderNormal);
+  EXPECT_GT(c.covered, 800);
+  EXPECT_EQ(c.mismatched, 0);
+  EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
+  EXPECT_LT(c.maxNormalError, 1e-9);
+  // The colour attribute is the height, exactly.
+  const auto* hit = gbuffer.firstHit(36, 32);
+  ASSERT_NE(hit, nullptr);
+  EXPECT_NEAR(hit->color, hit->position[2], 1e-12);
+}
+
+TEST(Engine, CollapsedAxisDiskAndCylinder)
+{
+  const auto set = iga::makeTube<double>(0.0, 0.0); // inner face collapsed onto the axis
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 38, bounds);
+  Settings settings;
+  settings.width = settings.height = 64;
+  // The plane z = 1 crosses the collapsed axis: a disk of radius 1.
+  settings.isovalues = { 1.0 };
+  settings.surfaceAttribute = 2;
+  iga::sst::FrameReport report;
+  GBuffer gbuffer = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  Comparison c = compare(
+    gbuffer,
+    camera,
+    [](const double* o, const double* d)
+    {
+      const double t = (1 - o[2]) / d[2];
+      const double x = o[0] + t * d[0], y = o[1] + t * d[1];
+      const double r = std::hypot(x, y);
+      return Truth{ t > 0 && r <= 1 ? t : INFINITY, std::abs(r - 1) < 1e-6 };
+    },
+    [](const double*, double* n) { n[0] = n[1] = 0, n[2] = 1; });
+  EXPECT_GT(c.covered, 600);
+  EXPECT_EQ(c.mismatched, 0);
+  EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
+  EXPECT_LT(c.maxNormalError, 1e-9);
+
+  // A cylinder of radius 0.4 around the collapsed axis.
+  settings.isovalues = { 0.4 };
+  settings.surfaceAttribute = 1;
+  gbuffer = renderSet(set, camera, settings);
+  c = compare(
+    gbuffer,
+    camera,
+    [](const double* o, const double* d) { return cylinderTruth(o, d, 0.4, 0, 2); },
+    cylinderNormal);
+  EXPECT_GT(c.covered, 300);
+  EXPECT_EQ(c.mismatched, 0);
+  EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
+}
+
+TEST(Engine, CameraInsideThePatchSeesTheSphereAllAround)
+{
+  // The eye is inside the volume: the patch straddles the eye plane and must be split there.
+  const auto set = iga::makeMarsdenSphere<double>(3);
+  const double position[3] = { 0.1, 0.2, -0.1 }, focal[3] = { 1, 0.3, 0 }, up[3] = { 0, 0, 1 };
+  iga::Camera camera;
+  for (int d = 0; d < 3; ++d)
+  {
+    camera.position[d] = position[d];
+    camera.focalPoint[d] = focal[d];
+    camera.viewUp[d] = up[d];
+  }
+  camera.viewAngle = 60;
+  camera.clippingRange[0] = 0.05;
+  camera.clippingRange[1] = 5;
+  Settings settings;
+  settings.width = settings.height = 40;
+  settings.isovalues = { 0.0 };
+  iga::sst::FrameReport report;
+  const GBuffer gbuffer = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  const Comparison c = compare(gbuffer, camera, sphereTruth, sphereNormal);
+  EXPECT_EQ(c.covered, 40 * 40);
+  EXPECT_EQ(c.mismatched, 0);
+  EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+}
+
+/// Largest depth difference between two G-buffers' first hits and the pixels covered by one only.
+void expectSameFirstHits(const GBuffer& a,
+                         const GBuffer& b,
+                         int allowedCoverageDifferences,
+                         double depthTolerance)
+{
+  int differ = 0, both = 0;
+  double maxDepth = 0;
+  for (int j = 0; j < a.height; ++j)
+    for (int i = 0; i < a.width; ++i)
+    {
+      const auto *ha = a.firstHit(i, j), *hb = b.firstHit(i, j);
+      if ((ha != nullptr) != (hb != nullptr))
+      {
+        ++differ;
+        continue;
+      }
+      if (ha)
+      {
+        ++both;
+        maxDepth = std::max(maxDepth, std::abs(ha->eyeDepth - hb->eyeDepth));
+      }
+    }
+  EXPECT_LE(differ, allowedCoverageDifferences);
+  EXPECT_GT(both, 100);
+  EXPECT_LT(maxDepth, depthTolerance);
+}
+
+TEST(Engine, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTwistedTeardrop)
+{
+  const auto set = iga::makeTeardrop<double>(1.2);
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  const double position[3] = { -0.2, -1.6, 0.9 }, focal[3] = { -0.5, 0, 0 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 40, bounds);
+  Settings settings;
+  settings.width = settings.height = 40;
+  settings.isovalues = { 0.0 };
+  settings.firstHitOnly = false;
+  const GBuffer sst = renderSet(set, camera, settings, Method::SharedSubdivisionTree);
+  const GBuffer basic = renderSet(set, camera, settings, Method::BasicScheme);
+  const GBuffer brute = renderSet(set, camera, settings, Method::BruteForce);
+  // The two subdivision schemes find the same roots.
+  expectSameFirstHits(sst, basic, 0, 1e-6);
+  ASSERT_EQ(sst.offsets, basic.offsets);
+  for (size_t h = 0; h < sst.hits.size(); ++h)
+    EXPECT_NEAR(sst.hits[h].eyeDepth, basic.hits[h].eyeDepth, 1e-6);
+  // Brute force (multi-start Newton in uniform leaves) finds no root the trees miss, and misses
+  // few of theirs.
+  int found = 0, missing = 0;
+  for (int p = 0; p < 40 * 40; ++p)
+  {
+    for (uint32_t b = brute.offsets[p]; b < brute.offsets[p + 1]; ++b)
+    {
+      bool present = false;
+      for (uint32_t s = sst.offsets[p]; s < sst.offsets[p + 1]; ++s)
+        present = present || std::abs(sst.hits[s].eyeDepth - brute.hits[b].eyeDepth) < 1e-6;
+      EXPECT_TRUE(present) << "pixel " << p << " depth " << brute.hits[b].eyeDepth;
+      found += present;
+    }
+    missing +=
+      int(sst.offsets[p + 1] - sst.offsets[p]) - int(brute.offsets[p + 1] - brute.offsets[p]);
+  }
+  EXPECT_GT(found, 200);
+  EXPECT_LE(missing, int(sst.hits.size() / 50));
+}
+
+TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
+{
+  const auto set = iga::makeTwistedTube<double>(0.7);
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 35, bounds);
+  Settings settings;
+  settings.width = settings.height = 64;
+  settings.isovalues = { 0.0, 0.3 };
+  settings.colorAttribute = 1;
+  settings.threads = 1;
+  const GBuffer one = renderSet(set, camera, settings);
+  settings.threads = 2;
+  const GBuffer two = renderSet(set, camera, settings);
+  ASSERT_EQ(one.offsets, two.offsets);
+  ASSERT_GT(one.hits.size(), 500u);
+  for (size_t h = 0; h < one.hits.size(); ++h)
+  {
+    EXPECT_EQ(one.hits[h].ndcDepth, two.hits[h].ndcDepth);
+    EXPECT_EQ(one.hits[h].patch, two.hits[h].patch);
+    EXPECT_EQ(one.hits[h].isovalue, two.hits[h].isovalue);
+    for (int d = 0; d < 3; ++d)
+    {
+      EXPECT_EQ(one.hits[h].position[d], two.hits[h].position[d]);
+      EXPECT_EQ(one.hits[h].normal[d], two.hits[h].normal[d]);
+    }
+  }
+}
+
+TEST(Engine, DepthCapIsReportedNotLooped)
+{
+  const auto set = iga::makeMarsdenSphere<double>(4);
+  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
+  const double position[3] = { 0, -4, 0 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 35, bounds);
+  Settings settings;
+  settings.width = settings.height = 32;
+  settings.isovalues = { 0.0 };
+  settings.maxSubdivisionDepth = 1;
+  iga::sst::FrameReport report;
+  renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  EXPECT_GT(report.unresolvedPixels, 0u);
+  EXPECT_GT(report.unresolvedAtDepthCap, 0u);
+  settings.maxSubdivisionDepth = 22;
+  settings.memoryBudgetBytes = 64 * 1024; // room for the root and little else
+  renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  EXPECT_GT(report.unresolvedAtBudget, 0u);
+  EXPECT_LE(report.peakBytes, size_t(1) << 20);
+}
+
+TEST(Engine, BadInputIsRejectedWithTheProblemNamed)
+{
+  auto set = iga::makeTwistedTube<double>(0.0);
+  const double bounds[6] = { -1, 1, -1, 1, 0, 2 };
+  const double position[3] = { 0, -4, 1 }, focal[3] = { 0, 0, 1 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 35, bounds);
+  Settings settings;
+  settings.width = settings.height = 8;
+  settings.isovalues = { 0.0 };
+  auto message = [&](const iga::VolumeSet<double>& s, const Settings& st)
+  {
+    GBuffer g;
+    try
+    {
+      iga::sst::render(s.patches, camera, st, Method::SharedSubdivisionTree, g);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(set, settings), "");
+  auto negative = set;
+  negative.patches[3].view().point(4)[iga::kWeightChannel] = -0.5;
+  EXPECT_NE(message(negative, settings).find("patch 3: control point 4 has non-positive weight"),
+            std::string::npos);
+  auto nan = set;
+  nan.patches[5].view().point(0)[1] = NAN;
+  EXPECT_NE(message(nan, settings).find("patch 5: control point 0 has a non-finite value"),
+            std::string::npos);
+  Settings noIso = settings;
+  noIso.isovalues.clear();
+  EXPECT_NE(message(set, noIso).find("no isovalue"), std::string::npos);
+  Settings badAttribute = settings;
+  badAttribute.surfaceAttribute = 7;
+  EXPECT_NE(message(set, badAttribute).find("has 3 attributes"), std::string::npos);
+  Settings badSize = settings;
+  badSize.width = 0;
+  EXPECT_NE(message(set, badSize).find("image size"), std::string::npos);
+}
+
+} // namespace
