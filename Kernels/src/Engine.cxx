@@ -808,6 +808,10 @@ private:
       pool.swap(keptPool);
       tuples.swap(next);
       this->Report.msCompaction += millisecondsSince(stage);
+      if (this->Config.progress)
+      {
+        this->Config.progress(this->Report.iterations, tuples.size());
+      }
     }
   }
 

@@ -1,31 +1,33 @@
-// igaview: the command-line front end.
+// igaview: the command-line front end. `igaview render` rasterizes isosurfaces of rational Bézier
+// volumes with the SST engine and writes a shaded PNG and, on request, an OpenEXR G-buffer.
 //
-// Until the SST engine lands, `render` draws VTK's tessellated contour of the Bézier cells (an
-// approximation, and said so on the console); the data path (default dataset or .vtu, checks,
-// camera framing, PNG output) is the one the engine will use.
+// Until the VTK mapper lands, the PNG is shaded on the CPU from the G-buffer (headlight, Phong).
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGADefaultVolumeSource.h"
+#include "vtkIGAEXRWriter.h"
+#include "vtkIGAGBufferImage.h"
 
-#include "vtkActor.h"
-#include "vtkCamera.h"
-#include "vtkContourFilter.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkPointData.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
 #include "vtkUnstructuredGrid.h"
-#include "vtkWindowToImageFilter.h"
 #include "vtkXMLUnstructuredGridReader.h"
 
+#include "iga/Bounds.h"
+#include "iga/sst/Engine.h"
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace
@@ -33,21 +35,25 @@ namespace
 
 const char* const kUsage = R"(usage: igaview render [INPUT] [options]
 
-Renders the isosurface of a rational Bezier volume dataset to a PNG image.
-With no INPUT it renders the bundled default dataset (a twisted rational tube).
+Renders isosurfaces of rational Bezier volumes pixel-exactly (Shared Subdivision Trees) to a PNG
+image and optionally an OpenEXR G-buffer. With no INPUT it renders the bundled default dataset
+(a twisted rational tube of 8 tri-quadratic patches).
 
-INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON cells
-                         with RationalWeights and HigherOrderDegrees
+INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON cells with
+                         RationalWeights and HigherOrderDegrees
   --iso V                isovalue (repeatable; default: the middle of the attribute's range)
   --surface-by NAME      attribute that defines the surface (default: the first one)
-  --color-by NAME        attribute that colours the surface (default: none)
+  --color-by NAME        attribute that colours the surface (default: a plain colour)
   --size WxH             image size in pixels (default 800x600)
   --time T               deformation time of the default dataset, 0..1 (default 0.5)
   --camera-position x,y,z
   --focal-point x,y,z
   --view-up x,y,z
   --view-angle DEG       a camera that is not given is chosen to frame the data
+  --threads N            CPU threads (default: all)
   -o FILE                output PNG (default igaview.png)
+  --exr FILE             also write the G-buffer as OpenEXR: R G B A, Z (eye depth), P.X P.Y P.Z,
+                         N.X N.Y N.Z, u v w, patch, and the colour attribute by name
   -h, --help             this text
 )";
 
@@ -55,10 +61,11 @@ struct Options
 {
   std::string input;
   std::vector<double> isovalues;
-  std::string surfaceBy, colorBy, output = "igaview.png";
+  std::string surfaceBy, colorBy, output = "igaview.png", exr;
   int size[2] = { 800, 600 };
+  int threads = 0;
   double time = 0.5;
-  bool hasPosition = false, hasFocal = false, hasViewUp = false, hasAngle = false;
+  bool hasPosition = false, hasFocal = false, hasViewUp = false;
   double position[3], focal[3], viewUp[3], viewAngle = 30;
 };
 
@@ -74,7 +81,7 @@ double parseNumber(const std::string& text, const std::string& option)
   {
     size_t used = 0;
     const double value = std::stod(text, &used);
-    if (used == text.size())
+    if (used == text.size() && std::isfinite(value))
     {
       return value;
     }
@@ -94,11 +101,11 @@ void parseTriple(const std::string& text, const std::string& option, double* out
   {
     if (n == 3)
     {
-      break;
+      fail(option + " expects three comma-separated numbers x,y,z, got '" + text + "'");
     }
     out[n++] = parseNumber(part, option);
   }
-  if (n != 3 || stream.rdbuf()->in_avail() > 0)
+  if (n != 3)
   {
     fail(option + " expects three comma-separated numbers x,y,z, got '" + text + "'");
   }
@@ -108,7 +115,7 @@ Options parseArguments(int argc, char** argv)
 {
   if (argc < 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")
   {
-    std::fputs(kUsage, stdout);
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
     std::exit(argc < 2 ? 1 : 0);
   }
   if (std::string(argv[1]) != "render")
@@ -142,12 +149,20 @@ Options parseArguments(int argc, char** argv)
       options.time = parseNumber(value(), arg);
     else if (arg == "-o")
       options.output = value();
+    else if (arg == "--exr")
+      options.exr = value();
+    else if (arg == "--threads")
+    {
+      options.threads = int(parseNumber(value(), arg));
+      if (options.threads < 1 || options.threads > 1024)
+        fail("--threads expects 1..1024");
+    }
     else if (arg == "--size")
     {
       const std::string text = value();
-      if (std::sscanf(text.c_str(), "%dx%d", &options.size[0], &options.size[1]) != 2 ||
-          options.size[0] < 1 || options.size[1] < 1 || options.size[0] > 16384 ||
-          options.size[1] > 16384)
+      char rest = 0;
+      if (std::sscanf(text.c_str(), "%dx%d%c", &options.size[0], &options.size[1], &rest) != 2 ||
+        options.size[0] < 1 || options.size[1] < 1 || options.size[0] > 16384 || options.size[1] > 16384)
       {
         fail("--size expects WxH with 1..16384 pixels each, got '" + text + "'");
       }
@@ -159,7 +174,11 @@ Options parseArguments(int argc, char** argv)
     else if (arg == "--view-up")
       parseTriple(value(), arg, options.viewUp), options.hasViewUp = true;
     else if (arg == "--view-angle")
-      options.viewAngle = parseNumber(value(), arg), options.hasAngle = true;
+    {
+      options.viewAngle = parseNumber(value(), arg);
+      if (!(options.viewAngle > 0 && options.viewAngle < 180))
+        fail("--view-angle must lie strictly between 0 and 180 degrees");
+    }
     else if (!arg.empty() && arg[0] == '-')
       fail("unknown option '" + arg + "' (try: igaview render --help)");
     else if (options.input.empty())
@@ -174,50 +193,174 @@ Options parseArguments(int argc, char** argv)
   return options;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> loadInput(const Options& options)
+/// The input as Bézier patches, through the same .vtu conversion for files and the default.
+iga::VolumeSet<double> loadInput(const Options& options)
 {
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  std::string name = options.input;
   if (options.input.empty())
   {
     vtkNew<vtkIGADefaultVolumeSource> source;
     source->SetTime(options.time);
     source->Update();
+    grid = source->GetOutput();
+    name = "default dataset";
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
-                options.time);
-    return source->GetOutput();
+      options.time);
   }
-  if (!std::ifstream(options.input))
+  else
   {
-    fail("cannot open '" + options.input + "'");
+    if (!std::ifstream(options.input))
+    {
+      fail("cannot open '" + options.input + "'");
+    }
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName(options.input.c_str());
+    reader->Update();
+    grid = reader->GetOutput();
+    if (reader->GetErrorCode() != 0 || !grid || grid->GetNumberOfCells() == 0)
+    {
+      fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells");
+    }
   }
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  reader->SetFileName(options.input.c_str());
-  reader->Update();
-  if (reader->GetErrorCode() != 0 || !reader->GetOutput() ||
-      reader->GetOutput()->GetNumberOfCells() == 0)
-  {
-    fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells");
-  }
-  vtkSmartPointer<vtkUnstructuredGrid> grid = reader->GetOutput();
-  // Check the cells with the converter the engine will use, and report what VTK would ignore.
   iga::VolumeSet<double> set;
   std::string error;
   std::vector<std::string> warnings;
   if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings))
   {
-    fail(options.input + ": " + error);
+    fail(name + ": " + error);
   }
   for (const auto& warning : warnings)
   {
-    std::fprintf(stderr, "igaview: warning: %s: %s\n", options.input.c_str(), warning.c_str());
+    std::fprintf(stderr, "igaview: warning: %s: %s\n", name.c_str(), warning.c_str());
   }
-  std::printf("igaview: %s: %zu patches, attributes:", options.input.c_str(), set.patches.size());
-  for (const auto& name : set.attributeNames)
+  if (set.attributeNames.empty())
   {
-    std::printf(" %s", name.c_str());
+    fail(name + ": no scalar point attribute to take an isosurface of");
   }
-  std::printf("\n");
-  return grid;
+  return set;
+}
+
+int attributeIndex(const iga::VolumeSet<double>& set, const std::string& name, const char* option)
+{
+  const auto it = std::find(set.attributeNames.begin(), set.attributeNames.end(), name);
+  if (it == set.attributeNames.end())
+  {
+    std::string known;
+    for (const auto& n : set.attributeNames)
+      known += (known.empty() ? "" : ", ") + n;
+    fail(std::string(option) + ": no attribute named '" + name + "' (have: " + known + ")");
+  }
+  return int(it - set.attributeNames.begin());
+}
+
+/// Range of an attribute over all patches (Bernstein coefficients bound the field).
+void attributeRange(const iga::VolumeSet<double>& set, int attribute, double* range)
+{
+  range[0] = INFINITY;
+  range[1] = -INFINITY;
+  for (const auto& patch : set.patches)
+  {
+    double lo, hi;
+    iga::rationalRange<double, 3>(patch.view(), iga::kFirstAttributeChannel + attribute, iga::kWeightChannel, lo, hi);
+    range[0] = std::min(range[0], lo);
+    range[1] = std::max(range[1], hi);
+  }
+}
+
+iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& set)
+{
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  // Default view: from the front right and above, z up, framing the data like ResetCamera.
+  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
+  iga::Camera camera = iga::frameBounds(bounds, direction, up, options.viewAngle);
+  if (options.hasFocal)
+    std::copy(options.focal, options.focal + 3, camera.focalPoint);
+  if (options.hasPosition)
+    std::copy(options.position, options.position + 3, camera.position);
+  if (options.hasViewUp)
+    std::copy(options.viewUp, options.viewUp + 3, camera.viewUp);
+  double forward[3], side[3];
+  iga::viewDirection(camera, forward);
+  iga::cross3(forward, camera.viewUp, side);
+  if (iga::dot3(side, side) < 1e-20)
+  {
+    fail("the view-up direction is parallel to the view direction");
+  }
+  iga::fitClippingRange(camera, bounds);
+  return camera;
+}
+
+/// Headlight Phong shading of the first hits into premultiplied RGBA floats (row 0 at the
+/// bottom), coloured by the colour attribute through a cool-to-warm map or per isovalue.
+std::vector<float> shade(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera, bool colorByAttribute,
+  const double* colorRange)
+{
+  vtkNew<vtkColorTransferFunction> map; // ParaView's "Cool to Warm"
+  map->SetColorSpaceToDiverging();
+  map->AddRGBPoint(colorRange[0], 0.231, 0.298, 0.753);
+  map->AddRGBPoint(colorRange[1] > colorRange[0] ? colorRange[1] : colorRange[0] + 1, 0.706, 0.016, 0.150);
+  const double palette[4][3] = { { 0.9, 0.75, 0.45 }, { 0.35, 0.7, 0.75 }, { 0.8, 0.45, 0.5 }, { 0.55, 0.75, 0.4 } };
+  double forward[3];
+  iga::viewDirection(camera, forward);
+  std::vector<float> rgba(size_t(gbuffer.width) * gbuffer.height * 4, 0.0f);
+  for (int j = 0; j < gbuffer.height; ++j)
+  {
+    for (int i = 0; i < gbuffer.width; ++i)
+    {
+      const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
+      if (!hit)
+        continue;
+      double base[3];
+      if (colorByAttribute)
+        map->GetColor(hit->color, base);
+      else
+        std::copy(palette[hit->isovalue % 4], palette[hit->isovalue % 4] + 3, base);
+      // Headlight: the light comes from the eye, so L = H = -forward.
+      const double ndotl = std::max(0.0, -iga::dot3(hit->normal, forward));
+      const double diffuse = 0.1 + 0.9 * ndotl, specular = 0.35 * std::pow(ndotl, 40);
+      float* out = &rgba[(size_t(j) * gbuffer.width + i) * 4];
+      for (int c = 0; c < 3; ++c)
+        out[c] = float(std::min(1.0, base[c] * diffuse + specular));
+      out[3] = 1.0f;
+    }
+  }
+  return rgba;
+}
+
+void writePNG(const std::vector<float>& rgba, int width, int height, const std::string& file)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(width, height, 1);
+  vtkNew<vtkUnsignedCharArray> pixels;
+  pixels->SetNumberOfComponents(3);
+  pixels->SetNumberOfTuples(vtkIdType(width) * height);
+  const double bottom[3] = { 0.12, 0.14, 0.18 }, top[3] = { 0.32, 0.36, 0.42 };
+  for (int j = 0; j < height; ++j)
+  {
+    const double t = height > 1 ? double(j) / (height - 1) : 0.0;
+    for (int i = 0; i < width; ++i)
+    {
+      const float* c = &rgba[(size_t(j) * width + i) * 4];
+      for (int k = 0; k < 3; ++k)
+      {
+        const double background = bottom[k] + t * (top[k] - bottom[k]);
+        const double value = c[k] + (1 - c[3]) * background; // premultiplied "over"
+        pixels->SetValue((vtkIdType(j) * width + i) * 3 + k, static_cast<unsigned char>(std::lround(255 * value)));
+      }
+    }
+  }
+  image->GetPointData()->SetScalars(pixels);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(file.c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    fail("cannot write '" + file + "'");
+  }
 }
 
 } // namespace
@@ -225,113 +368,69 @@ vtkSmartPointer<vtkUnstructuredGrid> loadInput(const Options& options)
 int main(int argc, char** argv)
 {
   const Options options = parseArguments(argc, argv);
-  vtkSmartPointer<vtkUnstructuredGrid> grid = loadInput(options);
+  const iga::VolumeSet<double> set = loadInput(options);
 
-  vtkPointData* pd = grid->GetPointData();
-  vtkDataArray* surfaceArray =
-    options.surfaceBy.empty() ? pd->GetScalars() : pd->GetArray(options.surfaceBy.c_str());
-  if (!surfaceArray && options.surfaceBy.empty())
+  iga::sst::Settings settings;
+  settings.width = options.size[0];
+  settings.height = options.size[1];
+  settings.threads = options.threads;
+  settings.surfaceAttribute =
+    options.surfaceBy.empty() ? 0 : attributeIndex(set, options.surfaceBy, "--surface-by");
+  settings.colorAttribute = options.colorBy.empty() ? -1 : attributeIndex(set, options.colorBy, "--color-by");
+  double surfaceRange[2], colorRange[2] = { 0, 1 };
+  attributeRange(set, settings.surfaceAttribute, surfaceRange);
+  if (settings.colorAttribute >= 0)
+    attributeRange(set, settings.colorAttribute, colorRange);
+  settings.isovalues = options.isovalues;
+  if (settings.isovalues.empty())
+    settings.isovalues.push_back(0.5 * (surfaceRange[0] + surfaceRange[1]));
+  const bool interactive = isatty(fileno(stderr));
+  settings.progress = [interactive](int iteration, size_t left)
   {
-    for (int a = 0; a < pd->GetNumberOfArrays() && !surfaceArray; ++a)
-    {
-      vtkDataArray* array = pd->GetArray(a);
-      if (array && array != pd->GetRationalWeights() && array->GetNumberOfComponents() == 1)
-        surfaceArray = array;
-    }
-  }
-  if (!surfaceArray)
-  {
-    fail(options.surfaceBy.empty() ? "the data has no scalar attribute to contour"
-                                   : "no point attribute named '" + options.surfaceBy + "'");
-  }
-  std::vector<double> isovalues = options.isovalues;
-  if (isovalues.empty())
-  {
-    double range[2];
-    surfaceArray->GetRange(range);
-    isovalues.push_back(0.5 * (range[0] + range[1]));
-  }
+    if (interactive)
+      std::fprintf(stderr, "\rigaview: subdivision level %d, %zu pixel-patch pairs left   ", iteration, left);
+  };
+  const iga::Camera camera = chooseCamera(options, set);
 
-  vtkNew<vtkContourFilter> contour;
-  contour->SetInputData(grid);
-  contour->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, surfaceArray->GetName());
-  contour->SetNumberOfContours(static_cast<int>(isovalues.size()));
-  for (size_t i = 0; i < isovalues.size(); ++i)
+  std::string isoText;
+  for (double iso : settings.isovalues)
+    isoText += (isoText.empty() ? "" : ", ") + std::to_string(iso);
+  std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n", set.patches.size(),
+    set.attributeNames[settings.surfaceAttribute].c_str(), isoText.c_str(), settings.width, settings.height);
+  iga::sst::GBuffer gbuffer;
+  iga::sst::FrameReport report;
+  try
   {
-    contour->SetValue(static_cast<int>(i), isovalues[i]);
+    report = iga::sst::render(set.patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
   }
-  contour->ComputeScalarsOff();
-  contour->Update();
-  std::printf("igaview: interim renderer: VTK's tessellated contour of '%s' (the pixel-exact SST "
-              "engine replaces it)\n",
-              surfaceArray->GetName());
-
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(contour->GetOutputPort());
-  if (!options.colorBy.empty())
+  catch (const std::exception& e)
   {
-    vtkDataArray* colorArray = pd->GetArray(options.colorBy.c_str());
-    if (!colorArray)
-    {
-      fail("no point attribute named '" + options.colorBy + "' to colour by");
-    }
-    mapper->SetScalarModeToUsePointFieldData();
-    mapper->SelectColorArray(options.colorBy.c_str());
-    mapper->SetScalarRange(colorArray->GetRange());
-    mapper->ScalarVisibilityOn();
+    if (interactive)
+      std::fputc('\n', stderr);
+    fail(e.what());
   }
-  else
+  if (interactive)
+    std::fputs("\r\033[K", stderr);
+  std::printf("igaview: %zu pixels covered in %.1f ms on %d threads (%d levels, %zu Newton solves, "
+              "peak %.1f MB)\n",
+    gbuffer.coveredPixels(), report.msTotal, report.threads, report.iterations, report.newtonSolves,
+    report.peakBytes / 1048576.0);
+  if (report.unresolvedPixels > 0)
+    std::printf("igaview: warning: %zu pixels unresolved at the subdivision cap\n", report.unresolvedPixels);
+
+  const std::vector<float> rgba = shade(gbuffer, camera, settings.colorAttribute >= 0, colorRange);
+  writePNG(rgba, settings.width, settings.height, options.output);
+  std::printf("igaview: wrote %s\n", options.output.c_str());
+  if (!options.exr.empty())
   {
-    mapper->ScalarVisibilityOff();
+    vtkNew<vtkIGAEXRWriter> writer;
+    writer->SetInputData(vtkIGAGBufferImage::Convert(
+      gbuffer, rgba.data(), settings.colorAttribute >= 0 ? set.attributeNames[settings.colorAttribute] : ""));
+    writer->SetFileName(options.exr.c_str());
+    writer->Write();
+    if (writer->GetErrorCode() != 0)
+      fail(writer->GetLastError());
+    std::printf("igaview: wrote %s\n", options.exr.c_str());
   }
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(0.9, 0.75, 0.45);
-  actor->GetProperty()->SetSpecular(0.3);
-  actor->GetProperty()->SetSpecularPower(30);
-
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddActor(actor);
-  renderer->SetBackground(0.12, 0.14, 0.18);
-  renderer->SetBackground2(0.32, 0.36, 0.42);
-  renderer->GradientBackgroundOn();
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(3.5, -4.0, 3.0);
-  camera->SetFocalPoint(0, 0, 1);
-  camera->SetViewUp(0, 0, 1);
-  renderer->ResetCamera(grid->GetBounds());
-  if (options.hasAngle)
-    camera->SetViewAngle(options.viewAngle);
-  if (options.hasFocal)
-    camera->SetFocalPoint(options.focal);
-  if (options.hasPosition)
-    camera->SetPosition(options.position);
-  if (options.hasViewUp)
-    camera->SetViewUp(options.viewUp);
-  renderer->ResetCameraClippingRange(grid->GetBounds());
-
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->AddRenderer(renderer);
-  window->SetSize(options.size[0], options.size[1]);
-  window->Render();
-
-  vtkNew<vtkWindowToImageFilter> capture;
-  capture->SetInput(window);
-  capture->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputConnection(capture->GetOutputPort());
-  writer->SetFileName(options.output.c_str());
-  writer->Write();
-  if (writer->GetErrorCode() != 0)
-  {
-    fail("cannot write '" + options.output + "'");
-  }
-  std::printf("igaview: wrote %s (%dx%d, %lld triangles)\n",
-              options.output.c_str(),
-              options.size[0],
-              options.size[1],
-              static_cast<long long>(contour->GetOutput()->GetNumberOfCells()));
   return 0;
 }

@@ -6,6 +6,7 @@
 #include "iga/Camera.h"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ struct Settings
   double isoTolerance = 1e-7;
   /// Brute force only: uniform subdivision levels per patch.
   int bruteForceLevels = 4;
+  /// Called after every SST iteration with its number and the (pixel, patch) pairs left.
+  std::function<void(int iteration, size_t pairsLeft)> progress;
 };
 
 /// One ray/isosurface intersection.
