@@ -43,7 +43,9 @@ int main(int argc, char** argv)
   ok = write(iga::makeTeardrop<double>(1.2), dir + "twisted_teardrop.vtu") && ok;
   for (int degree = 2; degree <= 5; ++degree)
   {
-    ok = write(iga::makeMarsdenSphere<double>(degree), dir + "marsden_sphere_p" + std::to_string(degree) + ".vtu") && ok;
+    ok = write(iga::makeMarsdenSphere<double>(degree),
+               dir + "marsden_sphere_p" + std::to_string(degree) + ".vtu") &&
+         ok;
   }
   return ok ? 0 : 1;
 }

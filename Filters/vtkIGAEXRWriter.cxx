@@ -62,7 +62,7 @@ void vtkIGAEXRWriter::WriteData()
   if (dims[2] != 1 || dims[0] < 1 || dims[1] < 1)
   {
     fail("the image is not 2D (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
-      std::to_string(dims[2]) + ")");
+         std::to_string(dims[2]) + ")");
     return;
   }
   const int width = dims[0], height = dims[1];
@@ -93,7 +93,8 @@ void vtkIGAEXRWriter::WriteData()
             static_cast<float>(array->GetComponent(vtkIdType(j) * width + i, c));
         }
       }
-      channels.emplace_back(std::string(array->GetName()) + (components == 1 ? "" : suffix[c]), std::move(values));
+      channels.emplace_back(std::string(array->GetName()) + (components == 1 ? "" : suffix[c]),
+                            std::move(values));
     }
   }
   if (channels.empty())
@@ -109,8 +110,10 @@ void vtkIGAEXRWriter::WriteData()
     {
       header.channels().insert(channel.first, Imf::Channel(Imf::FLOAT));
       frame.insert(channel.first,
-        Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channel.second.data()), sizeof(float),
-          sizeof(float) * size_t(width)));
+                   Imf::Slice(Imf::FLOAT,
+                              reinterpret_cast<char*>(channel.second.data()),
+                              sizeof(float),
+                              sizeof(float) * size_t(width)));
     }
     Imf::OutputFile out(file.c_str(), header);
     out.setFrameBuffer(frame);

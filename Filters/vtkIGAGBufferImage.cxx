@@ -7,8 +7,9 @@
 
 #include <limits>
 
-vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(
-  const iga::sst::GBuffer& gbuffer, const float* rgba, const std::string& colorName)
+vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(const iga::sst::GBuffer& gbuffer,
+                                                          const float* rgba,
+                                                          const std::string& colorName)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(gbuffer.width, gbuffer.height, 1);
@@ -32,7 +33,8 @@ vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(
   auto position = makeArray("P", 3);
   auto normal = makeArray("N", 3);
   auto u = makeArray("u", 1), v = makeArray("v", 1), w = makeArray("w", 1);
-  vtkSmartPointer<vtkFloatArray> attribute = colorName.empty() ? nullptr : makeArray(colorName.c_str(), 1);
+  vtkSmartPointer<vtkFloatArray> attribute =
+    colorName.empty() ? nullptr : makeArray(colorName.c_str(), 1);
   auto patch = vtkSmartPointer<vtkIntArray>::New();
   patch->SetName("patch");
   patch->SetNumberOfTuples(pixels);

@@ -146,6 +146,9 @@ struct Node
   int offset[3];
   size_t coeff; ///< start of its screen coefficients in the owning pool
   NodeInfo<double> info;
+  uint32_t initial = 0;    ///< the initial node (SAG work item) it descends from
+  bool implicit = false;   ///< SST: stands for all round pixels in its box, without tuples yet
+  bool overBudget = false; ///< SST: an implicit node the memory cap did not let split
 };
 
 /// A ray/isosurface root before shading.
@@ -484,114 +487,227 @@ private:
     for (;;)
     {
       // Each round takes every pixel's next depth group (the SAG work sets).
-      Clock::time_point stage = Clock::now();
-      std::vector<uint32_t> counts(this->PixelCount, 0), ends(this->PixelCount);
+      const Clock::time_point stage = Clock::now();
+      std::vector<uint32_t> ends(this->PixelCount);
+      std::atomic<size_t> total{ 0 };
       parallelFor(this->PixelCount,
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t p = begin; p < end; ++p)
-                    {
-                      ends[p] = uint32_t(this->groupEnd(p, cursor[p]));
-                      counts[p] = ends[p] - cursor[p];
-                    }
-                  });
-      std::vector<uint32_t> offsets = counts;
-      const size_t total = exclusiveScan(offsets);
-      if (total == 0)
-      {
-        break;
-      }
-      std::vector<Tuple> tuples(total);
-      parallelFor(this->PixelCount,
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t p = begin; p < end; ++p)
-                    {
-                      for (uint32_t k = 0; k < counts[p]; ++k)
-                      {
-                        tuples[offsets[p] + k] = { uint32_t(p), this->Items[cursor[p] + k] };
-                      }
-                    }
-                  });
-      cursor = ends;
-      this->Report.msSweepAndGroup += millisecondsSince(stage);
-      this->solveRound(std::move(tuples));
-    }
-  }
-
-  /// The SST loop of the paper over one round's tuples (pixel, initial node): solution,
-  /// subdivision and compaction until no tuple is left.
-  void solveRound(std::vector<Tuple> tuples)
-  {
-    // Copy the referenced initial nodes into this round's node list.
-    std::vector<Node> nodes;
-    std::vector<double> pool;
-    {
-      std::vector<int> remap(this->InitialNodes.size(), -1);
-      for (auto& t : tuples)
-      {
-        if (remap[t.node] < 0)
-        {
-          remap[t.node] = int(nodes.size());
-          Node node = this->InitialNodes[t.node];
-          const double* src = this->InitialPool.data() + node.coeff;
-          node.coeff = pool.size();
-          pool.insert(pool.end(), src, src + this->valueCount(node.patch));
-          nodes.push_back(node);
-        }
-        t.node = uint32_t(remap[t.node]);
-      }
-    }
-    const bool firstHit = this->Config.firstHitOnly;
-    std::vector<uint8_t> outcome;
-    std::vector<double> solution; // per tuple: u[3], ndc depth
-    while (!tuples.empty())
-    {
-      ++this->Report.iterations;
-      this->Report.maxTuples = std::max(this->Report.maxTuples, tuples.size());
-      this->Report.maxPatches = std::max(this->Report.maxPatches, nodes.size());
-
-      // Solution stage: Newton on tuples whose node certifies a unique root.
-      Clock::time_point stage = Clock::now();
-      outcome.assign(tuples.size(), Failed);
-      solution.resize(tuples.size() * 4);
-      std::atomic<size_t> solves{ 0 };
-      parallelFor(tuples.size(),
                   this->Threads,
                   [&](size_t begin, size_t end)
                   {
                     size_t local = 0;
-                    for (size_t t = begin; t < end; ++t)
+                    for (size_t p = begin; p < end; ++p)
                     {
-                      const Node& node = nodes[tuples[t].node];
-                      const uint32_t pixel = tuples[t].pixel;
-                      if (firstHit && node.info.box.lo[2] > this->BestDepth[pixel])
+                      ends[p] = uint32_t(this->groupEnd(p, cursor[p]));
+                      local += ends[p] - cursor[p];
+                    }
+                    total += local;
+                  });
+      this->Report.msSweepAndGroup += millisecondsSince(stage);
+      if (total == 0)
+      {
+        break;
+      }
+      this->solveRound(cursor, ends);
+      cursor = ends;
+    }
+  }
+
+  /// Whether pixel p works on initial node n in this round (n is in its current group).
+  bool inGroup(size_t p, uint32_t n) const
+  {
+    for (uint32_t k = this->GroupBegin[p]; k < this->GroupEnd[p]; ++k)
+    {
+      if (this->Items[k] == n)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// An implicit node stands for all pixels of its box in the round; it gets explicit (pixel,
+  /// node) tuples once it is certified, small, or at the depth cap. Before, every pixel would
+  /// fail on it without a certificate, so the paper's loop would split it anyway.
+  bool readyForTuples(const Node& node) const
+  {
+    const Box3<double>& box = node.info.box;
+    return node.info.certified || (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) <= 256.0 ||
+           node.level >= this->Config.maxSubdivisionDepth || node.overBudget;
+  }
+
+  /// The SST loop of the paper over one round: overlap (tuples of pixels and node boxes),
+  /// solution, subdivision and compaction, until no tuple and no implicit node is left.
+  void solveRound(const std::vector<uint32_t>& groupBegin, const std::vector<uint32_t>& groupEnd)
+  {
+    this->GroupBegin = groupBegin;
+    this->GroupEnd = groupEnd;
+    const bool firstHit = this->Config.firstHitOnly;
+    // This round's initial nodes, all implicit.
+    std::vector<Node> nodes;
+    std::vector<double> pool;
+    {
+      std::vector<uint8_t> present(this->InitialNodes.size(), 0);
+      for (size_t p = 0; p < this->PixelCount; ++p)
+      {
+        for (uint32_t k = groupBegin[p]; k < groupEnd[p]; ++k)
+        {
+          present[this->Items[k]] = 1;
+        }
+      }
+      for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+      {
+        if (present[n])
+        {
+          Node node = this->InitialNodes[n];
+          const double* src = this->InitialPool.data() + node.coeff;
+          node.coeff = pool.size();
+          node.initial = uint32_t(n);
+          node.implicit = true;
+          pool.insert(pool.end(), src, src + this->valueCount(node.patch));
+          nodes.push_back(node);
+        }
+      }
+    }
+    std::vector<Tuple> tuples;
+    std::vector<uint8_t> outcome;
+    std::vector<double> solution; // per tuple: u[3], ndc depth
+    while (!nodes.empty())
+    {
+      ++this->Report.iterations;
+      this->Report.maxPatches = std::max(this->Report.maxPatches, nodes.size());
+
+      // Overlap stage: implicit nodes that are ready become tuples of the pixels whose centres
+      // their boxes cover (members of the round, not behind a nearer hit).
+      Clock::time_point stage = Clock::now();
+      std::vector<uint32_t> ready;
+      for (size_t n = 0; n < nodes.size(); ++n)
+      {
+        if (nodes[n].implicit && this->readyForTuples(nodes[n]))
+        {
+          ready.push_back(uint32_t(n));
+        }
+      }
+      std::vector<uint32_t> readyCounts(ready.size() + 1, 0);
+      auto forCoveredPixels = [&](const Node& node, auto fn)
+      {
+        int range[4];
+        this->pixelRange(node.info.box, range);
+        for (int j = range[2]; j <= range[3]; ++j)
+        {
+          for (int i = range[0]; i <= range[1]; ++i)
+          {
+            const size_t p = size_t(j) * this->Config.width + i;
+            if (boxCoversPixel(node.info.box, i, j) &&
+                !(firstHit && node.info.box.lo[2] > this->BestDepth[p]) &&
+                this->inGroup(p, node.initial))
+            {
+              fn(p);
+            }
+          }
+        }
+      };
+      parallelFor(ready.size(),
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t k = begin; k < end; ++k)
+                    {
+                      forCoveredPixels(nodes[ready[k]], [&](size_t) { ++readyCounts[k]; });
+                    }
+                  });
+      const size_t existing = tuples.size();
+      tuples.resize(existing + exclusiveScan(readyCounts));
+      parallelFor(ready.size(),
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    for (size_t k = begin; k < end; ++k)
+                    {
+                      size_t write = existing + readyCounts[k];
+                      forCoveredPixels(nodes[ready[k]],
+                                       [&](size_t p) {
+                                         tuples[write++] = { uint32_t(p), ready[k] };
+                                       });
+                    }
+                  });
+      for (uint32_t n : ready)
+      {
+        nodes[n].implicit = false;
+      }
+      this->Report.maxTuples = std::max(this->Report.maxTuples, tuples.size());
+      this->Report.msOverlap += millisecondsSince(stage);
+
+      // Solution stage: exclusions, and Newton where a node certifies a unique root. Each
+      // pixel's tuples are solved in order of nearest depth by one thread, so that in first-hit
+      // mode a hit drops the tuples behind it at once.
+      stage = Clock::now();
+      {
+        std::vector<uint32_t> start(this->PixelCount + 1, 0);
+        for (const auto& t : tuples)
+        {
+          ++start[t.pixel];
+        }
+        exclusiveScan(start);
+        std::vector<Tuple> byPixel(tuples.size());
+        std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+        for (const auto& t : tuples)
+        {
+          byPixel[fill[t.pixel]++] = t;
+        }
+        tuples.swap(byPixel);
+        this->PixelStart.swap(start);
+      }
+      outcome.assign(tuples.size(), Failed);
+      solution.resize(tuples.size() * 4);
+      std::atomic<size_t> solves{ 0 };
+      parallelFor(this->PixelCount,
+                  this->Threads,
+                  [&](size_t begin, size_t end)
+                  {
+                    size_t local = 0;
+                    for (size_t pixel = begin; pixel < end; ++pixel)
+                    {
+                      const uint32_t first = this->PixelStart[pixel],
+                                     last = this->PixelStart[pixel + 1];
+                      std::sort(tuples.begin() + first,
+                                tuples.begin() + last,
+                                [&](const Tuple& a, const Tuple& b)
+                                {
+                                  const double za = nodes[a.node].info.box.lo[2],
+                                               zb = nodes[b.node].info.box.lo[2];
+                                  return za < zb || (za == zb && a.node < b.node);
+                                });
+                      double best = this->BestDepth[pixel];
+                      for (uint32_t t = first; t < last; ++t)
                       {
-                        outcome[t] = Dropped;
-                        continue;
-                      }
-                      const int i = int(pixel % this->Config.width),
-                                j = int(pixel / this->Config.width);
-                      local += node.info.certified ? 1 : 0;
-                      switch (solveTuple(this->nodeView(node, pool),
-                                         node.info,
-                                         i,
-                                         j,
-                                         this->Config.isovalues[node.iso],
-                                         this->Tolerance,
-                                         &solution[4 * t],
-                                         solution[4 * t + 3]))
-                      {
-                        case TupleOutcome::Hit:
-                          outcome[t] = Solved;
-                          break;
-                        case TupleOutcome::Miss:
+                        const Node& node = nodes[tuples[t].node];
+                        if (firstHit && node.info.box.lo[2] > best)
+                        {
                           outcome[t] = Dropped;
-                          break;
-                        case TupleOutcome::Undecided:
-                          break;
+                          continue;
+                        }
+                        const int i = int(pixel % this->Config.width),
+                                  j = int(pixel / this->Config.width);
+                        local += node.info.certified ? 1 : 0;
+                        switch (solveTuple(this->nodeView(node, pool),
+                                           node.info,
+                                           i,
+                                           j,
+                                           this->Config.isovalues[node.iso],
+                                           this->Tolerance,
+                                           &solution[4 * t],
+                                           solution[4 * t + 3]))
+                        {
+                          case TupleOutcome::Hit:
+                            outcome[t] = Solved;
+                            best = std::min(best, solution[4 * t + 3]);
+                            break;
+                          case TupleOutcome::Miss:
+                            outcome[t] = Dropped;
+                            break;
+                          case TupleOutcome::Undecided:
+                            break;
+                        }
                       }
                     }
                     solves += local;
@@ -607,7 +723,8 @@ private:
       }
       this->Report.msSolution += millisecondsSince(stage);
 
-      // Subdivision stage: split the nodes some pixel failed on (and only those).
+      // Subdivision stage: split the nodes some pixel failed on, and the implicit ones whose
+      // boxes still cover pixels.
       stage = Clock::now();
       std::vector<uint8_t> split(nodes.size(), 0);
       for (size_t t = 0; t < tuples.size(); ++t)
@@ -625,6 +742,12 @@ private:
       std::vector<uint32_t> toSplit;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
+        if (nodes[n].implicit)
+        {
+          int range[4];
+          this->pixelRange(nodes[n].info.box, range);
+          split[n] = range[0] <= range[1] && range[2] <= range[3] ? 1 : 0;
+        }
         if (split[n] && nodes[n].level >= this->Config.maxSubdivisionDepth)
         {
           split[n] = 2; // at the depth cap: its pixels stay unresolved
@@ -634,7 +757,9 @@ private:
           toSplit.push_back(uint32_t(n));
         }
       }
-      // Memory cap: split as many nodes as the budget allows, in order.
+      // Memory cap: split as many nodes as the budget allows, in order; implicit nodes beyond
+      // it become tuples in the next iteration instead, explicit ones leave their pixels
+      // unresolved.
       size_t childBytes = 0, allowed = 0;
       for (; allowed < toSplit.size(); ++allowed)
       {
@@ -647,9 +772,21 @@ private:
         }
         childBytes += bytes;
       }
+      std::vector<Node> deferred;
+      std::vector<double> deferredPool;
       for (size_t k = allowed; k < toSplit.size(); ++k)
       {
-        split[toSplit[k]] = 3; // over budget
+        Node& node = nodes[toSplit[k]];
+        if (node.implicit)
+        {
+          node.overBudget = true; // ready for tuples next time
+          deferred.push_back(node);
+          split[toSplit[k]] = 0;
+        }
+        else
+        {
+          split[toSplit[k]] = 3; // over budget
+        }
       }
       toSplit.resize(allowed);
       std::vector<uint32_t> poolOffset(toSplit.size() + 1, 0);
@@ -674,10 +811,14 @@ private:
                       {
                         Node child = childOf(parent, c);
                         child.coeff = poolOffset[k] + size_t(c) * count;
-                        // The solver analysis waits until the child is known to receive pixels.
-                        child.info = analyzeNodeBounds(this->nodeView(child, childPool),
-                                                       this->Config.isovalues[child.iso]);
+                        const auto view = this->nodeView(child, childPool);
+                        child.info = analyzeNodeBounds(view, this->Config.isovalues[child.iso]);
                         keep[8 * k + c] = this->worthKeeping(child.info) ? 1 : 0;
+                        // Explicit children are analysed once they are known to receive pixels.
+                        if (child.implicit && keep[8 * k + c])
+                        {
+                          analyzeNodeSolver(view, child.info);
+                        }
                         children[8 * k + c] = child;
                       }
                     }
@@ -688,30 +829,21 @@ private:
       this->Report.msSubdivision += millisecondsSince(stage);
 
       // Compaction: failed tuples move to the kept children covering their pixel; solved and
-      // dropped tuples and unsplit nodes leave.
+      // dropped tuples and unsplit explicit nodes leave.
       stage = Clock::now();
       std::vector<uint32_t> firstChild(nodes.size(), 0);
       for (size_t k = 0; k < toSplit.size(); ++k)
       {
         firstChild[toSplit[k]] = uint32_t(8 * k);
       }
-      std::vector<uint32_t> newIndex(children.size());
-      {
-        uint32_t next = 0;
-        for (size_t c = 0; c < children.size(); ++c)
-        {
-          newIndex[c] = keep[c] ? next++ : 0;
-        }
-      }
       auto childCovers = [&](const Tuple& t, size_t c)
       {
-        const Node& child = children[c];
         // Children of nodes in front of the eye are in front too (positive weights stay positive).
         return keep[c] &&
-               boxCoversPixel(child.info.box,
+               boxCoversPixel(children[c].info.box,
                               int(t.pixel % this->Config.width),
                               int(t.pixel / this->Config.width)) &&
-               !(firstHit && child.info.box.lo[2] > this->BestDepth[t.pixel]);
+               !(firstHit && children[c].info.box.lo[2] > this->BestDepth[t.pixel]);
       };
       std::vector<uint32_t> newCounts(tuples.size(), 0);
       parallelFor(tuples.size(),
@@ -748,61 +880,64 @@ private:
                   {
                     for (size_t t = begin; t < end; ++t)
                     {
-                      if (newCounts[t] == 0)
-                      {
-                        continue;
-                      }
                       uint32_t write = newOffsets[t];
                       const size_t base = firstChild[tuples[t].node];
-                      for (size_t c = base; c < base + 8; ++c)
+                      for (size_t c = base; newCounts[t] > 0 && c < base + 8; ++c)
                       {
                         if (childCovers(tuples[t], c))
                         {
-                          next[write++] = { tuples[t].pixel, newIndex[c] };
+                          next[write++] = { tuples[t].pixel, uint32_t(c) };
                         }
                       }
                     }
                   });
-      // The next nodes are the children that received pixels, stored contiguously.
-      std::vector<uint32_t> used(children.size(), 0);
+      // The next nodes: implicit children that were kept, explicit children that received
+      // pixels, and deferred implicit nodes; stored contiguously.
+      std::vector<uint8_t> used(children.size(), 0);
       for (const auto& t : next)
       {
         used[t.node] = 1;
       }
-      std::vector<uint32_t> usedIndex = used;
-      const size_t usedCount = exclusiveScan(usedIndex);
-      std::vector<Node> kept(usedCount);
-      std::vector<size_t> keptOffset(usedCount + 1, 0);
+      std::vector<uint32_t> newIndex(children.size(), 0);
+      std::vector<Node> kept;
+      std::vector<size_t> keptOffset(1, 0);
+      for (size_t c = 0; c < children.size(); ++c)
       {
-        size_t write = 0;
-        for (size_t c = 0; c < children.size(); ++c)
+        if (keep[c] && (children[c].implicit || used[c]))
         {
-          if (keep[c] && used[newIndex[c]])
-          {
-            kept[write] = children[c];
-            keptOffset[write + 1] = keptOffset[write] + size_t(this->valueCount(children[c].patch));
-            ++write;
-          }
+          newIndex[c] = uint32_t(kept.size());
+          kept.push_back(children[c]);
+          keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(children[c].patch)));
         }
       }
+      const size_t fromChildren = kept.size();
+      for (const Node& node : deferred)
+      {
+        kept.push_back(node);
+        keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(node.patch)));
+      }
       std::vector<double> keptPool(keptOffset.back());
-      parallelFor(usedCount,
+      parallelFor(kept.size(),
                   this->Threads,
                   [&](size_t begin, size_t end)
                   {
                     for (size_t n = begin; n < end; ++n)
                     {
                       const size_t count = keptOffset[n + 1] - keptOffset[n];
-                      std::copy(childPool.begin() + kept[n].coeff,
-                                childPool.begin() + kept[n].coeff + count,
+                      const std::vector<double>& source = n < fromChildren ? childPool : pool;
+                      std::copy(source.begin() + kept[n].coeff,
+                                source.begin() + kept[n].coeff + count,
                                 keptPool.begin() + keptOffset[n]);
                       kept[n].coeff = keptOffset[n];
-                      analyzeNodeSolver(this->nodeView(kept[n], keptPool), kept[n].info);
+                      if (n < fromChildren && !kept[n].implicit)
+                      {
+                        analyzeNodeSolver(this->nodeView(kept[n], keptPool), kept[n].info);
+                      }
                     }
                   });
       for (auto& t : next)
       {
-        t.node = usedIndex[t.node];
+        t.node = newIndex[t.node];
       }
       nodes.swap(kept);
       pool.swap(keptPool);
@@ -1238,6 +1373,8 @@ private:
   std::vector<double> BestDepth;
   std::vector<uint8_t> Unresolved;
   std::vector<RawHit> Hits;
+  std::vector<uint32_t> GroupBegin, GroupEnd; ///< this round's work items per pixel
+  std::vector<uint32_t> PixelStart;           ///< SST: each pixel's first tuple
 };
 
 } // namespace

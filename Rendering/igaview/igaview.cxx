@@ -11,8 +11,8 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkXMLUnstructuredGridReader.h"
 
@@ -162,7 +162,8 @@ Options parseArguments(int argc, char** argv)
       const std::string text = value();
       char rest = 0;
       if (std::sscanf(text.c_str(), "%dx%d%c", &options.size[0], &options.size[1], &rest) != 2 ||
-        options.size[0] < 1 || options.size[1] < 1 || options.size[0] > 16384 || options.size[1] > 16384)
+          options.size[0] < 1 || options.size[1] < 1 || options.size[0] > 16384 ||
+          options.size[1] > 16384)
       {
         fail("--size expects WxH with 1..16384 pixels each, got '" + text + "'");
       }
@@ -207,7 +208,7 @@ iga::VolumeSet<double> loadInput(const Options& options)
     name = "default dataset";
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
-      options.time);
+                options.time);
   }
   else
   {
@@ -263,7 +264,8 @@ void attributeRange(const iga::VolumeSet<double>& set, int attribute, double* ra
   for (const auto& patch : set.patches)
   {
     double lo, hi;
-    iga::rationalRange<double, 3>(patch.view(), iga::kFirstAttributeChannel + attribute, iga::kWeightChannel, lo, hi);
+    iga::rationalRange<double, 3>(
+      patch.view(), iga::kFirstAttributeChannel + attribute, iga::kWeightChannel, lo, hi);
     range[0] = std::min(range[0], lo);
     range[1] = std::max(range[1], hi);
   }
@@ -295,14 +297,19 @@ iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& s
 
 /// Headlight Phong shading of the first hits into premultiplied RGBA floats (row 0 at the
 /// bottom), coloured by the colour attribute through a cool-to-warm map or per isovalue.
-std::vector<float> shade(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera, bool colorByAttribute,
-  const double* colorRange)
+std::vector<float> shade(const iga::sst::GBuffer& gbuffer,
+                         const iga::Camera& camera,
+                         bool colorByAttribute,
+                         const double* colorRange)
 {
   vtkNew<vtkColorTransferFunction> map; // ParaView's "Cool to Warm"
   map->SetColorSpaceToDiverging();
   map->AddRGBPoint(colorRange[0], 0.231, 0.298, 0.753);
-  map->AddRGBPoint(colorRange[1] > colorRange[0] ? colorRange[1] : colorRange[0] + 1, 0.706, 0.016, 0.150);
-  const double palette[4][3] = { { 0.9, 0.75, 0.45 }, { 0.35, 0.7, 0.75 }, { 0.8, 0.45, 0.5 }, { 0.55, 0.75, 0.4 } };
+  map->AddRGBPoint(
+    colorRange[1] > colorRange[0] ? colorRange[1] : colorRange[0] + 1, 0.706, 0.016, 0.150);
+  const double palette[4][3] = {
+    { 0.9, 0.75, 0.45 }, { 0.35, 0.7, 0.75 }, { 0.8, 0.45, 0.5 }, { 0.55, 0.75, 0.4 }
+  };
   double forward[3];
   iga::viewDirection(camera, forward);
   std::vector<float> rgba(size_t(gbuffer.width) * gbuffer.height * 4, 0.0f);
@@ -348,7 +355,8 @@ void writePNG(const std::vector<float>& rgba, int width, int height, const std::
       {
         const double background = bottom[k] + t * (top[k] - bottom[k]);
         const double value = c[k] + (1 - c[3]) * background; // premultiplied "over"
-        pixels->SetValue((vtkIdType(j) * width + i) * 3 + k, static_cast<unsigned char>(std::lround(255 * value)));
+        pixels->SetValue((vtkIdType(j) * width + i) * 3 + k,
+                         static_cast<unsigned char>(std::lround(255 * value)));
       }
     }
   }
@@ -376,7 +384,8 @@ int main(int argc, char** argv)
   settings.threads = options.threads;
   settings.surfaceAttribute =
     options.surfaceBy.empty() ? 0 : attributeIndex(set, options.surfaceBy, "--surface-by");
-  settings.colorAttribute = options.colorBy.empty() ? -1 : attributeIndex(set, options.colorBy, "--color-by");
+  settings.colorAttribute =
+    options.colorBy.empty() ? -1 : attributeIndex(set, options.colorBy, "--color-by");
   double surfaceRange[2], colorRange[2] = { 0, 1 };
   attributeRange(set, settings.surfaceAttribute, surfaceRange);
   if (settings.colorAttribute >= 0)
@@ -388,20 +397,26 @@ int main(int argc, char** argv)
   settings.progress = [interactive](int iteration, size_t left)
   {
     if (interactive)
-      std::fprintf(stderr, "\rigaview: subdivision level %d, %zu pixel-patch pairs left   ", iteration, left);
+      std::fprintf(
+        stderr, "\rigaview: subdivision level %d, %zu pixel-patch pairs left   ", iteration, left);
   };
   const iga::Camera camera = chooseCamera(options, set);
 
   std::string isoText;
   for (double iso : settings.isovalues)
     isoText += (isoText.empty() ? "" : ", ") + std::to_string(iso);
-  std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n", set.patches.size(),
-    set.attributeNames[settings.surfaceAttribute].c_str(), isoText.c_str(), settings.width, settings.height);
+  std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n",
+              set.patches.size(),
+              set.attributeNames[settings.surfaceAttribute].c_str(),
+              isoText.c_str(),
+              settings.width,
+              settings.height);
   iga::sst::GBuffer gbuffer;
   iga::sst::FrameReport report;
   try
   {
-    report = iga::sst::render(set.patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+    report = iga::sst::render(
+      set.patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
   }
   catch (const std::exception& e)
   {
@@ -413,10 +428,15 @@ int main(int argc, char** argv)
     std::fputs("\r\033[K", stderr);
   std::printf("igaview: %zu pixels covered in %.1f ms on %d threads (%d levels, %zu Newton solves, "
               "peak %.1f MB)\n",
-    gbuffer.coveredPixels(), report.msTotal, report.threads, report.iterations, report.newtonSolves,
-    report.peakBytes / 1048576.0);
+              gbuffer.coveredPixels(),
+              report.msTotal,
+              report.threads,
+              report.iterations,
+              report.newtonSolves,
+              report.peakBytes / 1048576.0);
   if (report.unresolvedPixels > 0)
-    std::printf("igaview: warning: %zu pixels unresolved at the subdivision cap\n", report.unresolvedPixels);
+    std::printf("igaview: warning: %zu pixels unresolved at the subdivision cap\n",
+                report.unresolvedPixels);
 
   const std::vector<float> rgba = shade(gbuffer, camera, settings.colorAttribute >= 0, colorRange);
   writePNG(rgba, settings.width, settings.height, options.output);
@@ -425,7 +445,9 @@ int main(int argc, char** argv)
   {
     vtkNew<vtkIGAEXRWriter> writer;
     writer->SetInputData(vtkIGAGBufferImage::Convert(
-      gbuffer, rgba.data(), settings.colorAttribute >= 0 ? set.attributeNames[settings.colorAttribute] : ""));
+      gbuffer,
+      rgba.data(),
+      settings.colorAttribute >= 0 ? set.attributeNames[settings.colorAttribute] : ""));
     writer->SetFileName(options.exr.c_str());
     writer->Write();
     if (writer->GetErrorCode() != 0)

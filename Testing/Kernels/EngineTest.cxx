@@ -431,6 +431,49 @@ TEST(Engine, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTwistedTeardrop)
   EXPECT_LE(missing, int(sst.hits.size() / 50));
 }
 
+TEST(Engine, FoldedSelfIntersectingVolumeAgreesWithTheReferences)
+{
+  // Fold the sphere volume over itself: the control planes x_i of the first direction become
+  // non-monotone, so the map's Jacobian changes sign (an inverted, self-intersecting volume).
+  auto set = iga::makeMarsdenSphere<double>(3);
+  const auto view = set.patches[0].view();
+  for (int p = 0; p < view.pointCount(); ++p)
+  {
+    const int i = p % 4;
+    const double fold[4] = { -1.5, 3.0, -3.0, 1.5 };
+    view.point(p)[0] = fold[i];
+  }
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  const double position[3] = { 0.8, -4.2, 1.6 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
+  const auto camera = makeCamera(position, focal, up, 40, bounds);
+  Settings settings;
+  settings.width = settings.height = 40;
+  settings.isovalues = { 0.0 };
+  settings.firstHitOnly = false;
+  iga::sst::FrameReport report;
+  const GBuffer sst = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  const GBuffer basic = renderSet(set, camera, settings, Method::BasicScheme);
+  settings.bruteForceLevels = 5;
+  const GBuffer brute = renderSet(set, camera, settings, Method::BruteForce);
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  ASSERT_EQ(sst.offsets, basic.offsets);
+  size_t moreThanTwo = 0;
+  for (int p = 0; p < 40 * 40; ++p)
+  {
+    moreThanTwo += sst.offsets[p + 1] - sst.offsets[p] > 2 ? 1 : 0;
+    for (uint32_t b = brute.offsets[p]; b < brute.offsets[p + 1]; ++b)
+    {
+      bool present = false;
+      for (uint32_t s = sst.offsets[p]; s < sst.offsets[p + 1]; ++s)
+        present = present || std::abs(sst.hits[s].eyeDepth - brute.hits[b].eyeDepth) < 1e-6;
+      EXPECT_TRUE(present) << "pixel " << p << " depth " << brute.hits[b].eyeDepth;
+    }
+  }
+  // The fold makes rays cross the surface more than twice.
+  EXPECT_GT(moreThanTwo, 20u);
+}
+
 TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
 {
   const auto set = iga::makeTwistedTube<double>(0.7);

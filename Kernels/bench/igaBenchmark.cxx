@@ -1,0 +1,263 @@
+// igaBenchmark: speed and memory of the CPU isosurface engine, VTK-free so it also runs on
+// machines without VTK. Prints a table on stderr and one JSON document on stdout (or --json FILE).
+//
+//   igaBenchmark [--quick] [--json FILE]
+//
+// Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
+// peak memory over resolutions 256^2..2048^2 (fig. 11); 1 vs 2 threads; the 512^2 tri-quadratic
+// sphere frame; the default dataset. Ratios compare runs of the same process.
+#include "iga/Datasets.h"
+#include "iga/sst/Engine.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace
+{
+
+struct Measurement
+{
+  std::string study, dataset, method;
+  int degree = 0, width = 0, height = 0, threads = 0;
+  double ms = 0; ///< median over the repetitions
+  double peakMB = 0;
+  size_t covered = 0, newtonSolves = 0, subdivided = 0, unresolved = 0;
+  iga::sst::FrameReport report; ///< of the median run
+};
+
+iga::Camera frame(const iga::VolumeSet<double>& set)
+{
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
+  return iga::frameBounds(bounds, direction, up, 30);
+}
+
+Measurement measure(const std::string& study,
+                    const std::string& dataset,
+                    const iga::VolumeSet<double>& set,
+                    double isovalue,
+                    int degree,
+                    int width,
+                    int height,
+                    int threads,
+                    iga::sst::Method method,
+                    int repetitions)
+{
+  iga::sst::Settings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.threads = threads;
+  settings.isovalues = { isovalue };
+  const iga::Camera camera = frame(set);
+  std::vector<std::pair<double, iga::sst::FrameReport>> runs;
+  iga::sst::GBuffer gbuffer;
+  for (int r = 0; r < repetitions; ++r)
+  {
+    const auto report = iga::sst::render(set.patches, camera, settings, method, gbuffer);
+    runs.emplace_back(report.msTotal, report);
+  }
+  std::sort(
+    runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Measurement m;
+  m.study = study;
+  m.dataset = dataset;
+  m.method = iga::sst::methodName(method);
+  m.degree = degree;
+  m.width = width;
+  m.height = height;
+  m.threads = threads;
+  m.report = runs[runs.size() / 2].second;
+  m.ms = runs[runs.size() / 2].first;
+  m.peakMB = m.report.peakBytes / 1048576.0;
+  m.covered = gbuffer.coveredPixels();
+  m.newtonSolves = m.report.newtonSolves;
+  m.subdivided = m.report.subdividedPatches;
+  m.unresolved = m.report.unresolvedPixels;
+  std::fprintf(stderr,
+               "%-11s %-16s %-6s p=%d %5dx%-5d %d thr %10.1f ms %8.1f MB  covered %zu\n",
+               study.c_str(),
+               dataset.c_str(),
+               m.method.c_str(),
+               degree,
+               width,
+               height,
+               threads,
+               m.ms,
+               m.peakMB,
+               m.covered);
+  return m;
+}
+
+std::string json(const std::vector<Measurement>& all,
+                 const std::vector<std::pair<std::string, double>>& ratios)
+{
+  std::ostringstream out;
+  out << "{\n  \"hardwareThreads\": " << std::thread::hardware_concurrency()
+      << ",\n  \"measurements\": [\n";
+  for (size_t k = 0; k < all.size(); ++k)
+  {
+    const auto& m = all[k];
+    const auto& r = m.report;
+    out << "    {\"study\": \"" << m.study << "\", \"dataset\": \"" << m.dataset
+        << "\", \"method\": \"" << m.method << "\", \"degree\": " << m.degree
+        << ", \"width\": " << m.width << ", \"height\": " << m.height
+        << ", \"threads\": " << m.threads << ", \"ms\": " << m.ms << ", \"peakMB\": " << m.peakMB
+        << ", \"coveredPixels\": " << m.covered << ", \"newtonSolves\": " << m.newtonSolves
+        << ", \"subdividedPatches\": " << m.subdivided << ", \"unresolvedPixels\": " << m.unresolved
+        << ", \"stagesMs\": {\"setup\": " << r.msSetup
+        << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution
+        << ", \"subdivision\": " << r.msSubdivision << ", \"compaction\": " << r.msCompaction
+        << ", \"gbuffer\": " << r.msGBuffer << "}}" << (k + 1 < all.size() ? "," : "") << "\n";
+  }
+  out << "  ],\n  \"ratios\": {\n";
+  for (size_t k = 0; k < ratios.size(); ++k)
+  {
+    out << "    \"" << ratios[k].first << "\": " << ratios[k].second
+        << (k + 1 < ratios.size() ? "," : "") << "\n";
+  }
+  out << "  }\n}\n";
+  return out.str();
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  bool quick = false;
+  std::string jsonFile;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--quick"))
+      quick = true;
+    else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
+      jsonFile = argv[++i];
+    else
+    {
+      std::fprintf(stderr, "usage: igaBenchmark [--quick] [--json FILE]\n");
+      return 1;
+    }
+  }
+  const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  const int reps = quick ? 1 : 3;
+  std::vector<Measurement> all;
+  std::vector<std::pair<std::string, double>> ratios;
+  using iga::sst::Method;
+
+  // Fig. 13: SST against one tree per pixel over the sphere's degree.
+  const int degreeResolution = quick ? 128 : 256;
+  for (int degree = 2; degree <= 5; ++degree)
+  {
+    const auto sphere = iga::makeMarsdenSphere<double>(degree);
+    const auto sst = measure("degree",
+                             "marsden-sphere",
+                             sphere,
+                             0.0,
+                             degree,
+                             degreeResolution,
+                             degreeResolution,
+                             threads,
+                             Method::SharedSubdivisionTree,
+                             reps);
+    const auto basic = measure("degree",
+                               "marsden-sphere",
+                               sphere,
+                               0.0,
+                               degree,
+                               degreeResolution,
+                               degreeResolution,
+                               threads,
+                               Method::BasicScheme,
+                               1);
+    all.push_back(sst);
+    all.push_back(basic);
+    ratios.emplace_back("basicOverSst_p" + std::to_string(degree), basic.ms / sst.ms);
+  }
+
+  // Fig. 11: resolution doubling, time and memory.
+  const auto sphere2 = iga::makeMarsdenSphere<double>(2);
+  const std::vector<int> resolutions =
+    quick ? std::vector<int>{ 128, 256, 512 } : std::vector<int>{ 256, 512, 1024, 2048 };
+  std::vector<Measurement> scaling;
+  for (int resolution : resolutions)
+  {
+    scaling.push_back(measure("resolution",
+                              "marsden-sphere",
+                              sphere2,
+                              0.0,
+                              2,
+                              resolution,
+                              resolution,
+                              threads,
+                              Method::SharedSubdivisionTree,
+                              resolution >= 1024 ? 1 : reps));
+    all.push_back(scaling.back());
+  }
+  for (size_t k = 1; k < scaling.size(); ++k)
+  {
+    const std::string step =
+      std::to_string(scaling[k - 1].width) + "to" + std::to_string(scaling[k].width);
+    ratios.emplace_back("timeGrowth_" + step, scaling[k].ms / scaling[k - 1].ms);
+    ratios.emplace_back("memoryGrowth_" + step, scaling[k].peakMB / scaling[k - 1].peakMB);
+  }
+
+  // Threads, and the 512^2 tri-quadratic sphere frame.
+  const int frameResolution = quick ? 256 : 512;
+  const auto one = measure("threads",
+                           "marsden-sphere",
+                           sphere2,
+                           0.0,
+                           2,
+                           frameResolution,
+                           frameResolution,
+                           1,
+                           Method::SharedSubdivisionTree,
+                           reps);
+  const auto many = measure("threads",
+                            "marsden-sphere",
+                            sphere2,
+                            0.0,
+                            2,
+                            frameResolution,
+                            frameResolution,
+                            threads,
+                            Method::SharedSubdivisionTree,
+                            reps);
+  all.push_back(one);
+  all.push_back(many);
+  ratios.emplace_back("speedupThreads", one.ms / many.ms);
+
+  // The default dataset at the command's default size.
+  const auto tube = iga::makeTwistedTube<double>(0.5);
+  all.push_back(measure("default",
+                        "twisted-tube",
+                        tube,
+                        0.0,
+                        2,
+                        800,
+                        600,
+                        threads,
+                        Method::SharedSubdivisionTree,
+                        reps));
+
+  const std::string document = json(all, ratios);
+  if (jsonFile.empty())
+  {
+    std::fputs(document.c_str(), stdout);
+  }
+  else
+  {
+    std::ofstream(jsonFile) << document;
+  }
+  for (const auto& ratio : ratios)
+  {
+    std::fprintf(stderr, "%-28s %.2f\n", ratio.first.c_str(), ratio.second);
+  }
+  return 0;
+}
