@@ -44,7 +44,7 @@ int main(int argc, char** argv)
   for (int degree = 2; degree <= 5; ++degree)
   {
     ok = write(iga::makeMarsdenSphere<double>(degree),
-               dir + "marsden_sphere_p" + std::to_string(degree) + ".vtu") &&
+           dir + "marsden_sphere_p" + std::to_string(degree) + ".vtu") &&
          ok;
   }
   return ok ? 0 : 1;

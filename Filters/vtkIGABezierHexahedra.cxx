@@ -72,19 +72,19 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
     const int* degree = view.degree;
     ids.resize(view.pointCount());
     forEachControlPoint(degree,
-                        [&](int linear, int vtkIndex)
-                        {
-                          const double* cp = view.point(linear);
-                          const double w = cp[iga::kWeightChannel];
-                          const vtkIdType id = offset + vtkIndex;
-                          points->SetPoint(id, cp[0] / w, cp[1] / w, cp[2] / w);
-                          weights->SetValue(id, w);
-                          for (size_t a = 0; a < attributes.size(); ++a)
-                          {
-                            attributes[a]->SetValue(id, cp[iga::kFirstAttributeChannel + a] / w);
-                          }
-                          ids[vtkIndex] = id;
-                        });
+      [&](int linear, int vtkIndex)
+      {
+        const double* cp = view.point(linear);
+        const double w = cp[iga::kWeightChannel];
+        const vtkIdType id = offset + vtkIndex;
+        points->SetPoint(id, cp[0] / w, cp[1] / w, cp[2] / w);
+        weights->SetValue(id, w);
+        for (size_t a = 0; a < attributes.size(); ++a)
+        {
+          attributes[a]->SetValue(id, cp[iga::kFirstAttributeChannel + a] / w);
+        }
+        ids[vtkIndex] = id;
+      });
     cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     degrees->SetTypedTuple(static_cast<vtkIdType>(c), degree);
     offset += view.pointCount();
@@ -107,9 +107,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
 }
 
 bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
-                                                 iga::VolumeSet<double>& set,
-                                                 std::string& error,
-                                                 std::vector<std::string>& warnings)
+  iga::VolumeSet<double>& set, std::string& error, std::vector<std::string>& warnings)
 {
   set = iga::VolumeSet<double>();
   if (!grid || grid->GetNumberOfCells() == 0)
@@ -208,29 +206,28 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
     }
     bool badId = false;
     forEachControlPoint(degree,
-                        [&](int linear, int vtkIndex)
-                        {
-                          const vtkIdType id = pts[vtkIndex];
-                          if (id < 0 || id >= pointCount)
-                          {
-                            badId = true;
-                            return;
-                          }
-                          double x[3];
-                          grid->GetPoint(id, x);
-                          const double w = weights ? weights->GetComponent(id, 0) : 1.0;
-                          double* cp = view.point(linear);
-                          for (int d = 0; d < 3; ++d)
-                          {
-                            cp[d] = w * x[d];
-                          }
-                          cp[iga::kWeightChannel] = w;
-                          for (size_t a = 0; a < attributes.size(); ++a)
-                          {
-                            cp[iga::kFirstAttributeChannel + a] =
-                              w * attributes[a]->GetComponent(id, 0);
-                          }
-                        });
+      [&](int linear, int vtkIndex)
+      {
+        const vtkIdType id = pts[vtkIndex];
+        if (id < 0 || id >= pointCount)
+        {
+          badId = true;
+          return;
+        }
+        double x[3];
+        grid->GetPoint(id, x);
+        const double w = weights ? weights->GetComponent(id, 0) : 1.0;
+        double* cp = view.point(linear);
+        for (int d = 0; d < 3; ++d)
+        {
+          cp[d] = w * x[d];
+        }
+        cp[iga::kWeightChannel] = w;
+        for (size_t a = 0; a < attributes.size(); ++a)
+        {
+          cp[iga::kFirstAttributeChannel + a] = w * attributes[a]->GetComponent(id, 0);
+        }
+      });
     if (badId)
     {
       error = where + "refers to a point outside 0.." + std::to_string(pointCount - 1);

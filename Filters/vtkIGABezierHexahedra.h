@@ -35,10 +35,8 @@ public:
 
   /// Grid to patches. Returns false and sets `error` when the grid cannot be converted; appends
   /// non-fatal notes to `warnings`.
-  static bool FromUnstructuredGrid(vtkUnstructuredGrid* grid,
-                                   iga::VolumeSet<double>& set,
-                                   std::string& error,
-                                   std::vector<std::string>& warnings);
+  static bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, iga::VolumeSet<double>& set,
+    std::string& error, std::vector<std::string>& warnings);
 };
 
 #endif

@@ -24,9 +24,8 @@ void vtkIGADefaultVolumeSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Time: " << this->Time << "\n";
 }
 
-int vtkIGADefaultVolumeSource::RequestInformation(vtkInformation*,
-                                                  vtkInformationVector**,
-                                                  vtkInformationVector* outputVector)
+int vtkIGADefaultVolumeSource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // Eleven steps over the deformation's range, so animation tools have something to step.
   double steps[11];
@@ -41,9 +40,8 @@ int vtkIGADefaultVolumeSource::RequestInformation(vtkInformation*,
   return 1;
 }
 
-int vtkIGADefaultVolumeSource::RequestData(vtkInformation*,
-                                           vtkInformationVector**,
-                                           vtkInformationVector* outputVector)
+int vtkIGADefaultVolumeSource::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   double time = this->Time;

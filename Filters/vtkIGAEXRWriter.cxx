@@ -93,8 +93,8 @@ void vtkIGAEXRWriter::WriteData()
             static_cast<float>(array->GetComponent(vtkIdType(j) * width + i, c));
         }
       }
-      channels.emplace_back(std::string(array->GetName()) + (components == 1 ? "" : suffix[c]),
-                            std::move(values));
+      channels.emplace_back(
+        std::string(array->GetName()) + (components == 1 ? "" : suffix[c]), std::move(values));
     }
   }
   if (channels.empty())
@@ -109,11 +109,9 @@ void vtkIGAEXRWriter::WriteData()
     for (auto& channel : channels)
     {
       header.channels().insert(channel.first, Imf::Channel(Imf::FLOAT));
-      frame.insert(channel.first,
-                   Imf::Slice(Imf::FLOAT,
-                              reinterpret_cast<char*>(channel.second.data()),
-                              sizeof(float),
-                              sizeof(float) * size_t(width)));
+      frame.insert(
+        channel.first, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channel.second.data()),
+                         sizeof(float), sizeof(float) * size_t(width)));
     }
     Imf::OutputFile out(file.c_str(), header);
     out.setFrameBuffer(frame);

@@ -7,9 +7,8 @@
 
 #include <limits>
 
-vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(const iga::sst::GBuffer& gbuffer,
-                                                          const float* rgba,
-                                                          const std::string& colorName)
+vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(
+  const iga::sst::GBuffer& gbuffer, const float* rgba, const std::string& colorName)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(gbuffer.width, gbuffer.height, 1);

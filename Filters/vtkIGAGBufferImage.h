@@ -25,9 +25,8 @@ class IGAVIEWFILTERS_EXPORT vtkIGAGBufferImage
 public:
   /// `rgba` holds width * height * 4 floats (row 0 at the bottom) or is null (all 0).
   /// `colorName` names the colour attribute's array; empty for none.
-  static vtkSmartPointer<vtkImageData> Convert(const iga::sst::GBuffer& gbuffer,
-                                               const float* rgba,
-                                               const std::string& colorName);
+  static vtkSmartPointer<vtkImageData> Convert(
+    const iga::sst::GBuffer& gbuffer, const float* rgba, const std::string& colorName);
 };
 
 #endif

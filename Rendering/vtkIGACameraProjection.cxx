@@ -7,9 +7,8 @@
 
 vtkStandardNewMacro(vtkIGACameraProjection);
 
-void vtkIGACameraProjection::ComputeModelToClip(vtkRenderer* renderer,
-                                                vtkMatrix4x4* propMatrix,
-                                                vtkMatrix4x4* modelToClip)
+void vtkIGACameraProjection::ComputeModelToClip(
+  vtkRenderer* renderer, vtkMatrix4x4* propMatrix, vtkMatrix4x4* modelToClip)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   // Same aspect as vtkViewport::WorldToView and vtkOpenGLCamera: the tiled viewport's.
@@ -25,9 +24,8 @@ void vtkIGACameraProjection::ComputeModelToClip(vtkRenderer* renderer,
   }
 }
 
-void vtkIGACameraProjection::ClipToWindow(vtkRenderer* renderer,
-                                          const double clip[4],
-                                          double window[3])
+void vtkIGACameraProjection::ClipToWindow(
+  vtkRenderer* renderer, const double clip[4], double window[3])
 {
   int size[2], origin[2];
   renderer->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);

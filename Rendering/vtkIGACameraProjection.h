@@ -27,9 +27,8 @@ public:
    * Sets `modelToClip` = projection * view * propMatrix for the renderer's active camera.
    * `propMatrix` may be null (identity).
    */
-  static void ComputeModelToClip(vtkRenderer* renderer,
-                                 vtkMatrix4x4* propMatrix,
-                                 vtkMatrix4x4* modelToClip);
+  static void ComputeModelToClip(
+    vtkRenderer* renderer, vtkMatrix4x4* propMatrix, vtkMatrix4x4* modelToClip);
 
   /// Window coordinates (pixels, origin bottom left, centre of pixel i at i + 0.5) and window
   /// depth in [0, 1] of a clip-space point, for the renderer's tiled viewport.

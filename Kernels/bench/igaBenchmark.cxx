@@ -39,16 +39,9 @@ iga::Camera frame(const iga::VolumeSet<double>& set)
   return iga::frameBounds(bounds, direction, up, 30);
 }
 
-Measurement measure(const std::string& study,
-                    const std::string& dataset,
-                    const iga::VolumeSet<double>& set,
-                    double isovalue,
-                    int degree,
-                    int width,
-                    int height,
-                    int threads,
-                    iga::sst::Method method,
-                    int repetitions)
+Measurement measure(const std::string& study, const std::string& dataset,
+  const iga::VolumeSet<double>& set, double isovalue, int degree, int width, int height,
+  int threads, iga::sst::Method method, int repetitions)
 {
   iga::sst::Settings settings;
   settings.width = width;
@@ -80,23 +73,14 @@ Measurement measure(const std::string& study,
   m.newtonSolves = m.report.newtonSolves;
   m.subdivided = m.report.subdividedPatches;
   m.unresolved = m.report.unresolvedPixels;
-  std::fprintf(stderr,
-               "%-11s %-16s %-6s p=%d %5dx%-5d %d thr %10.1f ms %8.1f MB  covered %zu\n",
-               study.c_str(),
-               dataset.c_str(),
-               m.method.c_str(),
-               degree,
-               width,
-               height,
-               threads,
-               m.ms,
-               m.peakMB,
-               m.covered);
+  std::fprintf(stderr, "%-11s %-16s %-6s p=%d %5dx%-5d %d thr %10.1f ms %8.1f MB  covered %zu\n",
+    study.c_str(), dataset.c_str(), m.method.c_str(), degree, width, height, threads, m.ms,
+    m.peakMB, m.covered);
   return m;
 }
 
-std::string json(const std::vector<Measurement>& all,
-                 const std::vector<std::pair<std::string, double>>& ratios)
+std::string json(
+  const std::vector<Measurement>& all, const std::vector<std::pair<std::string, double>>& ratios)
 {
   std::ostringstream out;
   out << "{\n  \"hardwareThreads\": " << std::thread::hardware_concurrency()
@@ -150,31 +134,22 @@ int main(int argc, char** argv)
   std::vector<std::pair<std::string, double>> ratios;
   using iga::sst::Method;
 
+  // A warm-up frame: thread start-up, page faults and caches are not what the studies measure.
+  measure("warm-up", "marsden-sphere", iga::makeMarsdenSphere<double>(2), 0.0, 2, 256, 256, threads,
+    Method::SharedSubdivisionTree, 1);
+
   // Fig. 13: SST against one tree per pixel over the sphere's degree.
   const int degreeResolution = quick ? 128 : 256;
   for (int degree = 2; degree <= 5; ++degree)
   {
     const auto sphere = iga::makeMarsdenSphere<double>(degree);
-    const auto sst = measure("degree",
-                             "marsden-sphere",
-                             sphere,
-                             0.0,
-                             degree,
-                             degreeResolution,
-                             degreeResolution,
-                             threads,
-                             Method::SharedSubdivisionTree,
-                             reps);
-    const auto basic = measure("degree",
-                               "marsden-sphere",
-                               sphere,
-                               0.0,
-                               degree,
-                               degreeResolution,
-                               degreeResolution,
-                               threads,
-                               Method::BasicScheme,
-                               1);
+    auto run = [&](Method method, int repetitions)
+    {
+      return measure("degree", "marsden-sphere", sphere, 0.0, degree, degreeResolution,
+        degreeResolution, threads, method, repetitions);
+    };
+    const auto sst = run(Method::SharedSubdivisionTree, reps);
+    const auto basic = run(Method::BasicScheme, 1);
     all.push_back(sst);
     all.push_back(basic);
     ratios.emplace_back("basicOverSst_p" + std::to_string(degree), basic.ms / sst.ms);
@@ -187,16 +162,8 @@ int main(int argc, char** argv)
   std::vector<Measurement> scaling;
   for (int resolution : resolutions)
   {
-    scaling.push_back(measure("resolution",
-                              "marsden-sphere",
-                              sphere2,
-                              0.0,
-                              2,
-                              resolution,
-                              resolution,
-                              threads,
-                              Method::SharedSubdivisionTree,
-                              resolution >= 1024 ? 1 : reps));
+    scaling.push_back(measure("resolution", "marsden-sphere", sphere2, 0.0, 2, resolution,
+      resolution, threads, Method::SharedSubdivisionTree, resolution >= 1024 ? 1 : reps));
     all.push_back(scaling.back());
   }
   for (size_t k = 1; k < scaling.size(); ++k)
@@ -209,42 +176,18 @@ int main(int argc, char** argv)
 
   // Threads, and the 512^2 tri-quadratic sphere frame.
   const int frameResolution = quick ? 256 : 512;
-  const auto one = measure("threads",
-                           "marsden-sphere",
-                           sphere2,
-                           0.0,
-                           2,
-                           frameResolution,
-                           frameResolution,
-                           1,
-                           Method::SharedSubdivisionTree,
-                           reps);
-  const auto many = measure("threads",
-                            "marsden-sphere",
-                            sphere2,
-                            0.0,
-                            2,
-                            frameResolution,
-                            frameResolution,
-                            threads,
-                            Method::SharedSubdivisionTree,
-                            reps);
+  const auto one = measure("threads", "marsden-sphere", sphere2, 0.0, 2, frameResolution,
+    frameResolution, 1, Method::SharedSubdivisionTree, reps);
+  const auto many = measure("threads", "marsden-sphere", sphere2, 0.0, 2, frameResolution,
+    frameResolution, threads, Method::SharedSubdivisionTree, reps);
   all.push_back(one);
   all.push_back(many);
   ratios.emplace_back("speedupThreads", one.ms / many.ms);
 
   // The default dataset at the command's default size.
   const auto tube = iga::makeTwistedTube<double>(0.5);
-  all.push_back(measure("default",
-                        "twisted-tube",
-                        tube,
-                        0.0,
-                        2,
-                        800,
-                        600,
-                        threads,
-                        Method::SharedSubdivisionTree,
-                        reps));
+  all.push_back(measure("default", "twisted-tube", tube, 0.0, 2, 800, 600, threads,
+    Method::SharedSubdivisionTree, reps));
 
   const std::string document = json(all, ratios);
   if (jsonFile.empty())

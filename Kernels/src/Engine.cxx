@@ -164,10 +164,8 @@ struct RawHit
 class Renderer
 {
 public:
-  Renderer(const std::vector<BezierVolume<double>>& patches,
-           const Camera& camera,
-           const Settings& settings,
-           FrameReport& report)
+  Renderer(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
+    const Settings& settings, FrameReport& report)
     : Patches(patches)
     , TheCamera(camera)
     , Config(settings)
@@ -422,24 +420,23 @@ private:
     {
       forEachCovered(n, [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
     }
-    parallelFor(this->PixelCount,
-                this->Threads,
-                [&](size_t begin, size_t end)
-                {
-                  for (size_t p = begin; p < end; ++p)
-                  {
-                    std::sort(this->Items.begin() + this->ItemOffsets[p],
-                              this->Items.begin() + this->ItemOffsets[p + 1],
-                              [&](uint32_t a, uint32_t b)
-                              {
-                                const double za = this->InitialNodes[a].info.box.lo[2],
-                                             zb = this->InitialNodes[b].info.box.lo[2];
-                                return za < zb || (za == zb && a < b);
-                              });
-                  }
-                });
-    this->trackMemory(bytesOf(this->Items) + bytesOf(this->ItemOffsets) +
-                      bytesOf(this->InitialPool));
+    parallelFor(this->PixelCount, this->Threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t p = begin; p < end; ++p)
+        {
+          std::sort(this->Items.begin() + this->ItemOffsets[p],
+            this->Items.begin() + this->ItemOffsets[p + 1],
+            [&](uint32_t a, uint32_t b)
+            {
+              const double za = this->InitialNodes[a].info.box.lo[2],
+                           zb = this->InitialNodes[b].info.box.lo[2];
+              return za < zb || (za == zb && a < b);
+            });
+        }
+      });
+    this->trackMemory(
+      bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->InitialPool));
   }
 
   /// The next group of a pixel's work items from `cursor`: in first-hit mode the nearest item
@@ -490,18 +487,17 @@ private:
       const Clock::time_point stage = Clock::now();
       std::vector<uint32_t> ends(this->PixelCount);
       std::atomic<size_t> total{ 0 };
-      parallelFor(this->PixelCount,
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    size_t local = 0;
-                    for (size_t p = begin; p < end; ++p)
-                    {
-                      ends[p] = uint32_t(this->groupEnd(p, cursor[p]));
-                      local += ends[p] - cursor[p];
-                    }
-                    total += local;
-                  });
+      parallelFor(this->PixelCount, this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          size_t local = 0;
+          for (size_t p = begin; p < end; ++p)
+          {
+            ends[p] = uint32_t(this->groupEnd(p, cursor[p]));
+            local += ends[p] - cursor[p];
+          }
+          total += local;
+        });
       this->Report.msSweepAndGroup += millisecondsSince(stage);
       if (total == 0)
       {
@@ -606,30 +602,28 @@ private:
           }
         }
       };
-      parallelFor(ready.size(),
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t k = begin; k < end; ++k)
-                    {
-                      forCoveredPixels(nodes[ready[k]], [&](size_t) { ++readyCounts[k]; });
-                    }
-                  });
+      parallelFor(ready.size(), this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = begin; k < end; ++k)
+          {
+            forCoveredPixels(nodes[ready[k]], [&](size_t) { ++readyCounts[k]; });
+          }
+        });
       const size_t existing = tuples.size();
       tuples.resize(existing + exclusiveScan(readyCounts));
-      parallelFor(ready.size(),
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t k = begin; k < end; ++k)
-                    {
-                      size_t write = existing + readyCounts[k];
-                      forCoveredPixels(nodes[ready[k]],
-                                       [&](size_t p) {
-                                         tuples[write++] = { uint32_t(p), ready[k] };
-                                       });
-                    }
-                  });
+      parallelFor(ready.size(), this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = begin; k < end; ++k)
+          {
+            size_t write = existing + readyCounts[k];
+            forCoveredPixels(nodes[ready[k]],
+              [&](size_t p) {
+                tuples[write++] = { uint32_t(p), ready[k] };
+              });
+          }
+        });
       for (uint32_t n : ready)
       {
         nodes[n].implicit = false;
@@ -660,58 +654,48 @@ private:
       outcome.assign(tuples.size(), Failed);
       solution.resize(tuples.size() * 4);
       std::atomic<size_t> solves{ 0 };
-      parallelFor(this->PixelCount,
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    size_t local = 0;
-                    for (size_t pixel = begin; pixel < end; ++pixel)
-                    {
-                      const uint32_t first = this->PixelStart[pixel],
-                                     last = this->PixelStart[pixel + 1];
-                      std::sort(tuples.begin() + first,
-                                tuples.begin() + last,
-                                [&](const Tuple& a, const Tuple& b)
-                                {
-                                  const double za = nodes[a.node].info.box.lo[2],
-                                               zb = nodes[b.node].info.box.lo[2];
-                                  return za < zb || (za == zb && a.node < b.node);
-                                });
-                      double best = this->BestDepth[pixel];
-                      for (uint32_t t = first; t < last; ++t)
-                      {
-                        const Node& node = nodes[tuples[t].node];
-                        if (firstHit && node.info.box.lo[2] > best)
-                        {
-                          outcome[t] = Dropped;
-                          continue;
-                        }
-                        const int i = int(pixel % this->Config.width),
-                                  j = int(pixel / this->Config.width);
-                        local += node.info.certified ? 1 : 0;
-                        switch (solveTuple(this->nodeView(node, pool),
-                                           node.info,
-                                           i,
-                                           j,
-                                           this->Config.isovalues[node.iso],
-                                           this->Tolerance,
-                                           &solution[4 * t],
-                                           solution[4 * t + 3]))
-                        {
-                          case TupleOutcome::Hit:
-                            outcome[t] = Solved;
-                            best = std::min(best, solution[4 * t + 3]);
-                            break;
-                          case TupleOutcome::Miss:
-                            outcome[t] = Dropped;
-                            break;
-                          case TupleOutcome::Undecided:
-                            break;
-                        }
-                      }
-                    }
-                    solves += local;
-                  });
+      parallelFor(this->PixelCount, this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          size_t local = 0;
+          for (size_t pixel = begin; pixel < end; ++pixel)
+          {
+            const uint32_t first = this->PixelStart[pixel], last = this->PixelStart[pixel + 1];
+            std::sort(tuples.begin() + first, tuples.begin() + last,
+              [&](const Tuple& a, const Tuple& b)
+              {
+                const double za = nodes[a.node].info.box.lo[2], zb = nodes[b.node].info.box.lo[2];
+                return za < zb || (za == zb && a.node < b.node);
+              });
+            double best = this->BestDepth[pixel];
+            for (uint32_t t = first; t < last; ++t)
+            {
+              const Node& node = nodes[tuples[t].node];
+              if (firstHit && node.info.box.lo[2] > best)
+              {
+                outcome[t] = Dropped;
+                continue;
+              }
+              const int i = int(pixel % this->Config.width), j = int(pixel / this->Config.width);
+              local += node.info.certified ? 1 : 0;
+              switch (solveTuple(this->nodeView(node, pool), node.info, i, j,
+                this->Config.isovalues[node.iso], this->Tolerance, &solution[4 * t],
+                solution[4 * t + 3]))
+              {
+                case TupleOutcome::Hit:
+                  outcome[t] = Solved;
+                  best = std::min(best, solution[4 * t + 3]);
+                  break;
+                case TupleOutcome::Miss:
+                  outcome[t] = Dropped;
+                  break;
+                case TupleOutcome::Undecided:
+                  break;
+              }
+            }
+          }
+          solves += local;
+        });
       this->Report.newtonSolves += solves;
       for (size_t t = 0; t < tuples.size(); ++t)
       {
@@ -797,32 +781,31 @@ private:
       std::vector<double> childPool(poolOffset.back());
       std::vector<Node> children(toSplit.size() * 8);
       std::vector<uint8_t> keep(children.size(), 0);
-      parallelFor(toSplit.size(),
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t k = begin; k < end; ++k)
-                    {
-                      const Node& parent = nodes[toSplit[k]];
-                      const int count = this->valueCount(parent.patch);
-                      splitMidpoint<double, 3>(this->nodeView(parent, pool),
-                                               childPool.data() + poolOffset[k]);
-                      for (int c = 0; c < 8; ++c)
-                      {
-                        Node child = childOf(parent, c);
-                        child.coeff = poolOffset[k] + size_t(c) * count;
-                        const auto view = this->nodeView(child, childPool);
-                        child.info = analyzeNodeBounds(view, this->Config.isovalues[child.iso]);
-                        keep[8 * k + c] = this->worthKeeping(child.info) ? 1 : 0;
-                        // Explicit children are analysed once they are known to receive pixels.
-                        if (child.implicit && keep[8 * k + c])
-                        {
-                          analyzeNodeSolver(view, child.info);
-                        }
-                        children[8 * k + c] = child;
-                      }
-                    }
-                  });
+      parallelFor(toSplit.size(), this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = begin; k < end; ++k)
+          {
+            const Node& parent = nodes[toSplit[k]];
+            const int count = this->valueCount(parent.patch);
+            splitMidpoint<double, 3>(
+              this->nodeView(parent, pool), childPool.data() + poolOffset[k]);
+            for (int c = 0; c < 8; ++c)
+            {
+              Node child = childOf(parent, c);
+              child.coeff = poolOffset[k] + size_t(c) * count;
+              const auto view = this->nodeView(child, childPool);
+              child.info = analyzeNodeBounds(view, this->Config.isovalues[child.iso]);
+              keep[8 * k + c] = this->worthKeeping(child.info) ? 1 : 0;
+              // Explicit children are analysed once they are known to receive pixels.
+              if (child.implicit && keep[8 * k + c])
+              {
+                analyzeNodeSolver(view, child.info);
+              }
+              children[8 * k + c] = child;
+            }
+          }
+        });
       this->Report.subdividedPatches += toSplit.size();
       this->trackMemory(bytesOf(pool) + bytesOf(childPool) + bytesOf(tuples) + bytesOf(children) +
                         bytesOf(outcome) + bytesOf(solution) + this->baseBytes());
@@ -840,29 +823,27 @@ private:
       {
         // Children of nodes in front of the eye are in front too (positive weights stay positive).
         return keep[c] &&
-               boxCoversPixel(children[c].info.box,
-                              int(t.pixel % this->Config.width),
-                              int(t.pixel / this->Config.width)) &&
+               boxCoversPixel(children[c].info.box, int(t.pixel % this->Config.width),
+                 int(t.pixel / this->Config.width)) &&
                !(firstHit && children[c].info.box.lo[2] > this->BestDepth[t.pixel]);
       };
       std::vector<uint32_t> newCounts(tuples.size(), 0);
-      parallelFor(tuples.size(),
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t t = begin; t < end; ++t)
-                    {
-                      if (outcome[t] != Failed || split[tuples[t].node] != 1)
-                      {
-                        continue;
-                      }
-                      const size_t base = firstChild[tuples[t].node];
-                      for (size_t c = base; c < base + 8; ++c)
-                      {
-                        newCounts[t] += childCovers(tuples[t], c) ? 1 : 0;
-                      }
-                    }
-                  });
+      parallelFor(tuples.size(), this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t t = begin; t < end; ++t)
+          {
+            if (outcome[t] != Failed || split[tuples[t].node] != 1)
+            {
+              continue;
+            }
+            const size_t base = firstChild[tuples[t].node];
+            for (size_t c = base; c < base + 8; ++c)
+            {
+              newCounts[t] += childCovers(tuples[t], c) ? 1 : 0;
+            }
+          }
+        });
       for (size_t t = 0; t < tuples.size(); ++t)
       {
         if (outcome[t] == Failed && split[tuples[t].node] >= 2)
@@ -874,23 +855,22 @@ private:
       }
       std::vector<uint32_t> newOffsets = newCounts;
       std::vector<Tuple> next(exclusiveScan(newOffsets));
-      parallelFor(tuples.size(),
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t t = begin; t < end; ++t)
-                    {
-                      uint32_t write = newOffsets[t];
-                      const size_t base = firstChild[tuples[t].node];
-                      for (size_t c = base; newCounts[t] > 0 && c < base + 8; ++c)
-                      {
-                        if (childCovers(tuples[t], c))
-                        {
-                          next[write++] = { tuples[t].pixel, uint32_t(c) };
-                        }
-                      }
-                    }
-                  });
+      parallelFor(tuples.size(), this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t t = begin; t < end; ++t)
+          {
+            uint32_t write = newOffsets[t];
+            const size_t base = firstChild[tuples[t].node];
+            for (size_t c = base; newCounts[t] > 0 && c < base + 8; ++c)
+            {
+              if (childCovers(tuples[t], c))
+              {
+                next[write++] = { tuples[t].pixel, uint32_t(c) };
+              }
+            }
+          }
+        });
       // The next nodes: implicit children that were kept, explicit children that received
       // pixels, and deferred implicit nodes; stored contiguously.
       std::vector<uint8_t> used(children.size(), 0);
@@ -917,24 +897,22 @@ private:
         keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(node.patch)));
       }
       std::vector<double> keptPool(keptOffset.back());
-      parallelFor(kept.size(),
-                  this->Threads,
-                  [&](size_t begin, size_t end)
-                  {
-                    for (size_t n = begin; n < end; ++n)
-                    {
-                      const size_t count = keptOffset[n + 1] - keptOffset[n];
-                      const std::vector<double>& source = n < fromChildren ? childPool : pool;
-                      std::copy(source.begin() + kept[n].coeff,
-                                source.begin() + kept[n].coeff + count,
-                                keptPool.begin() + keptOffset[n]);
-                      kept[n].coeff = keptOffset[n];
-                      if (n < fromChildren && !kept[n].implicit)
-                      {
-                        analyzeNodeSolver(this->nodeView(kept[n], keptPool), kept[n].info);
-                      }
-                    }
-                  });
+      parallelFor(kept.size(), this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t n = begin; n < end; ++n)
+          {
+            const size_t count = keptOffset[n + 1] - keptOffset[n];
+            const std::vector<double>& source = n < fromChildren ? childPool : pool;
+            std::copy(source.begin() + kept[n].coeff, source.begin() + kept[n].coeff + count,
+              keptPool.begin() + keptOffset[n]);
+            kept[n].coeff = keptOffset[n];
+            if (n < fromChildren && !kept[n].implicit)
+            {
+              analyzeNodeSolver(this->nodeView(kept[n], keptPool), kept[n].info);
+            }
+          }
+        });
       for (auto& t : next)
       {
         t.node = newIndex[t.node];
@@ -982,9 +960,7 @@ private:
     std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
     std::vector<size_t> peak(this->PixelCount, 0);
     std::atomic<size_t> solves{ 0 }, splits{ 0 }, capped{ 0 };
-    parallelFor(
-      this->PixelCount,
-      this->Threads,
+    parallelFor(this->PixelCount, this->Threads,
       [&](size_t begin, size_t end)
       {
         // The arena holds exactly the stacked nodes' coefficient blocks, in stack order.
@@ -1006,7 +982,7 @@ private:
             stack.assign(1, initial);
             stack.back().coeff = 0;
             arena.assign(this->InitialPool.begin() + initial.coeff,
-                         this->InitialPool.begin() + initial.coeff + count);
+              this->InitialPool.begin() + initial.coeff + count);
             while (!stack.empty())
             {
               Node node = stack.back();
@@ -1021,14 +997,8 @@ private:
               }
               localSolves += node.info.certified ? 1 : 0;
               double u[3], ndc;
-              const TupleOutcome result = solveTuple(this->nodeView(node, current),
-                                                     node.info,
-                                                     i,
-                                                     j,
-                                                     this->Config.isovalues[node.iso],
-                                                     this->Tolerance,
-                                                     u,
-                                                     ndc);
+              const TupleOutcome result = solveTuple(this->nodeView(node, current), node.info, i, j,
+                this->Config.isovalues[node.iso], this->Tolerance, u, ndc);
               if (result == TupleOutcome::Hit)
               {
                 perPixel[p].push_back(this->makeRawHit(uint32_t(p), node, u, ndc));
@@ -1057,9 +1027,8 @@ private:
                 if (this->worthKeeping(child.info))
                 {
                   child.coeff = arena.size();
-                  arena.insert(arena.end(),
-                               children.begin() + size_t(c) * count,
-                               children.begin() + size_t(c + 1) * count);
+                  arena.insert(arena.end(), children.begin() + size_t(c) * count,
+                    children.begin() + size_t(c + 1) * count);
                   stack.push_back(child);
                 }
               }
@@ -1077,8 +1046,8 @@ private:
     {
       this->Hits.insert(this->Hits.end(), hits.begin(), hits.end());
     }
-    this->trackMemory(this->baseBytes() +
-                      *std::max_element(peak.begin(), peak.end()) * size_t(this->Threads));
+    this->trackMemory(
+      this->baseBytes() + *std::max_element(peak.begin(), peak.end()) * size_t(this->Threads));
     this->Report.msSolution = millisecondsSince(stage);
   }
 
@@ -1109,7 +1078,7 @@ private:
       level[0].coeff = 0;
       const int count = this->valueCount(level[0].patch);
       std::vector<double> pool(this->InitialPool.begin() + this->InitialNodes[n].coeff,
-                               this->InitialPool.begin() + this->InitialNodes[n].coeff + count);
+        this->InitialPool.begin() + this->InitialNodes[n].coeff + count);
       for (int depth = 0; depth < this->Config.bruteForceLevels; ++depth)
       {
         std::vector<Node> next;
@@ -1145,52 +1114,44 @@ private:
     this->trackMemory(this->baseBytes() + bytesOf(leafPool) + bytesOf(leaves));
     std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
     std::atomic<size_t> solves{ 0 };
-    parallelFor(this->PixelCount,
-                this->Threads,
-                [&](size_t begin, size_t end)
+    parallelFor(this->PixelCount, this->Threads,
+      [&](size_t begin, size_t end)
+      {
+        size_t local = 0;
+        for (size_t p = begin; p < end; ++p)
+        {
+          const int i = int(p % this->Config.width), j = int(p / this->Config.width);
+          for (uint32_t item = this->ItemOffsets[p]; item < this->ItemOffsets[p + 1]; ++item)
+          {
+            const uint32_t n = this->Items[item];
+            for (uint32_t l = leafOffsets[n]; l < leafOffsets[n + 1]; ++l)
+            {
+              const Node& leaf = leaves[l];
+              if (!boxCoversPixel(leaf.info.box, i, j))
+              {
+                continue;
+              }
+              for (int s = 0; s < 9; ++s)
+              {
+                const double start[3] = { s == 8 ? 0.5 : 0.2 + 0.6 * (s & 1),
+                  s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 1) & 1),
+                  s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 2) & 1) };
+                double u[3], ndc;
+                ++local;
+                // Roots up to Newton's domain slack outside the leaf count (those on
+                // shared faces would otherwise be lost to rounding); duplicates are
+                // merged later.
+                if (solvePixel<double>(this->nodeView(leaf, leafPool), i, j,
+                      this->Config.isovalues[leaf.iso], this->Tolerance, start, u, ndc))
                 {
-                  size_t local = 0;
-                  for (size_t p = begin; p < end; ++p)
-                  {
-                    const int i = int(p % this->Config.width), j = int(p / this->Config.width);
-                    for (uint32_t item = this->ItemOffsets[p]; item < this->ItemOffsets[p + 1];
-                         ++item)
-                    {
-                      const uint32_t n = this->Items[item];
-                      for (uint32_t l = leafOffsets[n]; l < leafOffsets[n + 1]; ++l)
-                      {
-                        const Node& leaf = leaves[l];
-                        if (!boxCoversPixel(leaf.info.box, i, j))
-                        {
-                          continue;
-                        }
-                        for (int s = 0; s < 9; ++s)
-                        {
-                          const double start[3] = { s == 8 ? 0.5 : 0.2 + 0.6 * (s & 1),
-                                                    s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 1) & 1),
-                                                    s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 2) & 1) };
-                          double u[3], ndc;
-                          ++local;
-                          // Roots up to Newton's domain slack outside the leaf count (those on
-                          // shared faces would otherwise be lost to rounding); duplicates are
-                          // merged later.
-                          if (solvePixel<double>(this->nodeView(leaf, leafPool),
-                                                 i,
-                                                 j,
-                                                 this->Config.isovalues[leaf.iso],
-                                                 this->Tolerance,
-                                                 start,
-                                                 u,
-                                                 ndc))
-                          {
-                            perPixel[p].push_back(this->makeRawHit(uint32_t(p), leaf, u, ndc));
-                          }
-                        }
-                      }
-                    }
-                  }
-                  solves += local;
-                });
+                  perPixel[p].push_back(this->makeRawHit(uint32_t(p), leaf, u, ndc));
+                }
+              }
+            }
+          }
+        }
+        solves += local;
+      });
     this->Report.newtonSolves = solves;
     for (auto& hits : perPixel)
     {
@@ -1234,52 +1195,49 @@ private:
             this->Config.height;
     std::vector<Hit> shaded(this->Hits.size());
     std::vector<uint32_t> keptCount(this->PixelCount, 0);
-    parallelFor(this->PixelCount,
-                this->Threads,
-                [&](size_t begin, size_t end)
-                {
-                  for (size_t p = begin; p < end; ++p)
-                  {
-                    const auto first = shaded.begin() + offsets[p],
-                               last = shaded.begin() + offsets[p + 1];
-                    for (uint32_t k = offsets[p]; k < offsets[p + 1]; ++k)
-                    {
-                      shaded[k] = this->shade(this->Hits[source[k]], eye, forward);
-                    }
-                    std::sort(first,
-                              last,
-                              [](const Hit& a, const Hit& b)
-                              {
-                                if (a.eyeDepth != b.eyeDepth)
-                                  return a.eyeDepth < b.eyeDepth;
-                                if (a.isovalue != b.isovalue)
-                                  return a.isovalue < b.isovalue;
-                                return a.patch < b.patch;
-                              });
-                    auto write = first;
-                    for (auto it = first; it != last; ++it)
-                    {
-                      const double tolerance =
-                        1e-4 * footprint *
-                        (this->TheCamera.parallelProjection ? 1.0 : std::abs(it->eyeDepth));
-                      bool duplicate = false;
-                      for (auto previous = first; previous != write && !duplicate; ++previous)
-                      {
-                        duplicate = previous->isovalue == it->isovalue &&
-                                    it->eyeDepth - previous->eyeDepth <= tolerance;
-                      }
-                      if (!duplicate)
-                      {
-                        *write++ = *it;
-                      }
-                    }
-                    keptCount[p] = uint32_t(write - first);
-                    if (this->Config.firstHitOnly)
-                    {
-                      keptCount[p] = std::min<uint32_t>(keptCount[p], 1);
-                    }
-                  }
-                });
+    parallelFor(this->PixelCount, this->Threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t p = begin; p < end; ++p)
+        {
+          const auto first = shaded.begin() + offsets[p], last = shaded.begin() + offsets[p + 1];
+          for (uint32_t k = offsets[p]; k < offsets[p + 1]; ++k)
+          {
+            shaded[k] = this->shade(this->Hits[source[k]], eye, forward);
+          }
+          std::sort(first, last,
+            [](const Hit& a, const Hit& b)
+            {
+              if (a.eyeDepth != b.eyeDepth)
+                return a.eyeDepth < b.eyeDepth;
+              if (a.isovalue != b.isovalue)
+                return a.isovalue < b.isovalue;
+              return a.patch < b.patch;
+            });
+          auto write = first;
+          for (auto it = first; it != last; ++it)
+          {
+            const double tolerance =
+              1e-4 * footprint *
+              (this->TheCamera.parallelProjection ? 1.0 : std::abs(it->eyeDepth));
+            bool duplicate = false;
+            for (auto previous = first; previous != write && !duplicate; ++previous)
+            {
+              duplicate = previous->isovalue == it->isovalue &&
+                          it->eyeDepth - previous->eyeDepth <= tolerance;
+            }
+            if (!duplicate)
+            {
+              *write++ = *it;
+            }
+          }
+          keptCount[p] = uint32_t(write - first);
+          if (this->Config.firstHitOnly)
+          {
+            keptCount[p] = std::min<uint32_t>(keptCount[p], 1);
+          }
+        }
+      });
     out.width = this->Config.width;
     out.height = this->Config.height;
     out.offsets.assign(keptCount.begin(), keptCount.end());
@@ -1287,9 +1245,8 @@ private:
     out.hits.resize(exclusiveScan(out.offsets));
     for (size_t p = 0; p < this->PixelCount; ++p)
     {
-      std::copy(shaded.begin() + offsets[p],
-                shaded.begin() + offsets[p] + keptCount[p],
-                out.hits.begin() + out.offsets[p]);
+      std::copy(shaded.begin() + offsets[p], shaded.begin() + offsets[p] + keptCount[p],
+        out.hits.begin() + out.offsets[p]);
     }
   }
 
@@ -1312,12 +1269,8 @@ private:
       hit.position[d] = rationalValue<double, 3>(
         values.data(), derivatives.data(), channels, d, kWeightChannel, J[d]);
     }
-    rationalValue<double, 3>(values.data(),
-                             derivatives.data(),
-                             channels,
-                             kFirstAttributeChannel + this->Config.surfaceAttribute,
-                             kWeightChannel,
-                             gradient);
+    rationalValue<double, 3>(values.data(), derivatives.data(), channels,
+      kFirstAttributeChannel + this->Config.surfaceAttribute, kWeightChannel, gradient);
     // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J). The cofactor form
     // stays defined where J is singular (collapsed faces); the orientation is fixed below.
     double normal[3] = { 0, 0, 0 };
@@ -1379,11 +1332,8 @@ private:
 
 } // namespace
 
-FrameReport render(const std::vector<BezierVolume<double>>& patches,
-                   const Camera& camera,
-                   const Settings& settings,
-                   Method method,
-                   GBuffer& out)
+FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
+  const Settings& settings, Method method, GBuffer& out)
 {
   FrameReport report;
   report.method = methodName(method);

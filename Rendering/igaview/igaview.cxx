@@ -208,7 +208,7 @@ iga::VolumeSet<double> loadInput(const Options& options)
     name = "default dataset";
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
-                options.time);
+      options.time);
   }
   else
   {
@@ -297,19 +297,16 @@ iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& s
 
 /// Headlight Phong shading of the first hits into premultiplied RGBA floats (row 0 at the
 /// bottom), coloured by the colour attribute through a cool-to-warm map or per isovalue.
-std::vector<float> shade(const iga::sst::GBuffer& gbuffer,
-                         const iga::Camera& camera,
-                         bool colorByAttribute,
-                         const double* colorRange)
+std::vector<float> shade(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera,
+  bool colorByAttribute, const double* colorRange)
 {
   vtkNew<vtkColorTransferFunction> map; // ParaView's "Cool to Warm"
   map->SetColorSpaceToDiverging();
   map->AddRGBPoint(colorRange[0], 0.231, 0.298, 0.753);
   map->AddRGBPoint(
     colorRange[1] > colorRange[0] ? colorRange[1] : colorRange[0] + 1, 0.706, 0.016, 0.150);
-  const double palette[4][3] = {
-    { 0.9, 0.75, 0.45 }, { 0.35, 0.7, 0.75 }, { 0.8, 0.45, 0.5 }, { 0.55, 0.75, 0.4 }
-  };
+  const double palette[4][3] = { { 0.9, 0.75, 0.45 }, { 0.35, 0.7, 0.75 }, { 0.8, 0.45, 0.5 },
+    { 0.55, 0.75, 0.4 } };
   double forward[3];
   iga::viewDirection(camera, forward);
   std::vector<float> rgba(size_t(gbuffer.width) * gbuffer.height * 4, 0.0f);
@@ -355,8 +352,8 @@ void writePNG(const std::vector<float>& rgba, int width, int height, const std::
       {
         const double background = bottom[k] + t * (top[k] - bottom[k]);
         const double value = c[k] + (1 - c[3]) * background; // premultiplied "over"
-        pixels->SetValue((vtkIdType(j) * width + i) * 3 + k,
-                         static_cast<unsigned char>(std::lround(255 * value)));
+        pixels->SetValue(
+          (vtkIdType(j) * width + i) * 3 + k, static_cast<unsigned char>(std::lround(255 * value)));
       }
     }
   }
@@ -405,12 +402,9 @@ int main(int argc, char** argv)
   std::string isoText;
   for (double iso : settings.isovalues)
     isoText += (isoText.empty() ? "" : ", ") + std::to_string(iso);
-  std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n",
-              set.patches.size(),
-              set.attributeNames[settings.surfaceAttribute].c_str(),
-              isoText.c_str(),
-              settings.width,
-              settings.height);
+  std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n", set.patches.size(),
+    set.attributeNames[settings.surfaceAttribute].c_str(), isoText.c_str(), settings.width,
+    settings.height);
   iga::sst::GBuffer gbuffer;
   iga::sst::FrameReport report;
   try
@@ -428,15 +422,11 @@ int main(int argc, char** argv)
     std::fputs("\r\033[K", stderr);
   std::printf("igaview: %zu pixels covered in %.1f ms on %d threads (%d levels, %zu Newton solves, "
               "peak %.1f MB)\n",
-              gbuffer.coveredPixels(),
-              report.msTotal,
-              report.threads,
-              report.iterations,
-              report.newtonSolves,
-              report.peakBytes / 1048576.0);
+    gbuffer.coveredPixels(), report.msTotal, report.threads, report.iterations, report.newtonSolves,
+    report.peakBytes / 1048576.0);
   if (report.unresolvedPixels > 0)
-    std::printf("igaview: warning: %zu pixels unresolved at the subdivision cap\n",
-                report.unresolvedPixels);
+    std::printf(
+      "igaview: warning: %zu pixels unresolved at the subdivision cap\n", report.unresolvedPixels);
 
   const std::vector<float> rgba = shade(gbuffer, camera, settings.colorAttribute >= 0, colorRange);
   writePNG(rgba, settings.width, settings.height, options.output);
@@ -444,9 +434,7 @@ int main(int argc, char** argv)
   if (!options.exr.empty())
   {
     vtkNew<vtkIGAEXRWriter> writer;
-    writer->SetInputData(vtkIGAGBufferImage::Convert(
-      gbuffer,
-      rgba.data(),
+    writer->SetInputData(vtkIGAGBufferImage::Convert(gbuffer, rgba.data(),
       settings.colorAttribute >= 0 ? set.attributeNames[settings.colorAttribute] : ""));
     writer->SetFileName(options.exr.c_str());
     writer->Write();

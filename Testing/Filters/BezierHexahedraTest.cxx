@@ -114,9 +114,9 @@ std::string conversionError(Fn damage, std::vector<std::string>* warnings = null
 TEST(BezierHexahedra, BadInputIsNamed)
 {
   EXPECT_NE(conversionError([](vtkUnstructuredGrid* g)
-                            { g->GetPointData()->GetRationalWeights()->SetComponent(5, 0, -1.0); })
+              { g->GetPointData()->GetRationalWeights()->SetComponent(5, 0, -1.0); })
               .find("cell 0: control point"),
-            std::string::npos);
+    std::string::npos);
   EXPECT_NE(
     conversionError(
       [](vtkUnstructuredGrid* g) {
@@ -125,9 +125,9 @@ TEST(BezierHexahedra, BadInputIsNamed)
       .find("cell 2: control point"),
     std::string::npos);
   EXPECT_NE(conversionError([](vtkUnstructuredGrid* g)
-                            { g->GetCellData()->GetHigherOrderDegrees()->SetComponent(1, 2, 40); })
+              { g->GetCellData()->GetHigherOrderDegrees()->SetComponent(1, 2, 40); })
               .find("cell 1: degree 40"),
-            std::string::npos);
+    std::string::npos);
   EXPECT_NE(conversionError(
               [](vtkUnstructuredGrid* g)
               {
@@ -135,9 +135,9 @@ TEST(BezierHexahedra, BadInputIsNamed)
                 degrees->SetComponent(0, 0, degrees->GetComponent(0, 0) + 1);
               })
               .find("cell 0: has"),
-            std::string::npos);
+    std::string::npos);
   EXPECT_NE(conversionError([](vtkUnstructuredGrid* g) { g->Initialize(); }).find("no cells"),
-            std::string::npos);
+    std::string::npos);
 }
 
 TEST(BezierHexahedra, InactiveWeightsAreUsedWithAWarning)

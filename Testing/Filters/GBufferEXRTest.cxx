@@ -35,10 +35,8 @@ std::map<std::string, std::vector<float>> readEXR(const std::string& file, int& 
   {
     auto& data = channels[it.name()];
     data.resize(size_t(width) * height);
-    frame.insert(
-      it.name(),
-      Imf::Slice(
-        Imf::FLOAT, reinterpret_cast<char*>(data.data()), sizeof(float), sizeof(float) * width));
+    frame.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.data()),
+                              sizeof(float), sizeof(float) * width));
   }
   in.setFrameBuffer(frame);
   in.readPixels(window.min.y, window.max.y);
@@ -75,22 +73,8 @@ TEST(GBufferEXR, ChannelsRowsAndValuesRoundTrip)
   auto channels = readEXR(file, width, height);
   ASSERT_EQ(width, 40);
   ASSERT_EQ(height, 30);
-  for (const char* name : { "R",
-                            "G",
-                            "B",
-                            "A",
-                            "Z",
-                            "P.X",
-                            "P.Y",
-                            "P.Z",
-                            "N.X",
-                            "N.Y",
-                            "N.Z",
-                            "u",
-                            "v",
-                            "w",
-                            "patch",
-                            "height" })
+  for (const char* name : { "R", "G", "B", "A", "Z", "P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "u",
+         "v", "w", "patch", "height" })
     ASSERT_EQ(channels.count(name), 1u) << "missing channel " << name;
   EXPECT_EQ(channels.size(), 16u);
   int hits = 0, misses = 0;

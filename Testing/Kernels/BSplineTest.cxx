@@ -35,10 +35,8 @@ double coxDeBoor(const std::vector<double>& U, int i, int p, double t, int lastS
   return value;
 }
 
-std::vector<double> randomKnotsMaybeEmpty(std::mt19937& rng,
-                                          int degree,
-                                          int controlPoints,
-                                          bool open)
+std::vector<double> randomKnotsMaybeEmpty(
+  std::mt19937& rng, int degree, int controlPoints, bool open)
 {
   std::uniform_real_distribution<double> step(0.2, 1.0), coin(0, 1);
   const int count = controlPoints + degree + 1;
@@ -210,7 +208,7 @@ TEST(BSplineValidation, RejectsMalformedKnotVectorsWithClearMessages)
   EXPECT_EQ(message({ 0, 0, 0, 1, 1, 1 }, 2, 3), "");
   EXPECT_NE(message({ 0, 0, 0, 1, 1 }, 2, 3).find("expected 6"), std::string::npos);
   EXPECT_NE(message({ 0, 0, 0.6, 0.5, 1, 1 }, 2, 3).find("not non-decreasing at index 3"),
-            std::string::npos);
+    std::string::npos);
   EXPECT_NE(message({ 0, 0, NAN, 1, 1, 1 }, 2, 3).find("knot 2 is not finite"), std::string::npos);
   EXPECT_NE(message({ 0, 0, 0, 0, 1, 1, 1 }, 2, 4).find("multiplicity"), std::string::npos);
   EXPECT_NE(message({ 0, 0, 1, 1 }, 17, 2).find("outside 1..16"), std::string::npos);

@@ -18,10 +18,8 @@ TYPED_TEST_SUITE(BezierPatchTest, ScalarTypes);
 /// Largest difference between the Euclidean values of `a` at ua and `b` at ub, relative to the
 /// values' magnitude.
 template<class A, class B, int Dim>
-double euclideanDifference(const iga::PatchView<A, Dim>& a,
-                           const double* ua,
-                           const iga::PatchView<B, Dim>& b,
-                           const double* ub)
+double euclideanDifference(const iga::PatchView<A, Dim>& a, const double* ua,
+  const iga::PatchView<B, Dim>& b, const double* ub)
 {
   const auto va = evaluateEuclidean(a, ua);
   const auto vb = evaluateEuclidean(b, ub);
@@ -56,9 +54,8 @@ void checkEvaluation(std::mt19937& rng)
     const auto reference = evaluateDirect(view, u);
     for (int c = 0; c < view.channels; ++c)
     {
-      EXPECT_NEAR(double(values[c]),
-                  double(reference[c]),
-                  Tolerance<T>::relative * std::max(1.0, maxAbs(reference)))
+      EXPECT_NEAR(double(values[c]), double(reference[c]),
+        Tolerance<T>::relative * std::max(1.0, maxAbs(reference)))
         << "channel " << c << " trial " << trial;
     }
   }
@@ -111,9 +108,8 @@ void checkDerivatives(std::mt19937& rng)
         const double central = double(evaluateEuclidean(reference.view(), up)[c] -
                                       evaluateEuclidean(reference.view(), down)[c]) /
                                (2 * h);
-        EXPECT_NEAR(double(gradient[d]),
-                    central,
-                    Tolerance<T>::derivative * std::max(1.0, std::fabs(central)))
+        EXPECT_NEAR(double(gradient[d]), central,
+          Tolerance<T>::derivative * std::max(1.0, std::fabs(central)))
           << "channel " << c << " direction " << d << " trial " << trial;
       }
     }
@@ -152,10 +148,10 @@ void checkSplit(std::mt19937& rng)
       }
       parentLeft[dir] = double(t) * u[dir];
       parentRight[dir] = double(t) + (1 - double(t)) * u[dir];
-      EXPECT_LT(euclideanDifference(left.view(), u, parent.view(), parentLeft),
-                Tolerance<T>::relative);
-      EXPECT_LT(euclideanDifference(right.view(), u, parent.view(), parentRight),
-                Tolerance<T>::relative);
+      EXPECT_LT(
+        euclideanDifference(left.view(), u, parent.view(), parentLeft), Tolerance<T>::relative);
+      EXPECT_LT(
+        euclideanDifference(right.view(), u, parent.view(), parentRight), Tolerance<T>::relative);
     }
   }
 }

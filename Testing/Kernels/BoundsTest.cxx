@@ -22,14 +22,11 @@ template<class T>
 iga::Matrix4<T> viewProjection(double angle, double distance)
 {
   const double f = 1.0 / std::tan(20.0 * M_PI / 180.0), n = 0.5, fa = 50.0;
-  const double P[4][4] = { { f, 0, 0, 0 },
-                           { 0, f, 0, 0 },
-                           { 0, 0, (fa + n) / (n - fa), 2 * fa * n / (n - fa) },
-                           { 0, 0, -1, 0 } };
+  const double P[4][4] = { { f, 0, 0, 0 }, { 0, f, 0, 0 },
+    { 0, 0, (fa + n) / (n - fa), 2 * fa * n / (n - fa) }, { 0, 0, -1, 0 } };
   const double c = std::cos(angle), s = std::sin(angle);
-  const double V[4][4] = {
-    { c, 0, s, 0 }, { 0, 1, 0, 0 }, { -s, 0, c, -distance }, { 0, 0, 0, 1 }
-  };
+  const double V[4][4] = { { c, 0, s, 0 }, { 0, 1, 0, 0 }, { -s, 0, c, -distance },
+    { 0, 0, 0, 1 } };
   iga::Matrix4<T> M;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
@@ -85,10 +82,10 @@ TYPED_TEST(BoundsTest, PatchesAtOrBehindTheEyeAreFlagged)
   iga::Box3<T> box;
   // Eye at the patch's centre: projected weights of both signs.
   EXPECT_EQ((iga::projectedBounds<T, 3>(patch.view(), viewProjection<T>(0, 0.0), box)),
-            iga::ProjectionStatus::StraddlesEyePlane);
+    iga::ProjectionStatus::StraddlesEyePlane);
   // Patch 6 units behind the eye.
   EXPECT_EQ((iga::projectedBounds<T, 3>(patch.view(), viewProjection<T>(0, -6.0), box)),
-            iga::ProjectionStatus::BehindEye);
+    iga::ProjectionStatus::BehindEye);
 }
 
 TYPED_TEST(BoundsTest, AttributeRangeContainsSamplesAndDecidesSignChange)
@@ -144,9 +141,8 @@ TYPED_TEST(BoundsTest, CertifiedPatchesHaveOneRootForMultiStartNewton)
     const T tolerance[3] = { T(1e-4), T(1e-4), T(1e-4) };
     for (int start = 0; start < 27; ++start)
     {
-      const T u0[3] = { T(0.1 + 0.4 * (start % 3)),
-                        T(0.1 + 0.4 * (start / 3 % 3)),
-                        T(0.1 + 0.4 * (start / 9)) };
+      const T u0[3] = { T(0.1 + 0.4 * (start % 3)), T(0.1 + 0.4 * (start / 3 % 3)),
+        T(0.1 + 0.4 * (start / 9)) };
       const auto result = iga::solveNewton<T, 3>(patch.view(), kPixelRows, target, tolerance, u0);
       if (result.status == iga::NewtonStatus::Converged)
       {

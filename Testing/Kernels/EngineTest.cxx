@@ -15,11 +15,8 @@ using iga::sst::GBuffer;
 using iga::sst::Method;
 using iga::sst::Settings;
 
-iga::Camera makeCamera(const double* position,
-                       const double* focal,
-                       const double* up,
-                       double angle,
-                       const double* bounds)
+iga::Camera makeCamera(
+  const double* position, const double* focal, const double* up, double angle, const double* bounds)
 {
   iga::Camera camera;
   for (int d = 0; d < 3; ++d)
@@ -34,13 +31,8 @@ iga::Camera makeCamera(const double* position,
 }
 
 /// The ray through pixel (i, j)'s centre from the camera's geometry (not from its matrices).
-void pixelRay(const iga::Camera& camera,
-              int width,
-              int height,
-              int i,
-              int j,
-              double* origin,
-              double* direction)
+void pixelRay(
+  const iga::Camera& camera, int width, int height, int i, int j, double* origin, double* direction)
 {
   double forward[3], side[3], up[3];
   iga::viewDirection(camera, forward);
@@ -72,10 +64,9 @@ struct Comparison
 
 /// Compares the first hits with the truth at every pixel; `normalAt` gives the true unit normal
 /// at a point (up to sign).
-Comparison compare(const GBuffer& gbuffer,
-                   const iga::Camera& camera,
-                   std::function<Truth(const double*, const double*)> truth,
-                   std::function<void(const double*, double*)> normalAt)
+Comparison compare(const GBuffer& gbuffer, const iga::Camera& camera,
+  std::function<Truth(const double*, const double*)> truth,
+  std::function<void(const double*, double*)> normalAt)
 {
   Comparison result;
   for (int j = 0; j < gbuffer.height; ++j)
@@ -117,11 +108,8 @@ Comparison compare(const GBuffer& gbuffer,
 }
 
 /// Nearest t > tMin solving the quadratic a t^2 + b t + c = 0 that passes `accept`.
-double firstRoot(double a,
-                 double b,
-                 double c,
-                 std::function<bool(double)> accept,
-                 double& discriminant)
+double firstRoot(
+  double a, double b, double c, std::function<bool(double)> accept, double& discriminant)
 {
   discriminant = b * b - 4 * a * c;
   if (discriminant < 0)
@@ -151,11 +139,8 @@ void sphereNormal(const double* p, double* n)
   iga::normalize3(n);
 }
 
-GBuffer renderSet(const iga::VolumeSet<double>& set,
-                  const iga::Camera& camera,
-                  Settings settings,
-                  Method method = Method::SharedSubdivisionTree,
-                  iga::sst::FrameReport* report = nullptr)
+GBuffer renderSet(const iga::VolumeSet<double>& set, const iga::Camera& camera, Settings settings,
+  Method method = Method::SharedSubdivisionTree, iga::sst::FrameReport* report = nullptr)
 {
   GBuffer gbuffer;
   const auto r = iga::sst::render(set.patches, camera, settings, method, gbuffer);
@@ -242,9 +227,7 @@ Truth cylinderTruth(const double* o, const double* d, double r, double z0, doubl
   double disc;
   bool nearRim = false;
   const double t = firstRoot(
-    a,
-    b,
-    c,
+    a, b, c,
     [&](double t)
     {
       const double z = o[2] + t * d[2];
@@ -278,8 +261,7 @@ TEST(Engine, ExactRationalCylinderInTheTube)
   settings.colorAttribute = 2;   // height
   const GBuffer gbuffer = renderSet(set, camera, settings);
   const Comparison c = compare(
-    gbuffer,
-    camera,
+    gbuffer, camera,
     [](const double* o, const double* d) { return cylinderTruth(o, d, 0.75, 0, 2); },
     cylinderNormal);
   EXPECT_GT(c.covered, 800);
@@ -308,8 +290,7 @@ TEST(Engine, CollapsedAxisDiskAndCylinder)
   GBuffer gbuffer = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
   EXPECT_EQ(report.unresolvedPixels, 0u);
   Comparison c = compare(
-    gbuffer,
-    camera,
+    gbuffer, camera,
     [](const double* o, const double* d)
     {
       const double t = (1 - o[2]) / d[2];
@@ -328,8 +309,7 @@ TEST(Engine, CollapsedAxisDiskAndCylinder)
   settings.surfaceAttribute = 1;
   gbuffer = renderSet(set, camera, settings);
   c = compare(
-    gbuffer,
-    camera,
+    gbuffer, camera,
     [](const double* o, const double* d) { return cylinderTruth(o, d, 0.4, 0, 2); },
     cylinderNormal);
   EXPECT_GT(c.covered, 300);
@@ -365,10 +345,8 @@ TEST(Engine, CameraInsideThePatchSeesTheSphereAllAround)
 }
 
 /// Largest depth difference between two G-buffers' first hits and the pixels covered by one only.
-void expectSameFirstHits(const GBuffer& a,
-                         const GBuffer& b,
-                         int allowedCoverageDifferences,
-                         double depthTolerance)
+void expectSameFirstHits(
+  const GBuffer& a, const GBuffer& b, int allowedCoverageDifferences, double depthTolerance)
 {
   int differ = 0, both = 0;
   double maxDepth = 0;
@@ -551,11 +529,11 @@ TEST(Engine, BadInputIsRejectedWithTheProblemNamed)
   auto negative = set;
   negative.patches[3].view().point(4)[iga::kWeightChannel] = -0.5;
   EXPECT_NE(message(negative, settings).find("patch 3: control point 4 has non-positive weight"),
-            std::string::npos);
+    std::string::npos);
   auto nan = set;
   nan.patches[5].view().point(0)[1] = NAN;
   EXPECT_NE(message(nan, settings).find("patch 5: control point 0 has a non-finite value"),
-            std::string::npos);
+    std::string::npos);
   Settings noIso = settings;
   noIso.isovalues.clear();
   EXPECT_NE(message(set, noIso).find("no isovalue"), std::string::npos);

@@ -43,13 +43,8 @@ bool deviceAvailable(std::string& why)
 /// Per patch: evaluate at u, split at the midpoint and evaluate child 5 at u, solve Newton for
 /// the target, certify uniqueness. Output per patch: 5 values, 5 child values, 3 u, status,
 /// certified.
-__global__ void patchKernel(const float* coeffs,
-                            int count,
-                            int valueCount,
-                            const float* params,
-                            const float* targets,
-                            float* out,
-                            float* children)
+__global__ void patchKernel(const float* coeffs, int count, int valueCount, const float* params,
+  const float* targets, float* out, float* children)
 {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= count)
@@ -114,9 +109,8 @@ TEST(KernelsCuda, DeviceResultsMatchHost)
 
   for (int i = 0; i < count; ++i)
   {
-    const double u[3] = { double(params[3 * i]),
-                          double(params[3 * i + 1]),
-                          double(params[3 * i + 2]) };
+    const double u[3] = { double(params[3 * i]), double(params[3 * i + 1]),
+      double(params[3 * i + 2]) };
     const auto reference = evaluateDirect(patches[i].view(), u);
     double childU[3];
     iga::childToParentParameter<double, 3>(5, u, childU);

@@ -47,9 +47,8 @@ TYPED_TEST(PolynomialTest, BernsteinVolumeReproducesRandomPolynomials)
         x[d] = double(lo[d]) + (double(hi[d]) - double(lo[d])) * u[d];
         EXPECT_NEAR(double(v[d]), x[d], Tolerance<T>::relative * 10);
       }
-      EXPECT_NEAR(double(v[iga::kFirstAttributeChannel]),
-                  poly.evaluate(x[0], x[1], x[2]),
-                  Tolerance<T>::relative * 100 * std::max(1.0, scale))
+      EXPECT_NEAR(double(v[iga::kFirstAttributeChannel]), poly.evaluate(x[0], x[1], x[2]),
+        Tolerance<T>::relative * 100 * std::max(1.0, scale))
         << "trial " << trial;
     }
   }
@@ -78,9 +77,8 @@ TYPED_TEST(PolynomialTest, MarsdenSphereAtDegreesTwoToFive)
     const auto fromPolynomial = iga::makePolynomialVolume(sphere, lo, hi, direct);
     ASSERT_EQ(elevated.coeffs().size(), fromPolynomial.coeffs().size());
     for (size_t i = 0; i < elevated.coeffs().size(); ++i)
-      EXPECT_NEAR(double(elevated.coeffs()[i]),
-                  double(fromPolynomial.coeffs()[i]),
-                  Tolerance<T>::relative * 10);
+      EXPECT_NEAR(double(elevated.coeffs()[i]), double(fromPolynomial.coeffs()[i]),
+        Tolerance<T>::relative * 10);
     for (int s = 0; s < 20; ++s)
     {
       const double u[3] = { unit(rng), unit(rng), unit(rng) };

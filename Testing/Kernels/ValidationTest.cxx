@@ -32,7 +32,7 @@ TEST(PatchValidation, AcceptsGoodPatchesAndNamesEachProblem)
   nan.view().point(5)[1] = NAN;
   EXPECT_NE((iga::checkPatch<double, 3>(nan.view()))
               .find("control point 5 has a non-finite value in channel 1"),
-            std::string::npos);
+    std::string::npos);
 
   auto inf = patch;
   inf.view().point(2)[4] = INFINITY;
@@ -40,8 +40,8 @@ TEST(PatchValidation, AcceptsGoodPatchesAndNamesEachProblem)
 
   iga::VolumeView<const double> absurd = view;
   absurd.degree[1] = 40;
-  EXPECT_NE(iga::checkPatch(absurd).find("degree 40 in direction 1 is outside 1..16"),
-            std::string::npos);
+  EXPECT_NE(
+    iga::checkPatch(absurd).find("degree 40 in direction 1 is outside 1..16"), std::string::npos);
 
   iga::VolumeView<const double> narrow = view;
   narrow.channels = 3;

@@ -85,12 +85,8 @@ void validateKnotVector(const std::vector<T>& knots, int degree, int controlPoin
 /// local control "points" given as rows of `local` ((p+1) x width values); de Boor's algorithm with
 /// one argument per level. Result in local[p * width ..].
 template<class T>
-void blossomOnSpan(const std::vector<T>& knots,
-                   int degree,
-                   int span,
-                   const T* args,
-                   T* local,
-                   int width)
+void blossomOnSpan(
+  const std::vector<T>& knots, int degree, int span, const T* args, T* local, int width)
 {
   for (int r = 1; r <= degree; ++r)
   {
@@ -110,9 +106,8 @@ void blossomOnSpan(const std::vector<T>& knots,
 
 /// Builds the extraction operator of one direction (validates the knots first).
 template<class T>
-ExtractionOperator1D<T> buildExtractionOperator(const std::vector<T>& knots,
-                                                int degree,
-                                                int controlPoints)
+ExtractionOperator1D<T> buildExtractionOperator(
+  const std::vector<T>& knots, int degree, int controlPoints)
 {
   validateKnotVector(knots, degree, controlPoints);
   ExtractionOperator1D<T> op;
@@ -161,14 +156,8 @@ ExtractionOperator1D<T> buildExtractionOperator(const std::vector<T>& knots,
 /// element along direction d. `work` holds 2 * (p+1)^Dim * channels values. Applies one direction
 /// at a time (sum factorisation, O(p^(Dim+1)) per channel).
 template<class T, int Dim>
-IGA_HD void extractElement(const T* net,
-                           const int* netSize,
-                           int channels,
-                           const int* degree,
-                           const T* const* matrices,
-                           const int* first,
-                           T* out,
-                           T* work)
+IGA_HD void extractElement(const T* net, const int* netSize, int channels, const int* degree,
+  const T* const* matrices, const int* first, T* out, T* work)
 {
   int order[Dim];
   int localCount = 1;
@@ -207,24 +196,23 @@ IGA_HD void extractElement(const T* net,
     const int stride = view.stride(d);
     const T* C = matrices[d];
     const int n = order[d];
-    forEachLine(view,
-                d,
-                [&](int base)
-                {
-                  const int offset = base * channels;
-                  for (int j = 0; j < n; ++j)
-                  {
-                    for (int c = 0; c < channels; ++c)
-                    {
-                      T sum = T(0);
-                      for (int i = 0; i < n; ++i)
-                      {
-                        sum += C[j * n + i] * current[offset + i * stride + c];
-                      }
-                      next[offset + j * stride + c] = sum;
-                    }
-                  }
-                });
+    forEachLine(view, d,
+      [&](int base)
+      {
+        const int offset = base * channels;
+        for (int j = 0; j < n; ++j)
+        {
+          for (int c = 0; c < channels; ++c)
+          {
+            T sum = T(0);
+            for (int i = 0; i < n; ++i)
+            {
+              sum += C[j * n + i] * current[offset + i * stride + c];
+            }
+            next[offset + j * stride + c] = sum;
+          }
+        }
+      });
     T* swap = current;
     current = next;
     next = swap;
@@ -320,14 +308,8 @@ public:
         first[d] = this->Operators[d].firstBasis[element[d]];
       }
       patches.push_back(prototype);
-      extractElement<T, Dim>(net.data(),
-                             this->NetSize,
-                             channels,
-                             this->Degree,
-                             matrices,
-                             first,
-                             patches.back().coeffs().data(),
-                             work.data());
+      extractElement<T, Dim>(net.data(), this->NetSize, channels, this->Degree, matrices, first,
+        patches.back().coeffs().data(), work.data());
     }
     return patches;
   }

@@ -16,6 +16,9 @@
 namespace iga
 {
 
+/// Channels per control point that split() processes together.
+constexpr int kSplitChannels = 8;
+
 /// Channel indices of the standard layout.
 constexpr int kWeightChannel = 3;
 constexpr int kFirstAttributeChannel = 4;
@@ -150,10 +153,8 @@ IGA_HD void bernsteinBasis(int n, T t, T* basis, T* derivative)
 /// Evaluates all homogeneous channels at parameter u (Dim values in [0,1]) and, if `derivatives`
 /// is not null, their first partial derivatives: derivatives[d * channels + c] = dC_c/du_d.
 template<class T, int Dim>
-IGA_HD void evaluateHomogeneous(const PatchView<const T, Dim>& patch,
-                                const T* u,
-                                T* values,
-                                T* derivatives);
+IGA_HD void evaluateHomogeneous(
+  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives);
 
 namespace detail
 {
@@ -163,11 +164,8 @@ constexpr int kFactorisedScratch = 6 * 6 * 8;
 /// Trivariate evaluation contracting one direction at a time (sum factorisation): about
 /// (p+1)^2 (2 + ...) C operations instead of 4 (p+1)^3 C for value and gradient.
 template<class T>
-IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch,
-                               const T (&basis)[3][kMaxOrder],
-                               const T (&dbasis)[3][kMaxOrder],
-                               T* values,
-                               T* derivatives)
+IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&basis)[3][kMaxOrder],
+  const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
 {
   const int n0 = patch.order(0), n1 = patch.order(1), n2 = patch.order(2), C = patch.channels;
   T line[kFactorisedScratch], dline[kFactorisedScratch]; // contracted along u: (j, k, c)
@@ -216,10 +214,8 @@ IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch,
 } // namespace detail
 
 template<class T, int Dim>
-IGA_HD void evaluateHomogeneous(const PatchView<const T, Dim>& patch,
-                                const T* u,
-                                T* values,
-                                T* derivatives)
+IGA_HD void evaluateHomogeneous(
+  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives)
 {
   T basis[Dim][kMaxOrder];
   T dbasis[Dim][kMaxOrder];
@@ -293,12 +289,8 @@ IGA_HD void evaluateHomogeneous(const PatchView<const T, Dim>& patch,
 /// The rational function numerator/denominator from homogeneous values, with its gradient by the
 /// quotient rule: d(N/D) = (dN D - N dD) / D^2.
 template<class T, int Dim>
-IGA_HD T rationalValue(const T* values,
-                       const T* derivatives,
-                       int channels,
-                       int numerator,
-                       int denominator,
-                       T* gradient)
+IGA_HD T rationalValue(
+  const T* values, const T* derivatives, int channels, int numerator, int denominator, T* gradient)
 {
   const T n = values[numerator];
   const T den = values[denominator];
@@ -337,41 +329,52 @@ IGA_HD void forEachLine(const PatchView<T, Dim>& patch, int dir, Fn fn)
 /// both reparametrised to [0,1]. `left` may alias `patch` (each line is read before it is
 /// written); all three share degrees and channels.
 template<class T, int Dim>
-IGA_HD void split(const PatchView<const T, Dim>& patch,
-                  int dir,
-                  T t,
-                  const PatchView<T, Dim>& left,
-                  const PatchView<T, Dim>& right)
+IGA_HD void split(const PatchView<const T, Dim>& patch, int dir, T t, const PatchView<T, Dim>& left,
+  const PatchView<T, Dim>& right)
 {
   const int n = patch.degree[dir];
   const int stride = patch.stride(dir);
   const int channels = patch.channels;
   const T s = T(1) - t;
-  forEachLine(patch,
-              dir,
-              [&](int base)
-              {
-                const int offset = base * channels;
-                for (int c = 0; c < channels; ++c)
-                {
-                  T work[kMaxOrder] = {};
-                  for (int i = 0; i <= n; ++i)
-                  {
-                    work[i] = patch.coeffs[offset + i * stride + c];
-                  }
-                  left.coeffs[offset + c] = work[0];
-                  right.coeffs[offset + n * stride + c] = work[n];
-                  for (int r = 1; r <= n; ++r)
-                  {
-                    for (int i = 0; i <= n - r; ++i)
-                    {
-                      work[i] = s * work[i] + t * work[i + 1];
-                    }
-                    left.coeffs[offset + r * stride + c] = work[0];
-                    right.coeffs[offset + (n - r) * stride + c] = work[n - r];
-                  }
-                }
-              });
+  // Whole control points at a time (channels innermost) while they fit the scratch; one
+  // channel at a time otherwise.
+  const int width = channels <= kSplitChannels ? channels : 1;
+  forEachLine(patch, dir,
+    [&](int base)
+    {
+      const int offset = base * channels;
+      for (int c0 = 0; c0 < channels; c0 += width)
+      {
+        T work[kMaxOrder * kSplitChannels];
+        for (int i = 0; i <= n; ++i)
+        {
+          for (int c = 0; c < width; ++c)
+          {
+            work[i * width + c] = patch.coeffs[offset + i * stride + c0 + c];
+          }
+        }
+        for (int c = 0; c < width; ++c)
+        {
+          left.coeffs[offset + c0 + c] = work[c];
+          right.coeffs[offset + n * stride + c0 + c] = work[n * width + c];
+        }
+        for (int r = 1; r <= n; ++r)
+        {
+          for (int i = 0; i <= n - r; ++i)
+          {
+            for (int c = 0; c < width; ++c)
+            {
+              work[i * width + c] = s * work[i * width + c] + t * work[(i + 1) * width + c];
+            }
+          }
+          for (int c = 0; c < width; ++c)
+          {
+            left.coeffs[offset + r * stride + c0 + c] = work[c];
+            right.coeffs[offset + (n - r) * stride + c0 + c] = work[(n - r) * width + c];
+          }
+        }
+      }
+    });
 }
 
 /// Splits a patch at the parametric midpoint in every direction into 2^Dim children written to
@@ -408,9 +411,8 @@ IGA_HD void childToParentParameter(int child, const T* childU, T* parentU)
 
 /// Raises the degree of direction dir by one. `out` has degree[dir] + 1 there and must not alias.
 template<class T, int Dim>
-IGA_HD void elevateDegree(const PatchView<const T, Dim>& patch,
-                          int dir,
-                          const PatchView<T, Dim>& out)
+IGA_HD void elevateDegree(
+  const PatchView<const T, Dim>& patch, int dir, const PatchView<T, Dim>& out)
 {
   const int n = patch.degree[dir];
   const int inStride = patch.stride(dir);

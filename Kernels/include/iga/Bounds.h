@@ -53,9 +53,8 @@ enum class ProjectionStatus
 /// projected patch is a rational Bézier patch whose weights are the projected w's, the box bounds
 /// the patch exactly when all of them are positive; otherwise the status says why it does not.
 template<class T, int Dim>
-IGA_HD ProjectionStatus projectedBounds(const PatchView<const T, Dim>& patch,
-                                        const Matrix4<T>& M,
-                                        Box3<T>& box)
+IGA_HD ProjectionStatus projectedBounds(
+  const PatchView<const T, Dim>& patch, const Matrix4<T>& M, Box3<T>& box)
 {
   int positive = 0;
   const int count = patch.pointCount();
@@ -91,11 +90,8 @@ IGA_HD ProjectionStatus projectedBounds(const PatchView<const T, Dim>& patch,
 /// denominator coefficient is positive (returns false otherwise): the function is a convex
 /// combination of the coefficient ratios.
 template<class T, int Dim>
-IGA_HD bool rationalRange(const PatchView<const T, Dim>& patch,
-                          int numerator,
-                          int denominator,
-                          T& lo,
-                          T& hi)
+IGA_HD bool rationalRange(
+  const PatchView<const T, Dim>& patch, int numerator, int denominator, T& lo, T& hi)
 {
   lo = hi = T(0);
   const int count = patch.pointCount();
@@ -148,7 +144,7 @@ IGA_HD Interval<T> operator*(Interval<T> a, Interval<T> b)
 {
   const T p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
   return { minValue(minValue(p0, p1), minValue(p2, p3)),
-           maxValue(maxValue(p0, p1), maxValue(p2, p3)) };
+    maxValue(maxValue(p0, p1), maxValue(p2, p3)) };
 }
 
 template<class T>
@@ -217,10 +213,8 @@ IGA_HD bool invertMatrix(const T (&a)[Dim][Dim], T (&inverse)[Dim][Dim])
 /// is first shifted by its mean ratio (N - c D has the same quotient derivative) so the product
 /// terms stay tight. False when a denominator coefficient is not positive.
 template<class T, int Dim>
-IGA_HD bool rationalJacobianHull(const PatchView<const T, Dim>& patch,
-                                 const RationalRow* rows,
-                                 Interval<T> (&scaled)[Dim][Dim],
-                                 Interval<T> (&jacobian)[Dim][Dim])
+IGA_HD bool rationalJacobianHull(const PatchView<const T, Dim>& patch, const RationalRow* rows,
+  Interval<T> (&scaled)[Dim][Dim], Interval<T> (&jacobian)[Dim][Dim])
 {
   const int count = patch.pointCount();
   for (int r = 0; r < Dim; ++r)
@@ -289,9 +283,8 @@ IGA_HD bool rationalJacobianHull(const PatchView<const T, Dim>& patch,
 /// Midpoint inverse of an interval matrix and the row sums of |mid^-1| rad: the ingredients of
 /// Beeck's regularity test and of the Krawczyk operator. False when the midpoint is singular.
 template<class T, int Dim>
-IGA_HD bool preconditioner(const Interval<T> (&M)[Dim][Dim],
-                           T (&inverse)[Dim][Dim],
-                           T (&spread)[Dim][Dim])
+IGA_HD bool preconditioner(
+  const Interval<T> (&M)[Dim][Dim], T (&inverse)[Dim][Dim], T (&spread)[Dim][Dim])
 {
   T mid[Dim][Dim];
   for (int i = 0; i < Dim; ++i)
@@ -364,10 +357,8 @@ IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const Ration
 /// root. `inverse` and `spread` come from preconditioner([J]). Proves the misses that would
 /// otherwise fail Newton and force subdivision (rays grazing a surface piece, say).
 template<class T, int Dim>
-IGA_HD bool krawczykExcludes(const T (&inverse)[Dim][Dim],
-                             const T (&spread)[Dim][Dim],
-                             const T* residualAtCentre,
-                             T slack)
+IGA_HD bool krawczykExcludes(
+  const T (&inverse)[Dim][Dim], const T (&spread)[Dim][Dim], const T* residualAtCentre, T slack)
 {
   const T half = T(0.5) + slack;
   for (int i = 0; i < Dim; ++i)

@@ -134,10 +134,8 @@ inline Matrix4<double> worldToClip(const Camera& camera, double aspect)
 /// Points the camera at the centre of `bounds` (xmin, xmax, ymin, ymax, zmin, zmax) from
 /// `direction` (towards the data) at the distance where the bounding sphere fills the view, as
 /// vtkRenderer::ResetCamera does, and sets the clipping range around it.
-inline Camera frameBounds(const double* bounds,
-                          const double* direction,
-                          const double* viewUp,
-                          double viewAngle)
+inline Camera frameBounds(
+  const double* bounds, const double* direction, const double* viewUp, double viewAngle)
 {
   Camera camera;
   double dir[3] = { direction[0], direction[1], direction[2] };

@@ -54,9 +54,8 @@ VolumeSet<T> makeTube(double inner, double time)
             const double w = i == 1 ? std::sqrt(0.5) : 1.0;
             double x = r * scale * std::cos(theta), y = r * scale * std::sin(theta);
             const double z = segment + 0.5 * k;
-            const double attributes[3] = { (z - 1.0) + 0.35 * std::cos(3 * theta) * r / 0.75,
-                                           r,
-                                           z };
+            const double attributes[3] = { (z - 1.0) + 0.35 * std::cos(3 * theta) * r / 0.75, r,
+              z };
             // Deformation of the control net: twist about the axis, then bend along x.
             const double twist = 0.6 * time * z;
             const double xt = x * std::cos(twist) - y * std::sin(twist);

@@ -44,11 +44,8 @@ struct NewtonSettings
 /// face shared by two patches is found in both, and callers that keep every hit merge them.
 template<class T, int Dim>
 IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
-                                        const RationalRow* rows,
-                                        const T* target,
-                                        const T* tolerance,
-                                        const T* u0,
-                                        const NewtonSettings<T>& settings = {})
+  const RationalRow* rows, const T* target, const T* tolerance, const T* u0,
+  const NewtonSettings<T>& settings = {})
 {
   NewtonResult<T, Dim> result;
   constexpr int kMaxChannels = 16;

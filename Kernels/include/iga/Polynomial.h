@@ -85,10 +85,8 @@ inline std::vector<double> monomialToBernstein(int maxPower, int n, double lo, d
 /// scaled) and whose single attribute is the polynomial, exactly, at the given degrees (each at
 /// least the polynomial's degree in that variable and at least 1).
 template<class T>
-BezierVolume<T> makePolynomialVolume(const Polynomial3<T>& poly,
-                                     const T* lo,
-                                     const T* hi,
-                                     const int* degree)
+BezierVolume<T> makePolynomialVolume(
+  const Polynomial3<T>& poly, const T* lo, const T* hi, const int* degree)
 {
   for (int d = 0; d < 3; ++d)
   {

@@ -99,11 +99,8 @@ struct FrameReport
 /// Renders the isosurfaces of `patches` (world space, standard layout). Throws
 /// std::invalid_argument naming the patch and the problem for bad input (degree, non-finite
 /// values, non-positive weights, missing attributes) or bad settings.
-FrameReport render(const std::vector<BezierVolume<double>>& patches,
-                   const Camera& camera,
-                   const Settings& settings,
-                   Method method,
-                   GBuffer& out);
+FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
+  const Settings& settings, Method method, GBuffer& out);
 
 /// Data bounds (xmin, xmax, ymin, ymax, zmin, zmax) of the patches' control points, which contain
 /// the patches (convex hull property).

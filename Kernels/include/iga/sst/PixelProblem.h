@@ -29,9 +29,8 @@ struct PixelRows
 };
 IGA_HD inline PixelRows pixelRows()
 {
-  return {
-    { { kScreenX, kScreenW }, { kScreenY, kScreenW }, { kScreenAttribute, kScreenWeight } }
-  };
+  return { { { kScreenX, kScreenW }, { kScreenY, kScreenW },
+    { kScreenAttribute, kScreenWeight } } };
 }
 
 /// Writes the screen patch of a world patch: `windowFromWorld` maps homogeneous world points to
@@ -39,9 +38,7 @@ IGA_HD inline PixelRows pixelRows()
 /// attribute. `out` holds pointCount * kScreenChannels values.
 template<class T>
 IGA_HD void makeScreenPatch(const VolumeView<const double>& world,
-                            const Matrix4<double>& windowFromWorld,
-                            int attributeChannel,
-                            T* out)
+  const Matrix4<double>& windowFromWorld, int attributeChannel, T* out)
 {
   const int count = world.pointCount();
   for (int p = 0; p < count; ++p)
@@ -169,14 +166,8 @@ IGA_HD bool excludesPixel(const VolumeView<const T>& node, int i, int j, T isova
 /// Newton on one (pixel, node) tuple from `start`. On success `ndcDepth` is the hit's NDC depth;
 /// hits outside the clip range [-1, 1] are not hits.
 template<class T>
-IGA_HD bool solvePixel(const VolumeView<const T>& node,
-                       int i,
-                       int j,
-                       T isovalue,
-                       const T* tolerance,
-                       const T* start,
-                       T* u,
-                       T& ndcDepth)
+IGA_HD bool solvePixel(const VolumeView<const T>& node, int i, int j, T isovalue,
+  const T* tolerance, const T* start, T* u, T& ndcDepth)
 {
   const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
   const NewtonResult<T, 3> result =
@@ -209,14 +200,8 @@ enum class TupleOutcome
 /// One (pixel, node) tuple of the solution stage: cheap exclusions first, then Newton on
 /// certified nodes.
 template<class T>
-IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node,
-                               const NodeInfo<T>& info,
-                               int i,
-                               int j,
-                               T isovalue,
-                               const T* tolerance,
-                               T* u,
-                               T& ndcDepth)
+IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T>& info, int i,
+  int j, T isovalue, const T* tolerance, T* u, T& ndcDepth)
 {
   // A large uncertified node is split whatever its pixels' exclusions say, and its children's
   // boxes shed most of those pixels anyway: skip the tests there. Small ones keep them, as
@@ -238,12 +223,8 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node,
   const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
   for (int r = 0; r < 3; ++r)
   {
-    residual[r] = rationalValue<T, 3>(values,
-                                      derivatives,
-                                      kScreenChannels,
-                                      rows.rows[r].numerator,
-                                      rows.rows[r].denominator,
-                                      J[r]) -
+    residual[r] = rationalValue<T, 3>(values, derivatives, kScreenChannels, rows.rows[r].numerator,
+                    rows.rows[r].denominator, J[r]) -
                   target[r];
   }
   const T slack = NewtonSettings<T>().domainSlack;
@@ -260,7 +241,7 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node,
   for (int d = 0; d < 3; ++d)
   {
     start[d] = centre[d] - (inverse[d][0] * residual[0] + inverse[d][1] * residual[1] +
-                            inverse[d][2] * residual[2]);
+                             inverse[d][2] * residual[2]);
     if (!(start[d] >= -slack && start[d] <= T(1) + slack))
     {
       return TupleOutcome::Undecided;
