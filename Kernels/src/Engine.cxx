@@ -624,10 +624,16 @@ private:
               });
           }
         });
-      for (uint32_t n : ready)
-      {
-        nodes[n].implicit = false;
-      }
+      parallelFor(ready.size(), this->Threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = begin; k < end; ++k)
+          {
+            Node& node = nodes[ready[k]];
+            node.implicit = false;
+            analyzeNodeCentre(this->nodeView(node, pool), node.info);
+          }
+        });
       this->Report.maxTuples = std::max(this->Report.maxTuples, tuples.size());
       this->Report.msOverlap += millisecondsSince(stage);
 
@@ -778,7 +784,11 @@ private:
       {
         poolOffset[k + 1] = poolOffset[k] + 8 * this->valueCount(nodes[toSplit[k]].patch);
       }
-      std::vector<double> childPool(poolOffset.back());
+      if (this->ChildPool.size() < poolOffset.back())
+      {
+        this->ChildPool.resize(poolOffset.back()); // grows only: no zeroing every iteration
+      }
+      std::vector<double>& childPool = this->ChildPool;
       std::vector<Node> children(toSplit.size() * 8);
       std::vector<uint8_t> keep(children.size(), 0);
       parallelFor(toSplit.size(), this->Threads,
@@ -909,7 +919,9 @@ private:
             kept[n].coeff = keptOffset[n];
             if (n < fromChildren && !kept[n].implicit)
             {
-              analyzeNodeSolver(this->nodeView(kept[n], keptPool), kept[n].info);
+              const auto view = this->nodeView(kept[n], keptPool);
+              analyzeNodeSolver(view, kept[n].info);
+              analyzeNodeCentre(view, kept[n].info);
             }
           }
         });
@@ -1328,6 +1340,7 @@ private:
   std::vector<RawHit> Hits;
   std::vector<uint32_t> GroupBegin, GroupEnd; ///< this round's work items per pixel
   std::vector<uint32_t> PixelStart;           ///< SST: each pixel's first tuple
+  std::vector<double> ChildPool;              ///< SST: children's coefficients, reused
 };
 
 } // namespace

@@ -68,6 +68,9 @@ struct NodeInfo
   bool canExclude;         ///< the Krawczyk data below is valid
   T inverse[3][3];         ///< mid([J])^-1 of the pixel problem's Jacobian hull
   T spread[3][3];          ///< |mid([J])^-1| rad([J])
+  bool hasCentre;          ///< the centre data below is valid
+  T centre[3];             ///< F at the parametric centre: (X/W, Y/W, A/V), no pixel offset
+  T centreInverse[3][3];   ///< J(centre)^-1
 };
 
 /// The cheap part of a node's analysis: window box, eye-plane status, sign change, clip depth.
@@ -92,6 +95,7 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(const VolumeView<const T>& node, T isovalue
   info.visibleDepth = !nearSide && !farSide;
   info.certified = false;
   info.canExclude = false;
+  info.hasCentre = false;
   return info;
 }
 
@@ -113,11 +117,33 @@ IGA_HD void analyzeNodeSolver(const VolumeView<const T>& node, NodeInfo<T>& info
   info.canExclude = preconditioner<T, 3>(jacobian, info.inverse, info.spread);
 }
 
+/// F and J at the node's centre, which do not depend on the pixel: one evaluation serves every
+/// tuple's Krawczyk test and first Newton step. Needed once the node has tuples.
+template<class T>
+IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info)
+{
+  if (info.status != ProjectionStatus::InFront)
+  {
+    return;
+  }
+  const T centre[3] = { T(0.5), T(0.5), T(0.5) };
+  T values[kScreenChannels], derivatives[3 * kScreenChannels], J[3][3];
+  evaluateHomogeneous<T, 3>(node, centre, values, derivatives);
+  const PixelRows rows = pixelRows();
+  for (int r = 0; r < 3; ++r)
+  {
+    info.centre[r] = rationalValue<T, 3>(
+      values, derivatives, kScreenChannels, rows.rows[r].numerator, rows.rows[r].denominator, J[r]);
+  }
+  info.hasCentre = invertMatrix<T, 3>(J, info.centreInverse);
+}
+
 template<class T>
 IGA_HD NodeInfo<T> analyzeNode(const VolumeView<const T>& node, T isovalue)
 {
   NodeInfo<T> info = analyzeNodeBounds(node, isovalue);
   analyzeNodeSolver(node, info);
+  analyzeNodeCentre(node, info);
   return info;
 }
 
@@ -211,37 +237,34 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
   {
     return TupleOutcome::Undecided;
   }
+  // O(1) per tuple first: the node's centre data minus the pixel's offset.
+  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
+  T residual[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    residual[r] = info.centre[r] - target[r];
+  }
+  const T slack = NewtonSettings<T>().domainSlack;
+  if (info.canExclude && info.hasCentre &&
+      krawczykExcludes<T, 3>(info.inverse, info.spread, residual, slack))
+  {
+    return TupleOutcome::Miss;
+  }
   if (excludesPixel(node, i, j, isovalue))
   {
     return TupleOutcome::Miss;
   }
-  // One evaluation at the centre serves the Krawczyk test and Newton's first step.
-  const T centre[3] = { T(0.5), T(0.5), T(0.5) };
-  const PixelRows rows = pixelRows();
-  T values[kScreenChannels], derivatives[3 * kScreenChannels], J[3][3], residual[3];
-  evaluateHomogeneous<T, 3>(node, centre, values, derivatives);
-  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
-  for (int r = 0; r < 3; ++r)
-  {
-    residual[r] = rationalValue<T, 3>(values, derivatives, kScreenChannels, rows.rows[r].numerator,
-                    rows.rows[r].denominator, J[r]) -
-                  target[r];
-  }
-  const T slack = NewtonSettings<T>().domainSlack;
-  if (info.canExclude && krawczykExcludes<T, 3>(info.inverse, info.spread, residual, slack))
-  {
-    return TupleOutcome::Miss;
-  }
-  T inverse[3][3];
-  if (!info.certified || !invertMatrix<T, 3>(J, inverse))
+  if (!info.certified || !info.hasCentre)
   {
     return TupleOutcome::Undecided;
   }
+  // Newton's first step from the centre, then the iteration proper.
   T start[3];
   for (int d = 0; d < 3; ++d)
   {
-    start[d] = centre[d] - (inverse[d][0] * residual[0] + inverse[d][1] * residual[1] +
-                             inverse[d][2] * residual[2]);
+    start[d] =
+      T(0.5) - (info.centreInverse[d][0] * residual[0] + info.centreInverse[d][1] * residual[1] +
+                 info.centreInverse[d][2] * residual[2]);
     if (!(start[d] >= -slack && start[d] <= T(1) + slack))
     {
       return TupleOutcome::Undecided;
