@@ -164,10 +164,10 @@ struct RawHit
 class Renderer
 {
 public:
-  Renderer(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
+  Renderer(const std::vector<BezierVolume<double>>& patches, const View& view,
     const Settings& settings, FrameReport& report)
     : Patches(patches)
-    , TheCamera(camera)
+    , TheView(view)
     , Config(settings)
     , Report(report)
   {
@@ -266,7 +266,7 @@ private:
     window.m[0][3] = 0.5 * W;
     window.m[1][1] = 0.5 * H;
     window.m[1][3] = 0.5 * H;
-    this->WindowFromWorld = multiply(window, worldToClip(this->TheCamera, W / H));
+    this->WindowFromWorld = multiply(window, this->TheView.worldToClip);
     this->PixelCount = size_t(s.width) * s.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, kInfinity);
@@ -1192,19 +1192,11 @@ private:
         source[fill[this->Hits[h].pixel]++] = uint32_t(h);
       }
     }
-    double eye[3], forward[3];
-    viewDirection(this->TheCamera, forward);
-    for (int d = 0; d < 3; ++d)
-    {
-      eye[d] = this->TheCamera.position[d];
-    }
+    const double* eye = this->TheView.eye;
+    const double* forward = this->TheView.forward;
     // Two roots closer along the ray than this fraction of a pixel's footprint are one root:
     // Newton places roots within 1e-6 pixel of the ray.
-    const double footprint =
-      this->TheCamera.parallelProjection
-        ? 2 * this->TheCamera.parallelScale / this->Config.height
-        : 2 * std::tan(this->TheCamera.viewAngle * 3.14159265358979323846 / 360.0) /
-            this->Config.height;
+    const double footprint = this->TheView.pixelFootprint;
     std::vector<Hit> shaded(this->Hits.size());
     std::vector<uint32_t> keptCount(this->PixelCount, 0);
     parallelFor(this->PixelCount, this->Threads,
@@ -1231,7 +1223,7 @@ private:
           {
             const double tolerance =
               1e-4 * footprint *
-              (this->TheCamera.parallelProjection ? 1.0 : std::abs(it->eyeDepth));
+              (this->TheView.parallel ? 1.0 : std::abs(it->eyeDepth));
             bool duplicate = false;
             for (auto previous = first; previous != write && !duplicate; ++previous)
             {
@@ -1297,7 +1289,7 @@ private:
     double toEye[3];
     for (int d = 0; d < 3; ++d)
     {
-      toEye[d] = this->TheCamera.parallelProjection ? -forward[d] : eye[d] - hit.position[d];
+      toEye[d] = this->TheView.parallel ? -forward[d] : eye[d] - hit.position[d];
     }
     normalize3(normal);
     if (dot3(normal, normal) == 0 || !std::isfinite(normal[0]))
@@ -1324,7 +1316,7 @@ private:
   }
 
   const std::vector<BezierVolume<double>>& Patches;
-  const Camera& TheCamera;
+  const View& TheView;
   const Settings& Config;
   FrameReport& Report;
   int Threads = 1;
@@ -1345,13 +1337,35 @@ private:
 
 } // namespace
 
-FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
+View makeView(const Camera& camera, int width, int height)
+{
+  View view;
+  view.worldToClip = worldToClip(camera, double(width) / double(height));
+  viewDirection(camera, view.forward);
+  for (int d = 0; d < 3; ++d)
+  {
+    view.eye[d] = camera.position[d];
+  }
+  view.parallel = camera.parallelProjection;
+  view.pixelFootprint = camera.parallelProjection
+    ? 2 * camera.parallelScale / height
+    : 2 * std::tan(camera.viewAngle * 3.14159265358979323846 / 360.0) / height;
+  return view;
+}
+
+FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, Method method, GBuffer& out)
 {
   FrameReport report;
   report.method = methodName(method);
-  Renderer(patches, camera, settings, report).run(method, out);
+  Renderer(patches, view, settings, report).run(method, out);
   return report;
+}
+
+FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
+  const Settings& settings, Method method, GBuffer& out)
+{
+  return render(patches, makeView(camera, settings.width, settings.height), settings, method, out);
 }
 
 } // namespace sst

@@ -1,19 +1,23 @@
-// igaview: the command-line front end. `igaview render` rasterizes isosurfaces of rational Bézier
-// volumes with the SST engine and writes a shaded PNG and, on request, an OpenEXR G-buffer.
-//
-// Until the VTK mapper lands, the PNG is shaded on the CPU from the G-buffer (headlight, Phong).
+// igaview: the command-line front end. `igaview render` draws isosurfaces of rational Bézier
+// volumes through vtkIGAIsosurfaceMapper in an offscreen VTK render window and writes a PNG and,
+// on request, the engine's OpenEXR G-buffer of the same frame.
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAEXRWriter.h"
 #include "vtkIGAGBufferImage.h"
 
+#include "vtkIGAIsosurfaceMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
-#include "vtkPointData.h"
-#include "vtkUnsignedCharArray.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtkXMLUnstructuredGridReader.h"
 
 #include "iga/Bounds.h"
@@ -194,8 +198,8 @@ Options parseArguments(int argc, char** argv)
   return options;
 }
 
-/// The input as Bézier patches, through the same .vtu conversion for files and the default.
-iga::VolumeSet<double> loadInput(const Options& options)
+/// The input grid, checked (and described by its patches) with the mapper's own conversion.
+vtkSmartPointer<vtkUnstructuredGrid> loadInput(const Options& options, iga::VolumeSet<double>& set)
 {
   vtkSmartPointer<vtkUnstructuredGrid> grid;
   std::string name = options.input;
@@ -225,7 +229,6 @@ iga::VolumeSet<double> loadInput(const Options& options)
       fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells");
     }
   }
-  iga::VolumeSet<double> set;
   std::string error;
   std::vector<std::string> warnings;
   if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings))
@@ -240,7 +243,7 @@ iga::VolumeSet<double> loadInput(const Options& options)
   {
     fail(name + ": no scalar point attribute to take an isosurface of");
   }
-  return set;
+  return grid;
 }
 
 int attributeIndex(const iga::VolumeSet<double>& set, const std::string& name, const char* option)
@@ -295,147 +298,104 @@ iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& s
   return camera;
 }
 
-/// Headlight Phong shading of the first hits into premultiplied RGBA floats (row 0 at the
-/// bottom), coloured by the colour attribute through a cool-to-warm map or per isovalue.
-std::vector<float> shade(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera,
-  bool colorByAttribute, const double* colorRange)
-{
-  vtkNew<vtkColorTransferFunction> map; // ParaView's "Cool to Warm"
-  map->SetColorSpaceToDiverging();
-  map->AddRGBPoint(colorRange[0], 0.231, 0.298, 0.753);
-  map->AddRGBPoint(
-    colorRange[1] > colorRange[0] ? colorRange[1] : colorRange[0] + 1, 0.706, 0.016, 0.150);
-  const double palette[4][3] = { { 0.9, 0.75, 0.45 }, { 0.35, 0.7, 0.75 }, { 0.8, 0.45, 0.5 },
-    { 0.55, 0.75, 0.4 } };
-  double forward[3];
-  iga::viewDirection(camera, forward);
-  std::vector<float> rgba(size_t(gbuffer.width) * gbuffer.height * 4, 0.0f);
-  for (int j = 0; j < gbuffer.height; ++j)
-  {
-    for (int i = 0; i < gbuffer.width; ++i)
-    {
-      const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
-      if (!hit)
-        continue;
-      double base[3];
-      if (colorByAttribute)
-        map->GetColor(hit->color, base);
-      else
-        std::copy(palette[hit->isovalue % 4], palette[hit->isovalue % 4] + 3, base);
-      // Headlight: the light comes from the eye, so L = H = -forward.
-      const double ndotl = std::max(0.0, -iga::dot3(hit->normal, forward));
-      const double diffuse = 0.1 + 0.9 * ndotl, specular = 0.35 * std::pow(ndotl, 40);
-      float* out = &rgba[(size_t(j) * gbuffer.width + i) * 4];
-      for (int c = 0; c < 3; ++c)
-        out[c] = float(std::min(1.0, base[c] * diffuse + specular));
-      out[3] = 1.0f;
-    }
-  }
-  return rgba;
-}
-
-void writePNG(const std::vector<float>& rgba, int width, int height, const std::string& file)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(width, height, 1);
-  vtkNew<vtkUnsignedCharArray> pixels;
-  pixels->SetNumberOfComponents(3);
-  pixels->SetNumberOfTuples(vtkIdType(width) * height);
-  const double bottom[3] = { 0.12, 0.14, 0.18 }, top[3] = { 0.32, 0.36, 0.42 };
-  for (int j = 0; j < height; ++j)
-  {
-    const double t = height > 1 ? double(j) / (height - 1) : 0.0;
-    for (int i = 0; i < width; ++i)
-    {
-      const float* c = &rgba[(size_t(j) * width + i) * 4];
-      for (int k = 0; k < 3; ++k)
-      {
-        const double background = bottom[k] + t * (top[k] - bottom[k]);
-        const double value = c[k] + (1 - c[3]) * background; // premultiplied "over"
-        pixels->SetValue(
-          (vtkIdType(j) * width + i) * 3 + k, static_cast<unsigned char>(std::lround(255 * value)));
-      }
-    }
-  }
-  image->GetPointData()->SetScalars(pixels);
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputData(image);
-  writer->SetFileName(file.c_str());
-  writer->Write();
-  if (writer->GetErrorCode() != 0)
-  {
-    fail("cannot write '" + file + "'");
-  }
-}
-
 } // namespace
 
 int main(int argc, char** argv)
 {
   const Options options = parseArguments(argc, argv);
-  const iga::VolumeSet<double> set = loadInput(options);
+  iga::VolumeSet<double> set;
+  const vtkSmartPointer<vtkUnstructuredGrid> grid = loadInput(options, set);
 
-  iga::sst::Settings settings;
-  settings.width = options.size[0];
-  settings.height = options.size[1];
-  settings.threads = options.threads;
-  settings.surfaceAttribute =
+  const int surface =
     options.surfaceBy.empty() ? 0 : attributeIndex(set, options.surfaceBy, "--surface-by");
-  settings.colorAttribute =
+  const int colour =
     options.colorBy.empty() ? -1 : attributeIndex(set, options.colorBy, "--color-by");
-  double surfaceRange[2], colorRange[2] = { 0, 1 };
-  attributeRange(set, settings.surfaceAttribute, surfaceRange);
-  if (settings.colorAttribute >= 0)
-    attributeRange(set, settings.colorAttribute, colorRange);
-  settings.isovalues = options.isovalues;
-  if (settings.isovalues.empty())
-    settings.isovalues.push_back(0.5 * (surfaceRange[0] + surfaceRange[1]));
-  const bool interactive = isatty(fileno(stderr));
-  settings.progress = [interactive](int iteration, size_t left)
+  double surfaceRange[2], colourRange[2] = { 0, 1 };
+  attributeRange(set, surface, surfaceRange);
+  std::vector<double> isovalues = options.isovalues;
+  if (isovalues.empty())
+    isovalues.push_back(0.5 * (surfaceRange[0] + surfaceRange[1]));
+  const iga::Camera view = chooseCamera(options, set);
+
+  vtkNew<vtkIGAIsosurfaceMapper> mapper;
+  mapper->SetInputData(grid);
+  mapper->SetSurfaceArrayName(set.attributeNames[surface].c_str());
+  mapper->SetNumberOfThreads(options.threads);
+  for (size_t k = 0; k < isovalues.size(); ++k)
+    mapper->SetIsovalue(int(k), isovalues[k]);
+  vtkNew<vtkColorTransferFunction> coolToWarm; // ParaView's default map
+  if (colour >= 0)
   {
-    if (interactive)
-      std::fprintf(
-        stderr, "\rigaview: subdivision level %d, %zu pixel-patch pairs left   ", iteration, left);
-  };
-  const iga::Camera camera = chooseCamera(options, set);
+    attributeRange(set, colour, colourRange);
+    if (!(colourRange[1] > colourRange[0]))
+      colourRange[1] = colourRange[0] + 1;
+    coolToWarm->SetColorSpaceToDiverging();
+    coolToWarm->AddRGBPoint(colourRange[0], 0.231, 0.298, 0.753);
+    coolToWarm->AddRGBPoint(colourRange[1], 0.706, 0.016, 0.150);
+    mapper->SetLookupTable(coolToWarm);
+    mapper->SetScalarModeToUsePointFieldData();
+    mapper->SelectColorArray(set.attributeNames[colour].c_str());
+    mapper->SetScalarRange(colourRange);
+    mapper->ScalarVisibilityOn();
+  }
+  else
+  {
+    mapper->ScalarVisibilityOff();
+  }
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.9, 0.75, 0.45);
+  actor->GetProperty()->SetAmbient(0.1);
+  actor->GetProperty()->SetDiffuse(0.9);
+  actor->GetProperty()->SetSpecular(0.35);
+  actor->GetProperty()->SetSpecularPower(40);
+
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renderer->SetBackground(0.12, 0.14, 0.18);
+  renderer->SetBackground2(0.32, 0.36, 0.42);
+  renderer->GradientBackgroundOn();
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(view.position);
+  camera->SetFocalPoint(view.focalPoint);
+  camera->SetViewUp(view.viewUp);
+  camera->SetViewAngle(view.viewAngle);
+  camera->SetClippingRange(view.clippingRange);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->AddRenderer(renderer);
+  window->SetSize(options.size[0], options.size[1]);
 
   std::string isoText;
-  for (double iso : settings.isovalues)
+  for (double iso : isovalues)
     isoText += (isoText.empty() ? "" : ", ") + std::to_string(iso);
   std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n", set.patches.size(),
-    set.attributeNames[settings.surfaceAttribute].c_str(), isoText.c_str(), settings.width,
-    settings.height);
-  iga::sst::GBuffer gbuffer;
-  iga::sst::FrameReport report;
-  try
+    set.attributeNames[surface].c_str(), isoText.c_str(), options.size[0], options.size[1]);
+  // Errors of the engine surface as VTK errors; make them fatal and on one line.
+  window->Render();
+  const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
+  if (gbuffer.width != options.size[0] || gbuffer.height != options.size[1])
   {
-    report = iga::sst::render(
-      set.patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+    fail("the isosurface could not be rendered (see the message above)");
   }
-  catch (const std::exception& e)
-  {
-    if (interactive)
-      std::fputc('\n', stderr);
-    fail(e.what());
-  }
-  if (interactive)
-    std::fputs("\r\033[K", stderr);
-  std::printf("igaview: %zu pixels covered in %.1f ms on %d threads (%d levels, %zu Newton solves, "
-              "peak %.1f MB)\n",
-    gbuffer.coveredPixels(), report.msTotal, report.threads, report.iterations, report.newtonSolves,
-    report.peakBytes / 1048576.0);
-  if (report.unresolvedPixels > 0)
-    std::printf(
-      "igaview: warning: %zu pixels unresolved at the subdivision cap\n", report.unresolvedPixels);
+  std::printf("igaview: %zu pixels covered in %.1f ms (SST engine, CPU)\n", gbuffer.coveredPixels(),
+    mapper->GetLastEngineTime());
 
-  const std::vector<float> rgba = shade(gbuffer, camera, settings.colorAttribute >= 0, colorRange);
-  writePNG(rgba, settings.width, settings.height, options.output);
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  vtkNew<vtkPNGWriter> png;
+  png->SetInputConnection(grab->GetOutputPort());
+  png->SetFileName(options.output.c_str());
+  png->Write();
+  if (png->GetErrorCode() != 0)
+    fail("cannot write '" + options.output + "'");
   std::printf("igaview: wrote %s\n", options.output.c_str());
   if (!options.exr.empty())
   {
     vtkNew<vtkIGAEXRWriter> writer;
-    writer->SetInputData(vtkIGAGBufferImage::Convert(gbuffer, rgba.data(),
-      settings.colorAttribute >= 0 ? set.attributeNames[settings.colorAttribute] : ""));
+    writer->SetInputData(vtkIGAGBufferImage::Convert(
+      gbuffer, mapper->GetLastColours().data(), colour >= 0 ? set.attributeNames[colour] : ""));
     writer->SetFileName(options.exr.c_str());
     writer->Write();
     if (writer->GetErrorCode() != 0)

@@ -96,9 +96,27 @@ struct FrameReport
          msCompaction = 0, msGBuffer = 0, msTotal = 0;
 };
 
-/// Renders the isosurfaces of `patches` (world space, standard layout). Throws
+/// What the engine needs of a view: the projection VTK would apply and the eye.
+struct View
+{
+  Matrix4<double> worldToClip; ///< clip depth from -1 (near plane) to 1 (far plane)
+  double eye[3];               ///< eye position (perspective)
+  double forward[3];           ///< unit view direction
+  bool parallel = false;
+  /// Height of a pixel in world units: at unit eye depth (perspective) or anywhere (parallel).
+  double pixelFootprint = 0;
+};
+
+/// The view of a camera for an image of width x height pixels.
+View makeView(const Camera& camera, int width, int height);
+
+/// Renders the isosurfaces of `patches` (world space, standard layout) as seen by `view`. Throws
 /// std::invalid_argument naming the patch and the problem for bad input (degree, non-finite
 /// values, non-positive weights, missing attributes) or bad settings.
+FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
+  const Settings& settings, Method method, GBuffer& out);
+
+/// The same for a camera.
 FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
   const Settings& settings, Method method, GBuffer& out);
 
