@@ -188,15 +188,30 @@ TEST_P(MarsdenSphere, MatchesTheAnalyticSphere)
 
 INSTANTIATE_TEST_SUITE_P(Degrees2To5, MarsdenSphere, ::testing::Values(2, 3, 4, 5));
 
+/// The Marsden sphere of a degree seen from `position` towards the origin (z up, 35 degrees) on
+/// a size x size image, isovalue 0.
+struct SphereView
+{
+  iga::VolumeSet<double> set;
+  iga::Camera camera;
+  Settings settings;
+};
+
+SphereView sphereView(int degree, const double* position, int size)
+{
+  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
+  const double focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
+  SphereView view{ iga::makeMarsdenSphere<double>(degree),
+    makeCamera(position, focal, up, 35, bounds), {} };
+  view.settings.width = view.settings.height = size;
+  view.settings.isovalues = { 0.0 };
+  return view;
+}
+
 TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
 {
-  const auto set = iga::makeMarsdenSphere<double>(2);
-  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
-  const double position[3] = { 0, -4, 0.5 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
-  const auto camera = makeCamera(position, focal, up, 35, bounds);
-  Settings settings;
-  settings.width = settings.height = 48;
-  settings.isovalues = { 0.0 };
+  const double position[3] = { 0, -4, 0.5 };
+  auto [set, camera, settings] = sphereView(2, position, 48);
   settings.firstHitOnly = false;
   const GBuffer gbuffer = renderSet(set, camera, settings);
   int twoHits = 0, covered = 0;
@@ -484,13 +499,8 @@ TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
 
 TEST(Engine, DepthCapIsReportedNotLooped)
 {
-  const auto set = iga::makeMarsdenSphere<double>(4);
-  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
-  const double position[3] = { 0, -4, 0 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
-  const auto camera = makeCamera(position, focal, up, 35, bounds);
-  Settings settings;
-  settings.width = settings.height = 32;
-  settings.isovalues = { 0.0 };
+  const double position[3] = { 0, -4, 0 };
+  auto [set, camera, settings] = sphereView(4, position, 32);
   settings.maxSubdivisionDepth = 1;
   iga::sst::FrameReport report;
   renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
