@@ -1222,8 +1222,7 @@ private:
           for (auto it = first; it != last; ++it)
           {
             const double tolerance =
-              1e-4 * footprint *
-              (this->TheView.parallel ? 1.0 : std::abs(it->eyeDepth));
+              1e-4 * footprint * (this->TheView.parallel ? 1.0 : std::abs(it->eyeDepth));
             bool duplicate = false;
             for (auto previous = first; previous != write && !duplicate; ++previous)
             {
@@ -1347,9 +1346,10 @@ View makeView(const Camera& camera, int width, int height)
     view.eye[d] = camera.position[d];
   }
   view.parallel = camera.parallelProjection;
-  view.pixelFootprint = camera.parallelProjection
-    ? 2 * camera.parallelScale / height
-    : 2 * std::tan(camera.viewAngle * 3.14159265358979323846 / 360.0) / height;
+  view.pixelFootprint =
+    camera.parallelProjection
+      ? 2 * camera.parallelScale / height
+      : 2 * std::tan(camera.viewAngle * 3.14159265358979323846 / 360.0) / height;
   return view;
 }
 

@@ -30,6 +30,16 @@ iga::Camera makeCamera(
   return camera;
 }
 
+/// A z-up camera at `position` looking at `focal`, clipping planes around the set's bounds.
+iga::Camera cameraFor(
+  const iga::VolumeSet<double>& set, const double* position, const double* focal, double angle)
+{
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  const double up[3] = { 0, 0, 1 };
+  return makeCamera(position, focal, up, angle, bounds);
+}
+
 /// The ray through pixel (i, j)'s centre from the camera's geometry (not from its matrices).
 void pixelRay(
   const iga::Camera& camera, int width, int height, int i, int j, double* origin, double* direction)
@@ -264,10 +274,8 @@ void cylinderNormal(const double* p, double* n)
 TEST(Engine, ExactRationalCylinderInTheTube)
 {
   const auto set = iga::makeTube<double>(0.5, 0.0);
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  const double position[3] = { 2.6, -3.1, 3.4 }, focal[3] = { 0, 0, 1 }, up[3] = { 0, 0, 1 };
-  const auto camera = makeCamera(position, focal, up, 35, bounds);
+  const double position[3] = { 2.6, -3.1, 3.4 }, focal[3] = { 0, 0, 1 };
+  const auto camera = cameraFor(set, position, focal, 35);
   Settings settings;
   settings.width = 72;
   settings.height = 64;
@@ -292,10 +300,8 @@ TEST(Engine, ExactRationalCylinderInTheTube)
 TEST(Engine, CollapsedAxisDiskAndCylinder)
 {
   const auto set = iga::makeTube<double>(0.0, 0.0); // inner face collapsed onto the axis
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 }, up[3] = { 0, 0, 1 };
-  const auto camera = makeCamera(position, focal, up, 38, bounds);
+  const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 };
+  const auto camera = cameraFor(set, position, focal, 38);
   Settings settings;
   settings.width = settings.height = 64;
   // The plane z = 1 crosses the collapsed axis: a disk of radius 1.
@@ -388,10 +394,8 @@ void expectSameFirstHits(
 TEST(Engine, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTwistedTeardrop)
 {
   const auto set = iga::makeTeardrop<double>(1.2);
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  const double position[3] = { -0.2, -1.6, 0.9 }, focal[3] = { -0.5, 0, 0 }, up[3] = { 0, 0, 1 };
-  const auto camera = makeCamera(position, focal, up, 40, bounds);
+  const double position[3] = { -0.2, -1.6, 0.9 }, focal[3] = { -0.5, 0, 0 };
+  const auto camera = cameraFor(set, position, focal, 40);
   Settings settings;
   settings.width = settings.height = 40;
   settings.isovalues = { 0.0 };
@@ -436,10 +440,8 @@ TEST(Engine, FoldedSelfIntersectingVolumeAgreesWithTheReferences)
     const double fold[4] = { -1.5, 3.0, -3.0, 1.5 };
     view.point(p)[0] = fold[i];
   }
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  const double position[3] = { 0.8, -4.2, 1.6 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
-  const auto camera = makeCamera(position, focal, up, 40, bounds);
+  const double position[3] = { 0.8, -4.2, 1.6 }, focal[3] = { 0, 0, 0 };
+  const auto camera = cameraFor(set, position, focal, 40);
   Settings settings;
   settings.width = settings.height = 40;
   settings.isovalues = { 0.0 };
@@ -470,10 +472,8 @@ TEST(Engine, FoldedSelfIntersectingVolumeAgreesWithTheReferences)
 TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
 {
   const auto set = iga::makeTwistedTube<double>(0.7);
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 }, up[3] = { 0, 0, 1 };
-  const auto camera = makeCamera(position, focal, up, 35, bounds);
+  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  const auto camera = cameraFor(set, position, focal, 35);
   Settings settings;
   settings.width = settings.height = 64;
   settings.isovalues = { 0.0, 0.3 };
