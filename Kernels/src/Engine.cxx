@@ -388,29 +388,32 @@ private:
     range[3] = std::min(this->Config.height - 1, int(std::floor(box.hi[1] - 0.5 + 1e-6)));
   }
 
+  /// Calls fn(pixel index) for every pixel whose centre the box covers.
+  template<class Fn>
+  void forEachCoveredPixel(const Box3<double>& box, Fn fn) const
+  {
+    int range[4];
+    this->pixelRange(box, range);
+    for (int j = range[2]; j <= range[3]; ++j)
+    {
+      for (int i = range[0]; i <= range[1]; ++i)
+      {
+        if (boxCoversPixel(box, i, j))
+        {
+          fn(size_t(j) * this->Config.width + i);
+        }
+      }
+    }
+  }
+
   /// Per pixel, the initial nodes whose boxes cover it, sorted by nearest depth: the work items
   /// of SAG. Stored as one array with per-pixel offsets.
   void sweepAndGroup()
   {
     std::vector<uint32_t> counts(this->PixelCount + 1, 0);
-    auto forEachCovered = [&](size_t n, auto fn)
-    {
-      int range[4];
-      this->pixelRange(this->InitialNodes[n].info.box, range);
-      for (int j = range[2]; j <= range[3]; ++j)
-      {
-        for (int i = range[0]; i <= range[1]; ++i)
-        {
-          if (boxCoversPixel(this->InitialNodes[n].info.box, i, j))
-          {
-            fn(size_t(j) * this->Config.width + i);
-          }
-        }
-      }
-    };
     for (size_t n = 0; n < this->InitialNodes.size(); ++n)
     {
-      forEachCovered(n, [&](size_t p) { ++counts[p]; });
+      this->forEachCoveredPixel(this->InitialNodes[n].info.box, [&](size_t p) { ++counts[p]; });
     }
     const size_t total = exclusiveScan(counts);
     this->ItemOffsets = counts;
@@ -418,7 +421,8 @@ private:
     std::vector<uint32_t> fill(counts.begin(), counts.end() - 1);
     for (size_t n = 0; n < this->InitialNodes.size(); ++n)
     {
-      forEachCovered(n, [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
+      this->forEachCoveredPixel(
+        this->InitialNodes[n].info.box, [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
     }
     parallelFor(this->PixelCount, this->Threads,
       [&](size_t begin, size_t end)
@@ -586,21 +590,15 @@ private:
       std::vector<uint32_t> readyCounts(ready.size() + 1, 0);
       auto forCoveredPixels = [&](const Node& node, auto fn)
       {
-        int range[4];
-        this->pixelRange(node.info.box, range);
-        for (int j = range[2]; j <= range[3]; ++j)
-        {
-          for (int i = range[0]; i <= range[1]; ++i)
+        this->forEachCoveredPixel(node.info.box,
+          [&](size_t p)
           {
-            const size_t p = size_t(j) * this->Config.width + i;
-            if (boxCoversPixel(node.info.box, i, j) &&
-                !(firstHit && node.info.box.lo[2] > this->BestDepth[p]) &&
+            if (!(firstHit && node.info.box.lo[2] > this->BestDepth[p]) &&
                 this->inGroup(p, node.initial))
             {
               fn(p);
             }
-          }
-        }
+          });
       };
       parallelFor(ready.size(), this->Threads,
         [&](size_t begin, size_t end)
@@ -953,13 +951,7 @@ private:
 
   void recordHit(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
   {
-    RawHit hit{ pixel, node.patch, node.iso, ndcDepth, {} };
-    const double scale = std::ldexp(1.0, -node.level);
-    for (int d = 0; d < 3; ++d)
-    {
-      hit.u[d] = std::min(1.0, std::max(0.0, (node.offset[d] + u[d]) * scale));
-    }
-    this->Hits.push_back(hit);
+    this->Hits.push_back(this->makeRawHit(pixel, node, u, ndcDepth));
     this->BestDepth[pixel] = std::min(this->BestDepth[pixel], ndcDepth);
   }
 
