@@ -256,6 +256,12 @@ private:
       attributeHi = std::max(attributeHi, hi);
     }
     const double range = attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
+    if (s.clipPlanes.size() > size_t(kMaxClipPlanes))
+    {
+      throw std::invalid_argument("at most " + std::to_string(kMaxClipPlanes) +
+                                  " clipping planes are supported, got " +
+                                  std::to_string(s.clipPlanes.size()));
+    }
     this->Tolerance[0] = this->Tolerance[1] = s.pixelTolerance;
     this->Tolerance[2] = s.isoTolerance * range;
 
@@ -267,6 +273,19 @@ private:
     window.m[1][1] = 0.5 * H;
     window.m[1][3] = 0.5 * H;
     this->WindowFromWorld = multiply(window, this->TheView.worldToClip);
+    this->Clip.count = 0;
+    for (const auto& plane : s.clipPlanes)
+    {
+      const bool finite = std::isfinite(plane[0]) && std::isfinite(plane[1]) &&
+                          std::isfinite(plane[2]) && std::isfinite(plane[3]);
+      if (!finite || (plane[0] == 0 && plane[1] == 0 && plane[2] == 0) ||
+          !transformPlane(this->WindowFromWorld, plane.data(), this->Clip.plane[this->Clip.count]))
+      {
+        throw std::invalid_argument(
+          "clipping plane " + std::to_string(this->Clip.count) + " is not a finite plane");
+      }
+      ++this->Clip.count;
+    }
     this->PixelCount = size_t(s.width) * s.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, kInfinity);
@@ -332,7 +351,7 @@ private:
       for (Node node : level)
       {
         const VolumeView<const double> view(pool.data() + node.coeff, degree, kScreenChannels);
-        node.info = analyzeNode(view, this->Config.isovalues[node.iso]);
+        node.info = analyzeNode(view, this->Config.isovalues[node.iso], this->Clip);
         if (!this->worthKeeping(node.info))
         {
           continue;
@@ -684,7 +703,7 @@ private:
               local += node.info.certified ? 1 : 0;
               switch (solveTuple(this->nodeView(node, pool), node.info, i, j,
                 this->Config.isovalues[node.iso], this->Tolerance, &solution[4 * t],
-                solution[4 * t + 3]))
+                solution[4 * t + 3], this->Clip))
               {
                 case TupleOutcome::Hit:
                   outcome[t] = Solved;
@@ -803,7 +822,7 @@ private:
               Node child = childOf(parent, c);
               child.coeff = poolOffset[k] + size_t(c) * count;
               const auto view = this->nodeView(child, childPool);
-              child.info = analyzeNodeBounds(view, this->Config.isovalues[child.iso]);
+              child.info = analyzeNodeBounds(view, this->Config.isovalues[child.iso], this->Clip);
               keep[8 * k + c] = this->worthKeeping(child.info) ? 1 : 0;
               // Explicit children are analysed once they are known to receive pixels.
               if (child.implicit && keep[8 * k + c])
@@ -1002,7 +1021,7 @@ private:
               localSolves += node.info.certified ? 1 : 0;
               double u[3], ndc;
               const TupleOutcome result = solveTuple(this->nodeView(node, current), node.info, i, j,
-                this->Config.isovalues[node.iso], this->Tolerance, u, ndc);
+                this->Config.isovalues[node.iso], this->Tolerance, u, ndc, this->Clip);
               if (result == TupleOutcome::Hit)
               {
                 perPixel[p].push_back(this->makeRawHit(uint32_t(p), node, u, ndc));
@@ -1026,8 +1045,8 @@ private:
               {
                 Node child = childOf(node, c);
                 child.coeff = size_t(c) * count;
-                child.info =
-                  analyzeNode(this->nodeView(child, children), this->Config.isovalues[child.iso]);
+                child.info = analyzeNode(
+                  this->nodeView(child, children), this->Config.isovalues[child.iso], this->Clip);
                 if (this->worthKeeping(child.info))
                 {
                   child.coeff = arena.size();
@@ -1094,8 +1113,8 @@ private:
           {
             Node child = childOf(level[k], c);
             child.coeff = (k * 8 + c) * size_t(count);
-            child.info =
-              analyzeNode(this->nodeView(child, nextPool), this->Config.isovalues[child.iso]);
+            child.info = analyzeNode(
+              this->nodeView(child, nextPool), this->Config.isovalues[child.iso], this->Clip);
             if (this->worthKeeping(child.info) && child.info.status == ProjectionStatus::InFront)
             {
               next.push_back(child);
@@ -1146,7 +1165,8 @@ private:
                 // shared faces would otherwise be lost to rounding); duplicates are
                 // merged later.
                 if (solvePixel<double>(this->nodeView(leaf, leafPool), i, j,
-                      this->Config.isovalues[leaf.iso], this->Tolerance, start, u, ndc))
+                      this->Config.isovalues[leaf.iso], this->Tolerance, start, u, ndc,
+                      this->Clip) == TupleOutcome::Hit)
                 {
                   perPixel[p].push_back(this->makeRawHit(uint32_t(p), leaf, u, ndc));
                 }
@@ -1313,6 +1333,7 @@ private:
   int Threads = 1;
   double Tolerance[3] = {};
   Matrix4<double> WindowFromWorld;
+  ClipPlanes<double> Clip; ///< Settings::clipPlanes in homogeneous window coordinates
   size_t PixelCount = 0;
   std::vector<Node> InitialNodes;
   std::vector<double> InitialPool;

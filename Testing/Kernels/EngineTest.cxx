@@ -244,6 +244,84 @@ TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
   EXPECT_EQ(twoHits, covered);
 }
 
+/// Clipping planes cut the surface exactly: the first hit is the nearest sphere point on the
+/// kept side of both planes, so where the front cap is cut away the ray hits the sphere's inside.
+TEST(Engine, ClippingPlanesCutTheSurfaceExactly)
+{
+  const double position[3] = { 0.6, -4, 1.1 };
+  auto [set, camera, settings] = sphereView(3, position, 64);
+  // Kept: x + 0.2 y >= 0.1 and z <= 0.5.
+  settings.clipPlanes = { { 1, 0.2, 0, -0.1 }, { 0, 0, -2, 1 } };
+  auto kept = [](const double* p) { return p[0] + 0.2 * p[1] - 0.1 >= 0 && p[2] <= 0.5; };
+  auto truth = [&](const double* o, const double* d) -> Truth
+  {
+    const double a = iga::dot3(d, d), b = 2 * iga::dot3(o, d), c = iga::dot3(o, o) - 1;
+    double disc;
+    bool nearCut = false;
+    const double t = firstRoot(
+      a, b, c,
+      [&](double t)
+      {
+        const double p[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+        nearCut =
+          nearCut || std::abs(p[0] + 0.2 * p[1] - 0.1) < 1e-5 || std::abs(p[2] - 0.5) < 1e-5;
+        return kept(p);
+      },
+      disc);
+    return { t, nearCut || std::abs(disc) < 1e-6 * b * b };
+  };
+  for (Method method : { Method::SharedSubdivisionTree, Method::BasicScheme })
+  {
+    iga::sst::FrameReport report;
+    const GBuffer gbuffer = renderSet(set, camera, settings, method, &report);
+    const Comparison c = compare(gbuffer, camera, truth, sphereNormal);
+    EXPECT_EQ(report.unresolvedPixels, 0u) << iga::sst::methodName(method);
+    EXPECT_GT(c.covered, 600) << iga::sst::methodName(method);
+    EXPECT_EQ(c.mismatched, 0) << iga::sst::methodName(method);
+    EXPECT_LT(c.maxPositionError, 1e-6) << iga::sst::methodName(method);
+    EXPECT_LT(c.maxNormalError, 1e-9) << iga::sst::methodName(method);
+  }
+  // Brute force's multi-start Newton may miss a root near the silhouette, but every root it
+  // keeps lies on the sphere's kept part.
+  settings.firstHitOnly = false;
+  const GBuffer brute = renderSet(set, camera, settings, Method::BruteForce);
+  settings.firstHitOnly = true;
+  ASSERT_GT(brute.hits.size(), 600u);
+  for (const auto& hit : brute.hits)
+  {
+    EXPECT_NEAR(iga::dot3(hit.position, hit.position), 1.0, 1e-6);
+    EXPECT_TRUE(kept(hit.position))
+      << hit.position[0] << " " << hit.position[1] << " " << hit.position[2];
+  }
+  // The cut is visible: some pixels see the back of the sphere through the cut.
+  const GBuffer clipped = renderSet(set, camera, settings);
+  settings.clipPlanes.clear();
+  const GBuffer whole = renderSet(set, camera, settings);
+  int deeper = 0;
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i)
+    {
+      const auto *a = clipped.firstHit(i, j), *b = whole.firstHit(i, j);
+      deeper += a && b && a->eyeDepth > b->eyeDepth + 0.1 ? 1 : 0;
+    }
+  EXPECT_GT(deeper, 100);
+}
+
+TEST(Engine, RejectsBadClippingPlanes)
+{
+  const double position[3] = { 0, -4, 0.5 };
+  auto [set, camera, settings] = sphereView(2, position, 8);
+  GBuffer gbuffer;
+  settings.clipPlanes = { { 0, 0, 0, 1 } };
+  EXPECT_THROW(
+    iga::sst::render(set.patches, camera, settings, Method::SharedSubdivisionTree, gbuffer),
+    std::invalid_argument);
+  settings.clipPlanes.assign(7, { 1, 0, 0, 0 });
+  EXPECT_THROW(
+    iga::sst::render(set.patches, camera, settings, Method::SharedSubdivisionTree, gbuffer),
+    std::invalid_argument);
+}
+
 /// First hit on the lateral surface x^2 + y^2 = r^2, z in [z0, z1].
 Truth cylinderTruth(const double* o, const double* d, double r, double z0, double z1)
 {

@@ -6,6 +6,7 @@
 #include "iga/Bounds.h"
 
 #include <cmath>
+#include <utility>
 
 namespace iga
 {
@@ -129,6 +130,56 @@ inline Matrix4<double> projectionMatrix(const Camera& camera, double aspect)
 inline Matrix4<double> worldToClip(const Camera& camera, double aspect)
 {
   return multiply(projectionMatrix(camera, aspect), viewMatrix(camera));
+}
+
+/// The coefficients q of the plane p . x = 0 in the coordinates `m` maps to: q . (m x) = p . x for
+/// every homogeneous x, i.e. m^T q = p (Gaussian elimination with partial pivoting). False when m
+/// is singular.
+inline bool transformPlane(const Matrix4<double>& m, const double* p, double* q)
+{
+  double a[4][5];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      a[r][c] = m.m[c][r];
+    }
+    a[r][4] = p[r];
+  }
+  for (int c = 0; c < 4; ++c)
+  {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+    {
+      pivot = std::abs(a[r][c]) > std::abs(a[pivot][c]) ? r : pivot;
+    }
+    if (a[pivot][c] == 0)
+    {
+      return false;
+    }
+    for (int k = 0; k < 5; ++k)
+    {
+      std::swap(a[c][k], a[pivot][k]);
+    }
+    for (int r = c + 1; r < 4; ++r)
+    {
+      const double f = a[r][c] / a[c][c];
+      for (int k = c; k < 5; ++k)
+      {
+        a[r][k] -= f * a[c][k];
+      }
+    }
+  }
+  for (int r = 3; r >= 0; --r)
+  {
+    double v = a[r][4];
+    for (int k = r + 1; k < 4; ++k)
+    {
+      v -= a[r][k] * q[k];
+    }
+    q[r] = v / a[r][r];
+  }
+  return true;
 }
 
 /// Points the camera at the centre of `bounds` (xmin, xmax, ymin, ymax, zmin, zmax) from

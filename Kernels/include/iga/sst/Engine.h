@@ -5,6 +5,7 @@
 #include "iga/BezierPatch.h"
 #include "iga/Camera.h"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -31,7 +32,10 @@ struct Settings
   int surfaceAttribute = 0;      ///< attribute index (channel kFirstAttributeChannel + index)
   int colorAttribute = -1;       ///< attribute sampled at each hit, -1 for none
   bool firstHitOnly = true;      ///< the fast path: keep only the nearest hit per pixel
-  int maxSubdivisionDepth = 22;  ///< levels below an input patch before a pixel is given up
+  /// World-space clipping planes (a, b, c, d): the surface is kept where a x + b y + c z + d >= 0
+  /// for every plane (vtkPlane's normal side); at most kMaxClipPlanes. Cut exactly at each hit.
+  std::vector<std::array<double, 4>> clipPlanes;
+  int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
   size_t memoryBudgetBytes = size_t(2) << 30; ///< cap on subdivision storage
   int threads = 0;                            ///< 0: all hardware threads
   /// Newton's acceptance window: a fraction of a pixel, and of the attribute's range.

@@ -56,6 +56,58 @@ IGA_HD void makeScreenPatch(const VolumeView<const double>& world,
   }
 }
 
+/// Clipping planes in homogeneous window coordinates: a point is kept where q . (X, Y, Z, W) >= 0
+/// for every plane. World planes map here exactly (see clipPlaneToWindow); since world weights
+/// are positive, the sign of q . (X, Y, Z, W) is the sign of the world plane's value.
+constexpr int kMaxClipPlanes = 6;
+template<class T>
+struct ClipPlanes
+{
+  int count = 0;
+  T plane[kMaxClipPlanes][4];
+};
+
+template<class T>
+IGA_HD T clipValue(const T* plane, const T* screen)
+{
+  return plane[0] * screen[kScreenX] + plane[1] * screen[kScreenY] + plane[2] * screen[kScreenZ] +
+         plane[3] * screen[kScreenW];
+}
+
+/// Whether homogeneous screen values (one evaluated point) lie on the kept side of every plane.
+template<class T>
+IGA_HD bool clipKeeps(const ClipPlanes<T>& clip, const T* screen)
+{
+  for (int k = 0; k < clip.count; ++k)
+  {
+    if (clipValue(clip.plane[k], screen) < T(0))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Whether one plane cuts the whole node away: the plane's value is a polynomial whose Bernstein
+/// coefficients are its values at the control points, so all negative means negative everywhere.
+template<class T>
+IGA_HD bool clippedAway(const VolumeView<const T>& node, const ClipPlanes<T>& clip)
+{
+  for (int k = 0; k < clip.count; ++k)
+  {
+    bool allCut = true;
+    for (int p = 0; p < node.pointCount() && allCut; ++p)
+    {
+      allCut = clipValue(clip.plane[k], node.point(p)) < T(0);
+    }
+    if (allCut)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 /// What a node of a subdivision tree knows about itself for the pixel problem.
 template<class T>
 struct NodeInfo
@@ -63,7 +115,8 @@ struct NodeInfo
   Box3<T> box;             ///< window x, y (pixels) and NDC depth, valid when status is InFront
   ProjectionStatus status; ///< where the node lies relative to the eye plane
   bool mayContainSurface;  ///< the attribute's Bernstein range contains the isovalue
-  bool visibleDepth;       ///< not entirely in front of the near or beyond the far plane
+  bool visibleDepth;       ///< not entirely in front of the near or beyond the far plane,
+                           ///< nor cut away by a clipping plane
   bool certified;          ///< at most one root for every pixel (certifyUniqueRoot)
   bool canExclude;         ///< the Krawczyk data below is valid
   T inverse[3][3];         ///< mid([J])^-1 of the pixel problem's Jacobian hull
@@ -73,9 +126,11 @@ struct NodeInfo
   T centreInverse[3][3];   ///< J(centre)^-1
 };
 
-/// The cheap part of a node's analysis: window box, eye-plane status, sign change, clip depth.
+/// The cheap part of a node's analysis: window box, eye-plane status, sign change, clip depth
+/// and clipping planes.
 template<class T>
-IGA_HD NodeInfo<T> analyzeNodeBounds(const VolumeView<const T>& node, T isovalue)
+IGA_HD NodeInfo<T> analyzeNodeBounds(
+  const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip = ClipPlanes<T>())
 {
   NodeInfo<T> info;
   info.status = projectedBounds(node, Matrix4<T>::identity(), info.box);
@@ -92,7 +147,7 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(const VolumeView<const T>& node, T isovalue
     nearSide = nearSide && cp[kScreenZ] + cp[kScreenW] < T(0);
     farSide = farSide && cp[kScreenZ] - cp[kScreenW] > T(0);
   }
-  info.visibleDepth = !nearSide && !farSide;
+  info.visibleDepth = !nearSide && !farSide && !clippedAway(node, clip);
   info.certified = false;
   info.canExclude = false;
   info.hasCentre = false;
@@ -139,9 +194,10 @@ IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info
 }
 
 template<class T>
-IGA_HD NodeInfo<T> analyzeNode(const VolumeView<const T>& node, T isovalue)
+IGA_HD NodeInfo<T> analyzeNode(
+  const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip = ClipPlanes<T>())
 {
-  NodeInfo<T> info = analyzeNodeBounds(node, isovalue);
+  NodeInfo<T> info = analyzeNodeBounds(node, isovalue, clip);
   analyzeNodeSolver(node, info);
   analyzeNodeCentre(node, info);
   return info;
@@ -189,45 +245,48 @@ IGA_HD bool excludesPixel(const VolumeView<const T>& node, int i, int j, T isova
   return separated3 || separated2;
 }
 
-/// Newton on one (pixel, node) tuple from `start`. On success `ndcDepth` is the hit's NDC depth;
-/// hits outside the clip range [-1, 1] are not hits.
+enum class TupleOutcome
+{
+  Hit,       ///< a root, within the clip range and on the kept side of the clipping planes
+  Miss,      ///< provably no visible root of this pixel in this node
+  Undecided, ///< no certificate or Newton failed: the node must be split for this pixel
+};
+
+/// Newton on one (pixel, node) tuple from `start`. On a hit `ndcDepth` is its NDC depth. A
+/// converged root outside the clip range or cut by a clipping plane is a Miss, which is final
+/// where the node certifies a unique root.
 template<class T>
-IGA_HD bool solvePixel(const VolumeView<const T>& node, int i, int j, T isovalue,
-  const T* tolerance, const T* start, T* u, T& ndcDepth)
+IGA_HD TupleOutcome solvePixel(const VolumeView<const T>& node, int i, int j, T isovalue,
+  const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
 {
   const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
   const NewtonResult<T, 3> result =
     solveNewton<T, 3>(node, pixelRows().rows, target, tolerance, start);
   if (result.status != NewtonStatus::Converged)
   {
-    return false;
+    return TupleOutcome::Undecided;
   }
   T values[kScreenChannels];
   evaluateHomogeneous<T, 3>(node, result.u, values, nullptr);
   if (!(values[kScreenW] > T(0)))
   {
-    return false;
+    return TupleOutcome::Undecided;
   }
   ndcDepth = values[kScreenZ] / values[kScreenW];
   for (int d = 0; d < 3; ++d)
   {
     u[d] = result.u[d];
   }
-  return ndcDepth >= T(-1) && ndcDepth <= T(1);
+  return ndcDepth >= T(-1) && ndcDepth <= T(1) && clipKeeps(clip, values) ? TupleOutcome::Hit
+                                                                          : TupleOutcome::Miss;
 }
-
-enum class TupleOutcome
-{
-  Hit,       ///< a root, within the clip range
-  Miss,      ///< provably no root of this pixel in this node
-  Undecided, ///< no certificate or Newton failed: the node must be split for this pixel
-};
 
 /// One (pixel, node) tuple of the solution stage: cheap exclusions first, then Newton on
 /// certified nodes.
 template<class T>
 IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T>& info, int i,
-  int j, T isovalue, const T* tolerance, T* u, T& ndcDepth)
+  int j, T isovalue, const T* tolerance, T* u, T& ndcDepth,
+  const ClipPlanes<T>& clip = ClipPlanes<T>())
 {
   // A large uncertified node is split whatever its pixels' exclusions say, and its children's
   // boxes shed most of those pixels anyway: skip the tests there. Small ones keep them, as
@@ -270,8 +329,7 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
       return TupleOutcome::Undecided;
     }
   }
-  return solvePixel(node, i, j, isovalue, tolerance, start, u, ndcDepth) ? TupleOutcome::Hit
-                                                                         : TupleOutcome::Undecided;
+  return solvePixel(node, i, j, isovalue, tolerance, start, u, ndcDepth, clip);
 }
 
 } // namespace sst
