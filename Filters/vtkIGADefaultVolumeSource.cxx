@@ -37,6 +37,7 @@ int vtkIGADefaultVolumeSource::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps, 11);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  outInfo->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
 
@@ -49,7 +50,19 @@ int vtkIGADefaultVolumeSource::RequestData(
   {
     time = std::clamp(outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()), 0.0, 1.0);
   }
-  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(time));
+  auto set = iga::makeTwistedTube<double>(time);
+  // Piece p of n keeps the patches [p N / n, (p + 1) N / n): whole patches, so that MPI ranks
+  // draw disjoint parts of the tube.
+  const int piece = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
+  const int pieces = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
+  if (pieces > 1 && piece >= 0 && piece < pieces)
+  {
+    const size_t count = set.patches.size();
+    decltype(set.patches) mine(set.patches.begin() + count * piece / pieces,
+      set.patches.begin() + count * (piece + 1) / pieces);
+    set.patches = std::move(mine);
+  }
+  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(set);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
   output->ShallowCopy(grid);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);

@@ -5,7 +5,8 @@
  *
  * Produces VTK_BEZIER_HEXAHEDRON cells (see vtkIGABezierHexahedra). The deformation amplitude
  * follows the pipeline's update time, or `Time` when no time is requested, over the time steps
- * 0..1 it advertises.
+ * 0..1 it advertises. Piece requests get whole patches: piece p of n holds patches
+ * [8p/n, 8(p+1)/n), possibly none.
  */
 #ifndef vtkIGADefaultVolumeSource_h
 #define vtkIGADefaultVolumeSource_h

@@ -60,3 +60,41 @@ TEST(DefaultVolumeSource, AdvertisesTimeAndDeformsWithIt)
   EXPECT_NEAR(rest[1], 1.0, 1e-12); // the control net reaches x = 1 (the 45 degree corner point)
   EXPECT_GT(bent[1], rest[1] + 0.5);
 }
+
+TEST(DefaultVolumeSource, PiecesSplitThePatchesWithoutOverlap)
+{
+  // Pieces of 3 hold floor(8p/3)..floor(8(p+1)/3): 2, 3 and 3 whole patches, 27 points each,
+  // whose points together are exactly the whole tube's.
+  vtkNew<vtkIGADefaultVolumeSource> whole;
+  whole->Update();
+  vtkUnstructuredGrid* all = whole->GetOutput();
+  const vtkIdType expected[3] = { 2, 3, 3 };
+  vtkIdType offset = 0;
+  for (int piece = 0; piece < 3; ++piece)
+  {
+    vtkNew<vtkIGADefaultVolumeSource> source;
+    source->UpdatePiece(piece, 3, 0);
+    vtkUnstructuredGrid* part = source->GetOutput();
+    ASSERT_EQ(part->GetNumberOfCells(), expected[piece]);
+    ASSERT_EQ(part->GetNumberOfPoints(), 27 * expected[piece]);
+    ASSERT_NE(part->GetPointData()->GetArray("temperature"), nullptr);
+    for (vtkIdType p = 0; p < part->GetNumberOfPoints(); ++p)
+    {
+      double a[3], b[3];
+      part->GetPoint(p, a);
+      all->GetPoint(offset + p, b);
+      EXPECT_EQ(a[0], b[0]);
+      EXPECT_EQ(a[1], b[1]);
+      EXPECT_EQ(a[2], b[2]);
+    }
+    offset += part->GetNumberOfPoints();
+  }
+  EXPECT_EQ(offset, all->GetNumberOfPoints());
+  // More pieces than patches: some are empty, valid grids (piece 0 of 10: [0, 0)), the
+  // others hold one patch (piece 9 of 10: [7, 8)).
+  vtkNew<vtkIGADefaultVolumeSource> source;
+  source->UpdatePiece(0, 10, 0);
+  EXPECT_EQ(source->GetOutput()->GetNumberOfCells(), 0);
+  source->UpdatePiece(9, 10, 0);
+  EXPECT_EQ(source->GetOutput()->GetNumberOfCells(), 1);
+}
