@@ -4,7 +4,10 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
+#include "vtkDataObjectTreeIterator.h"
+#include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -15,6 +18,8 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
@@ -34,8 +39,11 @@ vtkStandardNewMacro(vtkIGAIsosurfaceMapper);
 
 struct vtkIGAIsosurfaceMapper::Internals
 {
-  // Data, converted when the input changes.
+  // Data, converted when the input changes; per patch, its block's flat index (composite
+  // input) and its cell id in the block, for hardware selection.
   iga::VolumeSet<double> Set;
+  std::vector<unsigned int> PatchBlock;
+  std::vector<vtkIdType> PatchCell;
   vtkMTimeType SetTime = 0;
   bool SetValid = false;
   // The last frame: what it depended on, and its colour and window depth.
@@ -71,7 +79,7 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }
 
-void vtkIGAIsosurfaceMapper::SetInputData(vtkUnstructuredGrid* input)
+void vtkIGAIsosurfaceMapper::SetInputData(vtkDataObject* input)
 {
   this->SetInputDataInternal(0, input);
 }
@@ -134,21 +142,30 @@ const std::vector<float>& vtkIGAIsosurfaceMapper::GetLastColours() const
 
 int vtkIGAIsosurfaceMapper::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   return 1;
 }
 
 double* vtkIGAIsosurfaceMapper::GetBounds()
 {
   // The control points bound the patches (convex hull): what ResetCamera needs.
-  vtkDataSet* input = this->GetInput();
-  if (!input)
+  vtkMath::UninitializeBounds(this->Bounds);
+  if (!this->GetInputDataObject(0, 0))
   {
-    vtkMath::UninitializeBounds(this->Bounds);
     return this->Bounds;
   }
   this->Update();
-  input->GetBounds(this->Bounds);
+  vtkDataObject* input = this->GetInputDataObject(0, 0);
+  if (auto* grid = vtkDataSet::SafeDownCast(input))
+  {
+    grid->GetBounds(this->Bounds);
+  }
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    composite->GetBounds(this->Bounds);
+  }
   return this->Bounds;
 }
 
@@ -167,10 +184,78 @@ void vtkIGAIsosurfaceMapper::ReleaseGraphicsResources(vtkWindow* window)
 namespace
 {
 
-/// Phong shading of one hit with VTK's property and the renderer's (directional) lights.
+/// Converts the input (one grid, or the grid leaves of a composite dataset, which must share
+/// their attribute names) to patches; per patch, its block's flat index and cell id.
+bool collectPatches(vtkDataObject* input, iga::VolumeSet<double>& set,
+  std::vector<unsigned int>& patchBlock, std::vector<vtkIdType>& patchCell, std::string& error,
+  std::vector<std::string>& warnings)
+{
+  set = iga::VolumeSet<double>();
+  patchBlock.clear();
+  patchCell.clear();
+  auto append = [&](vtkUnstructuredGrid* grid, unsigned int block, const std::string& where)
+  {
+    iga::VolumeSet<double> part;
+    if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, part, error, warnings))
+    {
+      error = where + error;
+      return false;
+    }
+    if (!set.patches.empty() && part.attributeNames != set.attributeNames)
+    {
+      error = where + "its point arrays differ from the first block's";
+      return false;
+    }
+    set.attributeNames = part.attributeNames;
+    for (size_t c = 0; c < part.patches.size(); ++c)
+    {
+      set.patches.push_back(std::move(part.patches[c]));
+      patchBlock.push_back(block);
+      patchCell.push_back(vtkIdType(c));
+    }
+    return true;
+  };
+  if (auto* grid = vtkUnstructuredGrid::SafeDownCast(input))
+  {
+    return append(grid, 0, "");
+  }
+  auto* composite = vtkCompositeDataSet::SafeDownCast(input);
+  if (!composite)
+  {
+    error = "the input is neither an unstructured grid nor a composite dataset";
+    return false;
+  }
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(composite->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    auto* grid = vtkUnstructuredGrid::SafeDownCast(it->GetCurrentDataObject());
+    if (grid && grid->GetNumberOfCells() > 0 &&
+        !append(grid, it->GetCurrentFlatIndex(),
+          "block " + std::to_string(it->GetCurrentFlatIndex()) + ": "))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A light as the shading needs it: towards the light (directional) or its position, and the
+/// positional light's attenuation and spot cone.
+struct ShadingLight
+{
+  vtkLight* light;
+  bool positional;
+  double position[3];  ///< positional lights
+  double towards[3];   ///< directional lights: unit vector towards the light
+  double direction[3]; ///< positional lights: unit direction the light shines along
+  double cosCone;
+};
+
+/// Phong shading of one hit with VTK's property and the renderer's lights (vtkLight semantics:
+/// directional, or positional with attenuation and spot cone).
 void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* property,
-  const std::vector<std::pair<vtkLight*, std::array<double, 3>>>& lights, const double* toEye,
-  float* rgba)
+  const std::vector<ShadingLight>& lights, const double* toEye, float* rgba)
 {
   double colour[3];
   const double ambient = property->GetAmbient(), diffuse = property->GetDiffuse(),
@@ -184,9 +269,27 @@ void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* propert
   for (const auto& light : lights)
   {
     double lightColour[3];
-    light.first->GetDiffuseColor(lightColour);
-    const double intensity = light.first->GetIntensity();
-    const double* L = light.second.data(); // towards the light
+    light.light->GetDiffuseColor(lightColour);
+    double intensity = light.light->GetIntensity();
+    double L[3] = { light.towards[0], light.towards[1], light.towards[2] };
+    if (light.positional)
+    {
+      double distance2 = 0;
+      for (int d = 0; d < 3; ++d)
+      {
+        L[d] = light.position[d] - hit.position[d];
+        distance2 += L[d] * L[d];
+      }
+      iga::normalize3(L);
+      const double* a = light.light->GetAttenuationValues();
+      const double distance = std::sqrt(distance2);
+      intensity /= std::max(1e-12, a[0] + a[1] * distance + a[2] * distance2);
+      if (light.cosCone > -1)
+      {
+        const double spot = -iga::dot3(L, light.direction);
+        intensity *= spot < light.cosCone ? 0.0 : std::pow(spot, light.light->GetExponent());
+      }
+    }
     const double ndotl = std::max(0.0, iga::dot3(hit.normal, L));
     double halfway[3] = { L[0] + toEye[0], L[1] + toEye[1], L[2] + toEye[2] };
     iga::normalize3(halfway);
@@ -206,24 +309,31 @@ void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* propert
   rgba[3] = float(opacity);
 }
 
+/// The colour VTK's hardware selector expects for a 24-bit id (vtkHardwareSelector::Convert).
+void selectionColour(vtkIdType id, float* rgba)
+{
+  vtkHardwareSelector::Convert(id, rgba);
+  rgba[3] = 1.0f;
+}
+
 } // namespace
 
 void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 {
   Internals& in = *this->Internal;
-  vtkUnstructuredGrid* input = vtkUnstructuredGrid::SafeDownCast(this->GetInput());
-  if (!input || this->Isovalues.empty())
+  if (!this->GetInputDataObject(0, 0) || this->Isovalues.empty())
   {
     return;
   }
   this->Update();
+  vtkDataObject* input = this->GetInputDataObject(0, 0);
 
   // Patches, when the data changed.
   if (input->GetMTime() > in.SetTime || !in.SetTime)
   {
     std::string error;
     std::vector<std::string> warnings;
-    in.SetValid = vtkIGABezierHexahedra::FromUnstructuredGrid(input, in.Set, error, warnings);
+    in.SetValid = collectPatches(input, in.Set, in.PatchBlock, in.PatchCell, error, warnings);
     in.SetTime = input->GetMTime();
     for (const auto& warning : warnings)
     {
@@ -261,25 +371,45 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   camera->GetPosition(eye);
   key.insert(key.end(), eye, eye + 3);
   vtkLightCollection* lightCollection = renderer->GetLights();
-  std::vector<std::pair<vtkLight*, std::array<double, 3>>> lights;
+  std::vector<ShadingLight> lights;
   vtkCollectionSimpleIterator it;
   lightCollection->InitTraversal(it);
   while (vtkLight* light = lightCollection->GetNextLight(it))
   {
     if (light->GetSwitch() && light->GetIntensity() > 0)
     {
-      double position[3], focal[3], colour[3];
-      light->GetTransformedPosition(position);
+      ShadingLight shading{ light, light->GetPositional() != 0, {}, {}, {}, -2 };
+      double focal[3], colour[3];
+      light->GetTransformedPosition(shading.position);
       light->GetTransformedFocalPoint(focal);
       light->GetDiffuseColor(colour);
-      std::array<double, 3> towards = { position[0] - focal[0], position[1] - focal[1],
-        position[2] - focal[2] };
-      iga::normalize3(towards.data());
-      lights.emplace_back(light, towards);
-      key.insert(key.end(), towards.begin(), towards.end());
+      for (int d = 0; d < 3; ++d)
+      {
+        shading.towards[d] = shading.position[d] - focal[d];
+        shading.direction[d] = -shading.towards[d];
+      }
+      iga::normalize3(shading.towards);
+      iga::normalize3(shading.direction);
+      if (shading.positional && light->GetConeAngle() < 90)
+      {
+        shading.cosCone = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
+      }
+      lights.push_back(shading);
+      key.insert(key.end(), shading.position, shading.position + 3);
+      key.insert(key.end(), focal, focal + 3);
       key.insert(key.end(), colour, colour + 3);
-      key.push_back(light->GetIntensity());
+      key.insert(key.end(), light->GetAttenuationValues(), light->GetAttenuationValues() + 3);
+      key.insert(key.end(), { light->GetIntensity(), double(shading.positional),
+                              light->GetConeAngle(), light->GetExponent() });
     }
+  }
+  // Clipping planes (world coordinates, as vtkOpenGLPolyDataMapper takes them).
+  std::vector<std::array<double, 4>> clipPlanes(size_t(this->GetNumberOfClippingPlanes()));
+  vtkNew<vtkMatrix4x4> identity;
+  for (size_t k = 0; k < clipPlanes.size(); ++k)
+  {
+    this->GetClippingPlaneInDataCoords(identity, int(k), clipPlanes[k].data());
+    key.insert(key.end(), clipPlanes[k].begin(), clipPlanes[k].end());
   }
   // VTK recomputes the camera's matrices every render with changes at single-precision level
   // (1e-8 relative, 1e-5 of a pixel); those cannot change the image.
@@ -328,6 +458,7 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     settings.height = height;
     settings.threads = this->NumberOfThreads;
     settings.isovalues = this->Isovalues;
+    settings.clipPlanes = clipPlanes;
     const auto& names = in.Set.attributeNames;
     auto indexOf = [&](const std::string& name)
     { return int(std::find(names.begin(), names.end(), name) - names.begin()); };
@@ -402,17 +533,72 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     in.FrameTime.Modified();
   }
 
-  // Draw: upload when the frame changed, then a full-screen pass with gl_FragDepth.
+  // Hardware selection (vtkHardwareSelector, vtkPropPicker): the pass's ids instead of colours,
+  // in VTK's encoding (0 is "nothing"): prop, composite block, process or cell (= patch) id + 1.
+  // Point ids are not drawn: a pixel of the isosurface is no control point.
+  vtkHardwareSelector* selector = renderer->GetSelector();
+  std::vector<float> ids;
+  if (selector)
+  {
+    selector->BeginRenderProp();
+    const int pass = selector->GetCurrentPass();
+    const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
+    for (vtkIdType cell : in.PatchCell)
+    {
+      selector->UpdateMaximumCellId(cell);
+    }
+    ids.assign(in.Colour.size(), 0.0f);
+    for (int j = 0; j < in.Size[1]; ++j)
+    {
+      for (int i = 0; i < in.Size[0]; ++i)
+      {
+        const iga::sst::Hit* hit = in.GBuffer.firstHit(i, j);
+        float* rgba = &ids[4 * (size_t(j) * in.Size[0] + i)];
+        if (!hit)
+        {
+          continue;
+        }
+        const vtkIdType cellId = in.PatchCell[hit->patch];
+        switch (pass)
+        {
+          case vtkHardwareSelector::CELL_ID_LOW24:
+            selectionColour(cellId & 0xffffff, rgba);
+            break;
+          case vtkHardwareSelector::CELL_ID_HIGH24:
+            selectionColour(cellId >> 24, rgba);
+            break;
+          case vtkHardwareSelector::POINT_ID_LOW24:
+          case vtkHardwareSelector::POINT_ID_HIGH24:
+            selectionColour(0, rgba);
+            break;
+          case vtkHardwareSelector::COMPOSITE_INDEX_PASS:
+            selector->RenderCompositeIndex(composite ? in.PatchBlock[hit->patch] : 1);
+            VTK_FALLTHROUGH;
+          default: // actor and process passes
+            std::copy(selector->GetPropColorValue(), selector->GetPropColorValue() + 3, rgba);
+            rgba[3] = 1.0f;
+        }
+      }
+    }
+  }
+
+  // Draw: upload when the frame changed (or ids were drawn instead), then a full-screen pass
+  // with gl_FragDepth.
   vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   if (!window)
   {
+    if (selector)
+    {
+      selector->EndRenderProp();
+    }
     return;
   }
-  if (in.UploadTime < in.FrameTime || in.ColourTexture->GetContext() != window)
+  if (selector || in.UploadTime < in.FrameTime || in.ColourTexture->GetContext() != window)
   {
     in.ColourTexture->SetContext(window);
     in.DepthTexture->SetContext(window);
-    in.ColourTexture->Create2DFromRaw(in.Size[0], in.Size[1], 4, VTK_FLOAT, in.Colour.data());
+    in.ColourTexture->Create2DFromRaw(
+      in.Size[0], in.Size[1], 4, VTK_FLOAT, selector ? ids.data() : in.Colour.data());
     in.DepthTexture->Create2DFromRaw(in.Size[0], in.Size[1], 1, VTK_FLOAT, in.Depth.data());
     for (vtkTextureObject* texture : { in.ColourTexture.Get(), in.DepthTexture.Get() })
     {
@@ -420,6 +606,10 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       texture->SetMagnificationFilter(vtkTextureObject::Nearest);
     }
     in.UploadTime.Modified();
+    if (selector)
+    {
+      in.UploadTime = vtkTimeStamp(); // the colours go back up next time
+    }
   }
   if (!in.Quad)
   {
@@ -441,6 +631,10 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   if (!in.Quad->Program)
   {
     vtkErrorMacro(<< "the isosurface shader did not compile");
+    if (selector)
+    {
+      selector->EndRenderProp();
+    }
     return;
   }
   vtkOpenGLState* state = window->GetState();
@@ -456,4 +650,8 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   in.Quad->Render();
   in.ColourTexture->Deactivate();
   in.DepthTexture->Deactivate();
+  if (selector)
+  {
+    selector->EndRenderProp();
+  }
 }

@@ -4,7 +4,8 @@
  *          colour and depth, so they composite with every other prop.
  *
  * Input: a vtkUnstructuredGrid of VTK_BEZIER_HEXAHEDRON cells (RationalWeights,
- * HigherOrderDegrees; see vtkIGABezierHexahedra). Each render the mapper runs the SST engine for
+ * HigherOrderDegrees; see vtkIGABezierHexahedra), or a composite dataset whose grid leaves share
+ * their point arrays. Each render the mapper runs the SST engine for
  * the renderer's camera, the actor's matrix and the tiled viewport (only when one of them, the
  * data, the properties or the lights changed), shades the first hits with the actor's property
  * and the renderer's lights, and draws them with a full-screen pass that writes gl_FragDepth:
@@ -14,8 +15,13 @@
  * SelectColorArray (ScalarMode UsePointFieldData), the attribute is sampled at each hit and
  * mapped through the lookup table over ScalarRange; otherwise the property's colour is used.
  *
- * Current limits: opaque surfaces only; no clipping planes, hardware picking or composite input
- * yet; lights are treated as directional (headlight, light kit).
+ * Lights follow vtkLight: directional (headlight, light kit) and positional ones with
+ * attenuation and spot cone. Clipping planes (AddClippingPlane) cut the surface exactly: each
+ * root is tested against them and patches entirely on the cut side are dropped. Hardware
+ * selection (vtkHardwareSelector, vtkPropPicker) draws VTK's ids: the prop, the composite block,
+ * the process and the cell (the patch the hit lies in); point ids are not drawn.
+ *
+ * Current limits: opaque surfaces only (the first hit is drawn, whatever the opacity).
  */
 #ifndef vtkIGAIsosurfaceMapper_h
 #define vtkIGAIsosurfaceMapper_h
@@ -29,7 +35,7 @@
 
 #include <memory> // for std::unique_ptr
 
-class vtkUnstructuredGrid;
+class vtkDataObject;
 #include <string> // for std::string
 #include <vector> // for std::vector
 
@@ -40,8 +46,9 @@ public:
   vtkTypeMacro(vtkIGAIsosurfaceMapper, vtkMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The grid of Bézier hexahedra to draw (or connect an input port).
-  void SetInputData(vtkUnstructuredGrid* input);
+  /// The grid of Bézier hexahedra, or composite dataset of them, to draw (or connect an input
+  /// port).
+  void SetInputData(vtkDataObject* input);
 
   ///@{
   /// Isovalues of the surface attribute (at least one is needed to draw anything).

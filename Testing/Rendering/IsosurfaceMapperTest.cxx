@@ -5,13 +5,20 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkPropPicker.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
@@ -180,6 +187,116 @@ TEST(IsosurfaceMapper, ReusesTheFrameUntilSomethingChanges)
   scene.renderer->GetActiveCamera()->Azimuth(10);
   scene.render();
   EXPECT_NE(scene.mapper->GetLastEngineTime(), first);
+}
+
+/// Two spheres as blocks of a multiblock dataset, the second moved by +2.5 in x.
+vtkSmartPointer<vtkMultiBlockDataSet> twoSphereBlocks()
+{
+  auto moved = iga::makeMarsdenSphere<double>(2);
+  for (auto& patch : moved.patches)
+  {
+    const auto view = patch.view();
+    for (int p = 0; p < view.pointCount(); ++p)
+      view.point(p)[0] += 2.5 * view.point(p)[iga::kWeightChannel];
+  }
+  auto blocks = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+  blocks->SetBlock(0, vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeMarsdenSphere<double>(2)));
+  blocks->SetBlock(1, vtkIGABezierHexahedra::ToUnstructuredGrid(moved));
+  return blocks;
+}
+
+TEST(IsosurfaceMapper, DrawsCompositeInputAndHardwareSelectionFindsBlockAndPatch)
+{
+  Scene scene;
+  scene.mapper->SetInputData(twoSphereBlocks());
+  vtkCamera* camera = scene.renderer->GetActiveCamera();
+  camera->SetPosition(1.25, -7, 0);
+  camera->SetFocalPoint(1.25, 0, 0);
+  scene.render();
+  double bounds[6];
+  scene.mapper->GetBounds(bounds);
+  EXPECT_NEAR(bounds[0], -1.5, 1e-12);
+  EXPECT_NEAR(bounds[1], 4.0, 1e-12);
+  // Both spheres are drawn.
+  const double centres[2][3] = { { 0, -1, 0 }, { 2.5, -1, 0 } };
+  int i[2], j[2];
+  double depth;
+  for (int b = 0; b < 2; ++b)
+  {
+    scene.display(centres[b], i[b], j[b], depth);
+    EXPECT_GT(scene.pixel(i[b], j[b])[0], 40) << "sphere " << b;
+  }
+  // A prop picker finds the isosurface actor, and nothing on the background.
+  vtkNew<vtkPropPicker> picker;
+  ASSERT_TRUE(picker->Pick(i[1] + 0.5, j[1] + 0.5, 0, scene.renderer));
+  EXPECT_EQ(picker->GetActor(), scene.isosurface.Get());
+  EXPECT_FALSE(picker->Pick(2, 2, 0, scene.renderer));
+  // The hardware selector reports the block (flat index 2: the root is 0) and the patch (cell 0).
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.renderer);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  selector->SetArea(i[1], j[1], i[1], j[1]);
+  vtkSmartPointer<vtkSelection> selection;
+  selection.TakeReference(selector->Select());
+  ASSERT_EQ(selection->GetNumberOfNodes(), 1u);
+  vtkSelectionNode* node = selection->GetNode(0);
+  EXPECT_EQ(node->GetProperties()->Get(vtkSelectionNode::PROP()), scene.isosurface.Get());
+  EXPECT_EQ(node->GetProperties()->Get(vtkSelectionNode::COMPOSITE_INDEX()), 2);
+  ASSERT_EQ(node->GetSelectionList()->GetNumberOfTuples(), 1);
+  EXPECT_EQ(node->GetSelectionList()->GetVariantValue(0).ToInt(), 0);
+  // After selecting, the window shows colours again.
+  scene.render();
+  EXPECT_GT(scene.pixel(i[0], j[0])[0], 40);
+}
+
+TEST(IsosurfaceMapper, PositionalSpotLightLightsOnlyItsCone)
+{
+  Scene scene;
+  scene.isosurface->GetProperty()->SetAmbient(0);
+  scene.isosurface->GetProperty()->SetDiffuse(1);
+  scene.isosurface->GetProperty()->SetSpecular(0);
+  vtkNew<vtkLight> spot;
+  spot->SetLightTypeToSceneLight();
+  spot->SetPositional(true);
+  spot->SetPosition(0, -3, 0);
+  spot->SetFocalPoint(0.4, 0, 0.3);
+  spot->SetConeAngle(12);
+  spot->SetExponent(1);
+  spot->SetAttenuationValues(1, 0, 0);
+  scene.renderer->AddLight(spot);
+  scene.render();
+  const auto& gbuffer = scene.mapper->GetLastGBuffer();
+  const auto& colours = scene.mapper->GetLastColours();
+  double axis[3] = { 0.4, 3, 0.3 };
+  iga::normalize3(axis);
+  int lit = 0, dark = 0;
+  for (int p = 0; p < gbuffer.width * gbuffer.height; ++p)
+  {
+    const auto* hit = gbuffer.firstHit(p % gbuffer.width, p / gbuffer.width);
+    if (!hit)
+      continue;
+    double toHit[3] = { hit->position[0], hit->position[1] + 3, hit->position[2] };
+    iga::normalize3(toHit);
+    const double angle = std::acos(iga::dot3(toHit, axis)) * 180 / M_PI;
+    if (std::abs(angle - 12) < 0.5)
+      continue; // the cone's rim
+    if (angle < 12)
+    {
+      // Lambert times the spot falloff cos(angle)^1 (vtkLight semantics), no attenuation.
+      double L[3] = { -toHit[0], -toHit[1], -toHit[2] };
+      const double expected =
+        std::max(0.0, iga::dot3(hit->normal, L)) * std::cos(angle * M_PI / 180);
+      EXPECT_NEAR(colours[4 * size_t(p)], expected, 1e-5) << "inside the cone, pixel " << p;
+      ++lit;
+    }
+    else
+    {
+      EXPECT_EQ(colours[4 * size_t(p)], 0.0f) << "outside the cone, pixel " << p;
+      ++dark;
+    }
+  }
+  EXPECT_GT(lit, 100);
+  EXPECT_GT(dark, 1000);
 }
 
 } // namespace
