@@ -1,6 +1,7 @@
 // igaview: the command-line front end. `igaview render` draws isosurfaces of rational Bézier
 // volumes through vtkIGAIsosurfaceMapper in an offscreen VTK render window and writes a PNG and,
-// on request, the engine's OpenEXR G-buffer of the same frame.
+// on request, the engine's OpenEXR G-buffer of the same frame. `igaview view` shows them in an
+// interactive window (trackball camera, keys for the isovalue and time, frame-time readout).
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAEXRWriter.h"
@@ -9,13 +10,20 @@
 #include "vtkIGAIsosurfaceMapper.h"
 
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkInformation.h"
+#include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTextActor.h"
+#include "vtkTextProperty.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLUnstructuredGridReader.h"
@@ -38,10 +46,16 @@ namespace
 {
 
 const char* const kUsage = R"(usage: igaview render [INPUT] [options]
+       igaview view [INPUT] [options]
 
-Renders isosurfaces of rational Bezier volumes pixel-exactly (Shared Subdivision Trees) to a PNG
-image and optionally an OpenEXR G-buffer. With no INPUT it renders the bundled default dataset
-(a twisted rational tube of 8 tri-quadratic patches).
+render: draws isosurfaces of rational Bezier volumes pixel-exactly (Shared Subdivision Trees) to
+a PNG image and optionally an OpenEXR G-buffer.
+view: shows them in an interactive window: drag to rotate (trackball), right-drag or wheel to
+zoom, middle-drag to pan; Up/Down raise/lower the isovalue by 2% of the attribute's range,
+Right/Left step the time (inputs with time steps, e.g. the default dataset), r resets the camera,
+q quits. The corner shows the isovalue, the time and the last frame's engine and frame time.
+With no INPUT both use the bundled default dataset (a twisted rational tube of 8 tri-quadratic
+patches, deforming over the time steps 0..1).
 
 INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON cells with
                          RationalWeights and HigherOrderDegrees
@@ -57,12 +71,17 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --threads N            CPU threads (default: all)
   -o FILE                output PNG (default igaview.png)
   --exr FILE             also write the G-buffer as OpenEXR: R G B A, Z (eye depth), P.X P.Y P.Z,
-                         N.X N.Y N.Z, u v w, patch, and the colour attribute by name
+                         N.X N.Y N.Z, u v w, patch, and the colour attribute by name (render)
+  --keys K1,K2,...       view: press these keys (Up, Down, Left, Right, r), print the state after
+                         each, write -o if given, and exit without opening a window (scripts, tests)
   -h, --help             this text
 )";
 
 struct Options
 {
+  bool view = false; ///< `igaview view`
+  std::vector<std::string> keys;
+  bool hasOutput = false;
   std::string input;
   std::vector<double> isovalues;
   std::string surfaceBy, colorBy, output = "igaview.png", exr;
@@ -122,11 +141,12 @@ Options parseArguments(int argc, char** argv)
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     std::exit(argc < 2 ? 1 : 0);
   }
-  if (std::string(argv[1]) != "render")
+  if (std::string(argv[1]) != "render" && std::string(argv[1]) != "view")
   {
-    fail("unknown command '" + std::string(argv[1]) + "' (try: igaview render --help)");
+    fail("unknown command '" + std::string(argv[1]) + "' (try: igaview --help)");
   }
   Options options;
+  options.view = std::string(argv[1]) == "view";
   for (int i = 2; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -152,7 +172,18 @@ Options parseArguments(int argc, char** argv)
     else if (arg == "--time")
       options.time = parseNumber(value(), arg);
     else if (arg == "-o")
-      options.output = value();
+      options.output = value(), options.hasOutput = true;
+    else if (arg == "--keys" && options.view)
+    {
+      std::stringstream keys(value());
+      std::string key;
+      while (std::getline(keys, key, ','))
+      {
+        if (key != "Up" && key != "Down" && key != "Left" && key != "Right" && key != "r")
+          fail("--keys: unknown key '" + key + "' (Up, Down, Left, Right, r)");
+        options.keys.push_back(key);
+      }
+    }
     else if (arg == "--exr")
       options.exr = value();
     else if (arg == "--threads")
@@ -185,7 +216,7 @@ Options parseArguments(int argc, char** argv)
         fail("--view-angle must lie strictly between 0 and 180 degrees");
     }
     else if (!arg.empty() && arg[0] == '-')
-      fail("unknown option '" + arg + "' (try: igaview render --help)");
+      fail("unknown option '" + arg + "' (try: igaview --help)");
     else if (options.input.empty())
       options.input = arg;
     else
@@ -198,17 +229,17 @@ Options parseArguments(int argc, char** argv)
   return options;
 }
 
-/// The input grid, checked (and described by its patches) with the mapper's own conversion.
-vtkSmartPointer<vtkUnstructuredGrid> loadInput(const Options& options, iga::VolumeSet<double>& set)
+/// The input's producer (the default dataset's source or a .vtu reader), updated, and its grid
+/// checked (and described by its patches) with the mapper's own conversion.
+vtkSmartPointer<vtkAlgorithm> loadInput(const Options& options, iga::VolumeSet<double>& set)
 {
-  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  vtkSmartPointer<vtkAlgorithm> producer;
   std::string name = options.input;
   if (options.input.empty())
   {
-    vtkNew<vtkIGADefaultVolumeSource> source;
+    auto source = vtkSmartPointer<vtkIGADefaultVolumeSource>::New();
     source->SetTime(options.time);
-    source->Update();
-    grid = source->GetOutput();
+    producer = source;
     name = "default dataset";
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
@@ -220,14 +251,15 @@ vtkSmartPointer<vtkUnstructuredGrid> loadInput(const Options& options, iga::Volu
     {
       fail("cannot open '" + options.input + "'");
     }
-    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
     reader->SetFileName(options.input.c_str());
-    reader->Update();
-    grid = reader->GetOutput();
-    if (reader->GetErrorCode() != 0 || !grid || grid->GetNumberOfCells() == 0)
-    {
-      fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells");
-    }
+    producer = reader;
+  }
+  producer->Update();
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(producer->GetOutputDataObject(0));
+  if (producer->GetErrorCode() != 0 || !grid || grid->GetNumberOfCells() == 0)
+  {
+    fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells");
   }
   std::string error;
   std::vector<std::string> warnings;
@@ -243,7 +275,7 @@ vtkSmartPointer<vtkUnstructuredGrid> loadInput(const Options& options, iga::Volu
   {
     fail(name + ": no scalar point attribute to take an isosurface of");
   }
-  return grid;
+  return producer;
 }
 
 int attributeIndex(const iga::VolumeSet<double>& set, const std::string& name, const char* option)
@@ -298,13 +330,144 @@ iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& s
   return camera;
 }
 
+/// The interactive viewer's state and keys: isovalues shift by a step, time moves over the
+/// input's time steps, and a corner text shows them with the last frame's times.
+struct Viewer
+{
+  vtkAlgorithm* producer;
+  vtkIGAIsosurfaceMapper* mapper;
+  vtkRenderer* renderer;
+  vtkTextActor* readout;
+  std::string surfaceName;
+  std::vector<double> isovalues;
+  double isoStep;
+  std::vector<double> times;
+  size_t timeIndex = 0;
+
+  void setTime() { this->producer->UpdateTimeStep(this->times[this->timeIndex]); }
+
+  /// Applies a key; false for keys it does not handle.
+  bool press(const std::string& key)
+  {
+    if (key == "Up" || key == "Down")
+    {
+      for (size_t k = 0; k < this->isovalues.size(); ++k)
+      {
+        this->isovalues[k] += key == "Up" ? this->isoStep : -this->isoStep;
+        this->mapper->SetIsovalue(int(k), this->isovalues[k]);
+      }
+      return true;
+    }
+    if ((key == "Right" || key == "Left") && !this->times.empty())
+    {
+      const size_t n = this->times.size();
+      this->timeIndex = (this->timeIndex + (key == "Right" ? 1 : n - 1)) % n;
+      this->setTime();
+      return true;
+    }
+    if (key == "r")
+    {
+      this->renderer->ResetCamera();
+      return true;
+    }
+    return false;
+  }
+
+  std::string state() const
+  {
+    std::string text = this->surfaceName + " =";
+    for (double iso : this->isovalues)
+    {
+      text += " " + std::to_string(iso);
+    }
+    if (!this->times.empty())
+    {
+      text += "   time " + std::to_string(this->times[this->timeIndex]);
+    }
+    return text;
+  }
+
+  /// The corner text, after a frame: state, engine and whole-frame milliseconds.
+  void updateReadout()
+  {
+    char times[96];
+    std::snprintf(times, sizeof(times), "\nengine %.1f ms   frame %.1f ms",
+      this->mapper->GetLastEngineTime(), 1000 * this->renderer->GetLastRenderTimeInSeconds());
+    this->readout->SetInput((this->state() + times).c_str());
+  }
+};
+
+/// The viewer: an interactive window, or with --keys the same key handling offscreen.
+int runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
+{
+  vtkInformation* info = viewer.producer->GetOutputInformation(0);
+  if (info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+  {
+    const double* steps = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    viewer.times.assign(
+      steps, steps + info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+    // Start at the step nearest the requested time.
+    for (size_t k = 0; k < viewer.times.size(); ++k)
+    {
+      if (std::abs(viewer.times[k] - options.time) <
+          std::abs(viewer.times[viewer.timeIndex] - options.time))
+        viewer.timeIndex = k;
+    }
+    viewer.setTime();
+  }
+  viewer.readout->GetTextProperty()->SetFontSize(16);
+  viewer.readout->GetTextProperty()->SetColor(0.95, 0.95, 0.95);
+  viewer.readout->SetPosition(10, 10);
+  viewer.renderer->AddActor2D(viewer.readout);
+  if (!options.keys.empty())
+  {
+    window->Render();
+    for (const auto& key : options.keys)
+    {
+      viewer.press(key);
+      window->Render();
+      viewer.updateReadout();
+      std::printf("igaview: key %s: %s, %zu pixels covered, engine %.1f ms\n", key.c_str(),
+        viewer.state().c_str(), viewer.mapper->GetLastGBuffer().coveredPixels(),
+        viewer.mapper->GetLastEngineTime());
+    }
+    window->Render();
+    return options.hasOutput ? -1 : 0; // -1: write the PNG like render does
+  }
+  window->SetOffScreenRendering(0);
+  window->SetWindowName("igaview");
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  interactor->SetInteractorStyle(style);
+  interactor->SetRenderWindow(window);
+  vtkNew<vtkCallbackCommand> onKey;
+  onKey->SetClientData(&viewer);
+  onKey->SetCallback(
+    [](vtkObject* caller, unsigned long, void* data, void*)
+    {
+      auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
+      if (static_cast<Viewer*>(data)->press(interactor->GetKeySym()))
+        interactor->Render();
+    });
+  interactor->AddObserver(vtkCommand::KeyPressEvent, onKey);
+  vtkNew<vtkCallbackCommand> onFrame;
+  onFrame->SetClientData(&viewer);
+  onFrame->SetCallback([](vtkObject*, unsigned long, void* data, void*)
+    { static_cast<Viewer*>(data)->updateReadout(); });
+  window->AddObserver(vtkCommand::EndEvent, onFrame);
+  interactor->Initialize();
+  window->Render();
+  interactor->Start();
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
   const Options options = parseArguments(argc, argv);
   iga::VolumeSet<double> set;
-  const vtkSmartPointer<vtkUnstructuredGrid> grid = loadInput(options, set);
+  const vtkSmartPointer<vtkAlgorithm> producer = loadInput(options, set);
 
   const int surface =
     options.surfaceBy.empty() ? 0 : attributeIndex(set, options.surfaceBy, "--surface-by");
@@ -318,7 +481,7 @@ int main(int argc, char** argv)
   const iga::Camera view = chooseCamera(options, set);
 
   vtkNew<vtkIGAIsosurfaceMapper> mapper;
-  mapper->SetInputData(grid);
+  mapper->SetInputConnection(producer->GetOutputPort());
   mapper->SetSurfaceArrayName(set.attributeNames[surface].c_str());
   mapper->SetNumberOfThreads(options.threads);
   for (size_t k = 0; k < isovalues.size(); ++k)
@@ -371,8 +534,20 @@ int main(int argc, char** argv)
     isoText += (isoText.empty() ? "" : ", ") + std::to_string(iso);
   std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n", set.patches.size(),
     set.attributeNames[surface].c_str(), isoText.c_str(), options.size[0], options.size[1]);
+  if (options.view)
+  {
+    vtkNew<vtkTextActor> readout;
+    Viewer viewer{ producer, mapper, renderer, readout, set.attributeNames[surface], isovalues,
+      0.02 * (surfaceRange[1] - surfaceRange[0]), {}, 0 };
+    const int result = runViewer(options, viewer, window);
+    if (result >= 0)
+      return result;
+  }
+  else
+  {
+    window->Render();
+  }
   // Errors of the engine surface as VTK errors; make them fatal and on one line.
-  window->Render();
   const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
   if (gbuffer.width != options.size[0] || gbuffer.height != options.size[1])
   {
