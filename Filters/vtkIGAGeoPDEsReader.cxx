@@ -1,0 +1,320 @@
+#include "vtkIGAGeoPDEsReader.h"
+
+#include "vtkIGANurbsData.h"
+#include "vtkObjectFactory.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+vtkStandardNewMacro(vtkIGAGeoPDEsReader);
+
+namespace
+{
+struct ReadError : std::runtime_error
+{
+  ReadError(long line, const std::string& what)
+    : std::runtime_error(line > 0 ? std::to_string(line) + ": " + what : what)
+  {
+  }
+};
+
+struct Line
+{
+  long number = 0;
+  std::string text;
+};
+
+/// The file's data lines (no comments, no blank lines) and, from the comments, its version.
+class GeoPDEsLines
+{
+public:
+  explicit GeoPDEsLines(const std::string& text)
+  {
+    std::istringstream in(text);
+    std::string line;
+    for (long number = 1; std::getline(in, line); ++number)
+    {
+      if (!line.empty() && line.back() == '\r')
+      {
+        line.pop_back();
+      }
+      const size_t first = line.find_first_not_of(" \t");
+      if (first == std::string::npos)
+      {
+        continue;
+      }
+      if (line[first] == '#')
+      {
+        std::smatch match;
+        if (this->Major < 0 &&
+            std::regex_search(line, match, std::regex("nurbs (geometry|mesh) v\\.([0-9]+)")))
+        {
+          this->Major = std::stoi(match[2].str());
+        }
+        continue;
+      }
+      this->Lines.push_back({ number, line });
+    }
+    this->LastLine = 0;
+    std::istringstream count(text);
+    while (std::getline(count, line))
+    {
+      ++this->LastLine;
+    }
+  }
+
+  /// -1 when the comments name no version.
+  int major() const { return this->Major; }
+  bool atEnd() const { return this->Next >= this->Lines.size(); }
+  const Line& peek(const char* what) const
+  {
+    if (this->atEnd())
+    {
+      throw ReadError(
+        this->LastLine, std::string("the file ends where ") + what + " should follow");
+    }
+    return this->Lines[this->Next];
+  }
+  const Line& take(const char* what)
+  {
+    const Line& line = this->peek(what);
+    ++this->Next;
+    return line;
+  }
+
+  /// The numbers of the next line: exactly `count` of them (any count when -1).
+  std::vector<double> numbers(const char* what, long count = -1)
+  {
+    const Line& line = this->take(what);
+    std::vector<double> values;
+    if (!parseNumbers(line.text, values))
+    {
+      throw ReadError(
+        line.number, std::string(what) + ": '" + line.text + "' is not a line of finite numbers");
+    }
+    if (count >= 0 && static_cast<long>(values.size()) != count)
+    {
+      throw ReadError(line.number, std::string(what) + ": " + std::to_string(values.size()) +
+                                     " values, expected " + std::to_string(count));
+    }
+    return values;
+  }
+
+  /// Integers of the next line, each in [lo, hi].
+  std::vector<int> integers(const char* what, long count, long lo, long hi)
+  {
+    const long number = this->peek(what).number;
+    std::vector<int> result;
+    for (double value : this->numbers(what, count))
+    {
+      if (value != std::floor(value) || value < lo || value > hi)
+      {
+        throw ReadError(number, std::string(what) + ": " + std::to_string(value) +
+                                  " is not an integer in " + std::to_string(lo) + ".." +
+                                  std::to_string(hi));
+      }
+      result.push_back(static_cast<int>(value));
+    }
+    return result;
+  }
+
+  static bool parseNumbers(const std::string& text, std::vector<double>& values)
+  {
+    std::istringstream in(text);
+    std::string token;
+    while (in >> token)
+    {
+      errno = 0;
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
+      {
+        return false;
+      }
+      values.push_back(value);
+    }
+    return !values.empty();
+  }
+
+private:
+  std::vector<Line> Lines;
+  size_t Next = 0;
+  int Major = -1;
+  long LastLine = 0;
+};
+
+template<int Dim>
+void readPatch(GeoPDEsLines& lines, int rdim, iga::BSplinePatch<double, Dim>& patch)
+{
+  // An optional name line ("PATCH 1"): anything that is not a line of numbers.
+  std::vector<double> probe;
+  if (!GeoPDEsLines::parseNumbers(lines.peek("a patch").text, probe))
+  {
+    lines.take("a patch name");
+  }
+  const auto degrees = lines.integers("degrees", Dim, 1, iga::kMaxDegree);
+  const auto counts = lines.integers("numbers of control points", Dim, 1, 1000000);
+  size_t points = 1;
+  for (int d = 0; d < Dim; ++d)
+  {
+    const std::string what = "knot vector " + std::to_string(d + 1);
+    const long number = lines.peek(what.c_str()).number;
+    auto knots = lines.numbers(what.c_str(), counts[d] + degrees[d] + 1);
+    try
+    {
+      iga::validateKnotVector(knots, degrees[d], counts[d]);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      throw ReadError(number, what + ": " + e.what());
+    }
+    patch.degree[d] = degrees[d];
+    patch.netSize[d] = counts[d];
+    patch.knots[d] = std::move(knots);
+    points *= static_cast<size_t>(counts[d]);
+  }
+  static const char* const kCoordinates[3] = { "weighted x coordinates", "weighted y coordinates",
+    "weighted z coordinates" };
+  std::vector<double> coordinates[3];
+  for (int c = 0; c < rdim; ++c)
+  {
+    coordinates[c] = lines.numbers(kCoordinates[c], static_cast<long>(points));
+  }
+  const long weightLine = lines.peek("weights").number;
+  const auto weights = lines.numbers("weights", static_cast<long>(points));
+  std::vector<double> euclidean(3 * points, 0.0);
+  for (size_t p = 0; p < points; ++p)
+  {
+    if (!(weights[p] > 0))
+    {
+      throw ReadError(weightLine, "weights: weight " + std::to_string(p + 1) + " is " +
+                                    std::to_string(weights[p]) + ", weights must be positive");
+    }
+    for (int c = 0; c < rdim; ++c)
+    {
+      euclidean[3 * p + c] = coordinates[c][p] / weights[p];
+    }
+  }
+  iga::setGeometryNet(patch, euclidean, weights);
+}
+
+/// Checks the INTERFACE / SUBDOMAIN / BOUNDARY sections after the patches.
+void checkSections(GeoPDEsLines& lines, int ndim, int patches, int interfaces)
+{
+  int seenInterfaces = 0;
+  while (!lines.atEnd())
+  {
+    const Line& line = lines.take("a section");
+    std::istringstream in(line.text);
+    std::string keyword;
+    in >> keyword;
+    if (keyword == "INTERFACE")
+    {
+      ++seenInterfaces;
+      for (int s = 0; s < 2; ++s)
+      {
+        const long number = lines.peek("interface side").number;
+        const auto side = lines.integers("interface side (patch side)", 2, 1, 1000000);
+        if (side[0] > patches || side[1] > 2 * ndim)
+        {
+          throw ReadError(number, "interface side: patch " + std::to_string(side[0]) + " side " +
+                                    std::to_string(side[1]) + " does not exist");
+        }
+      }
+      lines.integers("interface orientation", ndim == 3 ? 3 : 1, -1, 1);
+    }
+    else if (keyword == "SUBDOMAIN")
+    {
+      lines.integers("subdomain patches", -1, 1, patches);
+    }
+    else if (keyword == "BOUNDARY")
+    {
+      const int sides = lines.integers("number of boundary sides", 1, 0, 1000000)[0];
+      for (int s = 0; s < sides; ++s)
+      {
+        const long number = lines.peek("boundary side").number;
+        const auto side = lines.integers("boundary side (patch side)", 2, 1, 1000000);
+        if (side[0] > patches || side[1] > 2 * ndim)
+        {
+          throw ReadError(number, "boundary side: patch " + std::to_string(side[0]) + " side " +
+                                    std::to_string(side[1]) + " does not exist");
+        }
+      }
+    }
+    else
+    {
+      throw ReadError(line.number, "'" + line.text +
+                                     "' follows the patches; expected INTERFACE, SUBDOMAIN or "
+                                     "BOUNDARY (or more patches than the header's count)");
+    }
+  }
+  if (interfaces >= 0 && seenInterfaces != interfaces)
+  {
+    throw ReadError(0, "the header announces " + std::to_string(interfaces) +
+                         " interfaces, the file has " + std::to_string(seenInterfaces));
+  }
+}
+}
+
+void vtkIGAGeoPDEsReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}
+
+std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsData* data)
+{
+  GeoPDEsLines lines(text);
+  iga::NurbsSet<double> set;
+  set.attributeNames = iga::geometryAttributeNames();
+  try
+  {
+    const long headerLine = lines.peek("the header (dimensions and number of patches)").number;
+    const auto header = lines.integers("header (dimensions and number of patches)", -1, 0, 1000000);
+    // v.0.x: "N Np [Ni Ns]"; v.1 and later: "ndim rdim Np [Ni Ns]".
+    const bool old = lines.major() == 0;
+    const size_t dims = old ? 1 : 2;
+    if (header.size() < dims || header.size() > dims + 3)
+    {
+      throw ReadError(
+        headerLine, "header: " + std::to_string(header.size()) + " values, expected " +
+                      (old ? "N Np [Ni Ns] (v.0.7)" : "ndim rdim Np [Ni Ns] (v.2.1)"));
+    }
+    const int ndim = header[0];
+    const int rdim = old ? header[0] : header[1];
+    const int patches = header.size() > dims ? header[dims] : 1;
+    const int interfaces = header.size() > dims + 1 ? header[dims + 1] : -1;
+    if (ndim < 2 || ndim > 3 || rdim < ndim || rdim > 3)
+    {
+      throw ReadError(headerLine, "header: parametric dimension " + std::to_string(ndim) +
+                                    " in physical dimension " + std::to_string(rdim) +
+                                    " is not supported (volumes 3 in 3, surfaces 2 in 2 or 3)");
+    }
+    if (patches < 1)
+    {
+      throw ReadError(headerLine, "header: the number of patches is 0");
+    }
+    for (int p = 0; p < patches; ++p)
+    {
+      if (ndim == 3)
+      {
+        set.volumes.emplace_back();
+        readPatch(lines, rdim, set.volumes.back());
+      }
+      else
+      {
+        set.surfaces.emplace_back();
+        readPatch(lines, rdim, set.surfaces.back());
+      }
+    }
+    checkSections(lines, ndim, patches, interfaces);
+  }
+  catch (const ReadError& e)
+  {
+    return e.what();
+  }
+  return data->SetPatches(set);
+}

@@ -1,0 +1,366 @@
+#include "vtkIGAGismoReader.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkIGANurbsData.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkXMLDataElement.h"
+#include "vtkXMLDataParser.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+vtkStandardNewMacro(vtkIGAGismoReader);
+
+namespace
+{
+/// A problem at a line of the file (0: the file as a whole).
+struct ReadError : std::runtime_error
+{
+  ReadError(long line, const std::string& what)
+    : std::runtime_error(line > 0 ? std::to_string(line) + ": " + what : what)
+  {
+  }
+};
+
+class GismoParser
+{
+public:
+  explicit GismoParser(const std::string& text)
+    : Text(text)
+  {
+  }
+
+  long lineOf(const vtkXMLDataElement* element) const
+  {
+    const auto end = static_cast<size_t>(
+      std::clamp<vtkTypeInt64>(const_cast<vtkXMLDataElement*>(element)->GetXMLByteIndex(), 0,
+        static_cast<vtkTypeInt64>(this->Text.size())));
+    return 1 + static_cast<long>(std::count(this->Text.begin(), this->Text.begin() + end, '\n'));
+  }
+
+  [[noreturn]] void fail(const vtkXMLDataElement* element, const std::string& what) const
+  {
+    throw ReadError(this->lineOf(element),
+      "<" + std::string(const_cast<vtkXMLDataElement*>(element)->GetName()) + "> " + what);
+  }
+
+  /// The numbers in an element's text.
+  std::vector<double> numbers(vtkXMLDataElement* element) const
+  {
+    std::vector<double> values;
+    std::istringstream in(element->GetCharacterData() ? element->GetCharacterData() : "");
+    std::string token;
+    while (in >> token)
+    {
+      errno = 0;
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0' || errno == ERANGE)
+      {
+        this->fail(element,
+          "value " + std::to_string(values.size() + 1) + " '" + token + "' is not a number");
+      }
+      if (!std::isfinite(value))
+      {
+        this->fail(
+          element, "value " + std::to_string(values.size() + 1) + " '" + token + "' is not finite");
+      }
+      values.push_back(value);
+    }
+    return values;
+  }
+
+  int integerAttribute(vtkXMLDataElement* element, const char* name) const
+  {
+    const char* text = element->GetAttribute(name);
+    char* end = nullptr;
+    const long value = text ? std::strtol(text, &end, 10) : 0;
+    if (!text || end == text || *end != '\0' || value < -1000000 || value > 1000000)
+    {
+      this->fail(element, std::string("needs an integer attribute ") + name);
+    }
+    return static_cast<int>(value);
+  }
+
+  vtkXMLDataElement* child(vtkXMLDataElement* element, const char* name) const
+  {
+    vtkXMLDataElement* found = element->FindNestedElementWithName(name);
+    if (!found)
+    {
+      this->fail(element, std::string("has no <") + name + "> element");
+    }
+    return found;
+  }
+
+  /// One Geometry element into `set`.
+  void readGeometry(vtkXMLDataElement* geometry, iga::NurbsSet<double>& set) const
+  {
+    const std::string type = geometry->GetAttribute("type") ? geometry->GetAttribute("type") : "";
+    static const std::map<std::string, std::pair<int, bool>> kTypes = {
+      { "TensorBSpline3", { 3, false } }, { "TensorNurbs3", { 3, true } },
+      { "TensorBSpline2", { 2, false } }, { "TensorNurbs2", { 2, true } }
+    };
+    const auto known = kTypes.find(type);
+    if (known == kTypes.end())
+    {
+      this->fail(geometry, "type '" + type +
+                             "' is not supported (TensorBSpline3, TensorNurbs3, TensorBSpline2, "
+                             "TensorNurbs2)");
+    }
+    const int dim = known->second.first;
+    const bool rational = known->second.second;
+    if (dim == 3)
+    {
+      set.volumes.emplace_back();
+      this->readPatch(geometry, rational, set.volumes.back());
+    }
+    else
+    {
+      set.surfaces.emplace_back();
+      this->readPatch(geometry, rational, set.surfaces.back());
+    }
+  }
+
+  template<int Dim>
+  void readPatch(
+    vtkXMLDataElement* geometry, bool rational, iga::BSplinePatch<double, Dim>& patch) const
+  {
+    vtkXMLDataElement* basis = this->child(geometry, "Basis");
+    vtkXMLDataElement* weightsElement = nullptr;
+    if (rational)
+    {
+      weightsElement = this->child(basis, "weights");
+      basis = this->child(basis, "Basis");
+    }
+    // One BSplineBasis per direction, placed by its index attribute when it has one.
+    int found = 0;
+    for (int n = 0; n < basis->GetNumberOfNestedElements(); ++n)
+    {
+      vtkXMLDataElement* direction = basis->GetNestedElement(n);
+      if (std::string(direction->GetName()) != "Basis")
+      {
+        continue;
+      }
+      const int d =
+        direction->GetAttribute("index") ? this->integerAttribute(direction, "index") : found;
+      if (d < 0 || d >= Dim || !patch.knots[d].empty())
+      {
+        this->fail(direction, "direction index " + std::to_string(d) + " is out of 0.." +
+                                std::to_string(Dim - 1) + " or repeated");
+      }
+      vtkXMLDataElement* knotVector = this->child(direction, "KnotVector");
+      const int degree = this->integerAttribute(knotVector, "degree");
+      auto knots = this->numbers(knotVector);
+      const int count = static_cast<int>(knots.size()) - degree - 1;
+      try
+      {
+        iga::validateKnotVector(knots, degree, count);
+      }
+      catch (const std::invalid_argument& e)
+      {
+        this->fail(knotVector, "(direction " + std::to_string(d) + "): " + e.what());
+      }
+      patch.degree[d] = degree;
+      patch.netSize[d] = count;
+      patch.knots[d] = std::move(knots);
+      ++found;
+    }
+    if (found != Dim)
+    {
+      this->fail(basis,
+        "has " + std::to_string(found) + " direction bases, expected " + std::to_string(Dim));
+    }
+    const size_t points = iga::controlPointCount(patch);
+    vtkXMLDataElement* coefs = this->child(geometry, "coefs");
+    const int geoDim = this->integerAttribute(coefs, "geoDim");
+    if (geoDim != 2 && geoDim != 3)
+    {
+      this->fail(coefs, "geoDim " + std::to_string(geoDim) + " is not 2 or 3");
+    }
+    const auto values = this->numbers(coefs);
+    if (values.size() != points * geoDim)
+    {
+      this->fail(coefs, "has " + std::to_string(values.size()) + " values, expected " +
+                          std::to_string(points * geoDim) + " (" + std::to_string(points) +
+                          " control points of geoDim " + std::to_string(geoDim) + ")");
+    }
+    std::vector<double> euclidean(3 * points, 0.0);
+    for (size_t p = 0; p < points; ++p)
+    {
+      std::copy_n(values.begin() + p * geoDim, geoDim, euclidean.begin() + 3 * p);
+    }
+    std::vector<double> weights(points, 1.0);
+    if (weightsElement)
+    {
+      weights = this->numbers(weightsElement);
+      if (weights.size() != points)
+      {
+        this->fail(weightsElement, "has " + std::to_string(weights.size()) + " values, expected " +
+                                     std::to_string(points) + " (one per control point)");
+      }
+      for (size_t p = 0; p < points; ++p)
+      {
+        if (!(weights[p] > 0))
+        {
+          this->fail(weightsElement, "weight " + std::to_string(p + 1) + " is " +
+                                       std::to_string(weights[p]) + ", weights must be positive");
+        }
+      }
+    }
+    iga::setGeometryNet(patch, euclidean, weights);
+  }
+
+  /// The Geometry elements to read: the first MultiPatch's, or all top-level ones.
+  std::vector<vtkXMLDataElement*> selectGeometries(vtkXMLDataElement* root) const
+  {
+    std::vector<vtkXMLDataElement*> geometries;
+    std::map<long long, vtkXMLDataElement*> byId;
+    vtkXMLDataElement* multiPatch = nullptr;
+    for (int n = 0; n < root->GetNumberOfNestedElements(); ++n)
+    {
+      vtkXMLDataElement* element = root->GetNestedElement(n);
+      const std::string name = element->GetName();
+      if (name == "Geometry")
+      {
+        geometries.push_back(element);
+        if (element->GetAttribute("id"))
+        {
+          byId[this->integerAttribute(element, "id")] = element;
+        }
+      }
+      else if (name == "MultiPatch" && !multiPatch)
+      {
+        multiPatch = element;
+      }
+    }
+    if (!multiPatch)
+    {
+      if (geometries.empty())
+      {
+        this->fail(root, "has no <Geometry> or <MultiPatch> element");
+      }
+      return geometries;
+    }
+    std::vector<vtkXMLDataElement*> selected;
+    for (int n = 0; n < multiPatch->GetNumberOfNestedElements(); ++n)
+    {
+      vtkXMLDataElement* element = multiPatch->GetNestedElement(n);
+      if (std::string(element->GetName()) == "Geometry")
+      {
+        selected.push_back(element);
+      }
+    }
+    if (vtkXMLDataElement* patches = multiPatch->FindNestedElementWithName("patches"))
+    {
+      const std::string type = patches->GetAttribute("type") ? patches->GetAttribute("type") : "";
+      std::vector<long long> ids;
+      for (double value : this->numbers(patches))
+      {
+        if (value != std::floor(value))
+        {
+          this->fail(patches, "id " + std::to_string(value) + " is not an integer");
+        }
+        ids.push_back(static_cast<long long>(value));
+      }
+      if (type == "id_range")
+      {
+        if (ids.size() != 2 || ids[1] < ids[0] || ids[1] - ids[0] > 1000000)
+        {
+          this->fail(patches, "of type id_range needs two ids, first <= last");
+        }
+        const long long first = ids[0], last = ids[1];
+        ids.clear();
+        for (long long id = first; id <= last; ++id)
+        {
+          ids.push_back(id);
+        }
+      }
+      else if (type != "id_index")
+      {
+        this->fail(patches, "type '" + type + "' is not id_range or id_index");
+      }
+      for (long long id : ids)
+      {
+        const auto geometry = byId.find(id);
+        if (geometry == byId.end())
+        {
+          this->fail(patches,
+            "refers to geometry id " + std::to_string(id) + ", which no top-level <Geometry> has");
+        }
+        selected.push_back(geometry->second);
+      }
+    }
+    if (selected.empty())
+    {
+      this->fail(multiPatch, "lists no patches");
+    }
+    return selected;
+  }
+
+private:
+  const std::string& Text;
+};
+
+void storeMessage(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  auto* message = static_cast<std::string*>(clientData);
+  if (message->empty() && callData)
+  {
+    *message = static_cast<const char*>(callData);
+  }
+}
+}
+
+void vtkIGAGismoReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}
+
+std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsData* data)
+{
+  std::istringstream stream(text);
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetStream(&stream);
+  parser->SetIgnoreCharacterData(0);
+  std::string parserMessage;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetCallback(storeMessage);
+  onError->SetClientData(&parserMessage);
+  parser->AddObserver(vtkCommand::ErrorEvent, onError);
+  if (!parser->Parse() || !parser->GetRootElement())
+  {
+    // vtkXMLParser says "... at line L, column C, byte index B: what".
+    std::smatch match;
+    if (std::regex_search(parserMessage, match, std::regex("line ([0-9]+), column ([0-9]+)")))
+    {
+      const size_t colon = parserMessage.find(": ", match.position(0));
+      return match[1].str() + ": not well-formed XML (column " + match[2].str() +
+             "): " + (colon == std::string::npos ? parserMessage : parserMessage.substr(colon + 2));
+    }
+    return "not well-formed XML: " + parserMessage;
+  }
+  GismoParser gismo(text);
+  iga::NurbsSet<double> set;
+  set.attributeNames = iga::geometryAttributeNames();
+  try
+  {
+    for (vtkXMLDataElement* geometry : gismo.selectGeometries(parser->GetRootElement()))
+    {
+      gismo.readGeometry(geometry, set);
+    }
+  }
+  catch (const ReadError& e)
+  {
+    return e.what();
+  }
+  // Volumes precede surfaces in the output whatever the file's order; the description is
+  // already checked, so this only fails on limits such as degrees above iga::kMaxDegree.
+  return data->SetPatches(set);
+}

@@ -1,0 +1,41 @@
+/**
+ * @class   vtkIGAGismoReader
+ * @brief   Reads G+Smo XML geometry files: TensorBSpline3 / TensorNurbs3 volumes and
+ *          TensorBSpline2 / TensorNurbs2 surfaces, single or in a MultiPatch.
+ *
+ * G+Smo stores Euclidean coefficients (<coefs geoDim="3">, geoDim 2 puts the patch in z = 0) and,
+ * for NURBS, the weights separately (<weights> in the TensorNurbsBasis), first parametric
+ * direction fastest, with one <KnotVector degree="p"> per direction. When the file has a
+ * <MultiPatch>, the first one's patches are read (<patches type="id_range"> first..last ids,
+ * type="id_index" a list of ids, or Geometry elements nested in it); otherwise every top-level
+ * <Geometry>. Volumes become VTK_BEZIER_HEXAHEDRON cells, surfaces VTK_BEZIER_QUADRILATERAL.
+ *
+ * G+Smo files carry geometry only, so the reader adds attributes that can be contoured
+ * (iga::setGeometryNet): "x", "y", "z" (exact everywhere) and "parameter_u/v/w" (exact on
+ * polynomial patches). Errors name the file, the line of the offending element and the problem.
+ */
+#ifndef vtkIGAGismoReader_h
+#define vtkIGAGismoReader_h
+
+#include "IGAViewFiltersModule.h" // for export macro
+#include "vtkIGANurbsReader.h"
+
+class IGAVIEWFILTERS_EXPORT vtkIGAGismoReader : public vtkIGANurbsReader
+{
+public:
+  static vtkIGAGismoReader* New();
+  vtkTypeMacro(vtkIGAGismoReader, vtkIGANurbsReader);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+protected:
+  vtkIGAGismoReader() = default;
+  ~vtkIGAGismoReader() override = default;
+
+  std::string ReadNurbs(const std::string& text, vtkIGANurbsData* data) override;
+
+private:
+  vtkIGAGismoReader(const vtkIGAGismoReader&) = delete;
+  void operator=(const vtkIGAGismoReader&) = delete;
+};
+
+#endif

@@ -1,0 +1,637 @@
+#include "vtkIGANurbsData.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkHigherOrderQuadrilateral.h"
+#include "vtkIGABezierHexahedra.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+
+namespace
+{
+const char* const kPatchArray = "NurbsPatch";
+const char* const kSpanArray = "NurbsKnotSpan";
+const char* const kInfoArray = "NurbsPatchInfo";
+const char* const kKnotsArray = "NurbsKnots";
+const char* const kNetArray = "NurbsControlNet";
+const char* const kNamesArray = "NurbsAttributeNames";
+const char* const kTimeArray = "NurbsTime";
+constexpr int kInfoComponents = 7;
+
+using Net = std::shared_ptr<const std::vector<double>>;
+
+template<int Dim>
+using Extraction = std::shared_ptr<const iga::BezierExtraction<double, Dim>>;
+
+/// Builds the extraction of a patch and checks its net; throws std::invalid_argument.
+template<int Dim>
+Extraction<Dim> prepare(const iga::BSplinePatch<double, Dim>& patch, int channels)
+{
+  if (patch.channels != channels)
+  {
+    throw std::invalid_argument("has " + std::to_string(patch.channels) +
+                                " channels, the set has " + std::to_string(channels));
+  }
+  auto extraction =
+    std::make_shared<iga::BezierExtraction<double, Dim>>(patch.knots, patch.degree, patch.netSize);
+  const std::string problem = iga::checkControlNet(patch, patch.net);
+  if (!problem.empty())
+  {
+    throw std::invalid_argument(problem);
+  }
+  return extraction;
+}
+
+template<class Patch>
+struct PatchDimension;
+template<int Dim>
+struct PatchDimension<iga::BSplinePatch<double, Dim>> : std::integral_constant<int, Dim>
+{
+};
+
+template<int Dim>
+size_t knotCount(const iga::BSplinePatch<double, Dim>& patch)
+{
+  size_t count = 0;
+  for (int d = 0; d < Dim; ++d)
+  {
+    count += patch.knots[d].size();
+  }
+  return count;
+}
+}
+
+struct vtkIGANurbsData::State
+{
+  iga::NurbsSet<double> Set; // description; the nets live in Nets
+  std::vector<double> Times;
+  std::vector<std::vector<Net>> Nets; // [step][patch]
+  std::vector<Extraction<3>> VolumeExtractions;
+  std::vector<Extraction<2>> SurfaceExtractions;
+};
+
+vtkStandardNewMacro(vtkIGANurbsData);
+
+vtkIGANurbsData::vtkIGANurbsData()
+  : Contents(std::make_shared<State>())
+{
+}
+
+vtkIGANurbsData::~vtkIGANurbsData() = default;
+
+void vtkIGANurbsData::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const State& s = *this->Contents;
+  os << indent << "Volumes: " << s.Set.volumes.size() << "\n";
+  os << indent << "Surfaces: " << s.Set.surfaces.size() << "\n";
+  os << indent << "Attributes:";
+  for (const auto& name : s.Set.attributeNames)
+  {
+    os << " " << name;
+  }
+  os << "\n" << indent << "TimeSteps: " << s.Times.size() << "\n";
+  os << indent << "BezierCells: " << this->GetNumberOfBezierCells() << "\n";
+}
+
+std::string vtkIGANurbsData::SetPatches(const iga::NurbsSet<double>& set, double time)
+{
+  // Left empty on error.
+  this->Contents = std::make_shared<State>();
+  this->Modified();
+  auto state = std::make_shared<State>();
+  const int channels = set.channels();
+  std::vector<Net> nets;
+  try
+  {
+    for (size_t v = 0; v < set.volumes.size(); ++v)
+    {
+      try
+      {
+        state->VolumeExtractions.push_back(prepare(set.volumes[v], channels));
+      }
+      catch (const std::invalid_argument& e)
+      {
+        throw std::invalid_argument("patch " + std::to_string(v) + " (volume): " + e.what());
+      }
+      nets.push_back(std::make_shared<const std::vector<double>>(set.volumes[v].net));
+    }
+    for (size_t s = 0; s < set.surfaces.size(); ++s)
+    {
+      const size_t index = set.volumes.size() + s;
+      try
+      {
+        state->SurfaceExtractions.push_back(prepare(set.surfaces[s], channels));
+      }
+      catch (const std::invalid_argument& e)
+      {
+        throw std::invalid_argument("patch " + std::to_string(index) + " (surface): " + e.what());
+      }
+      nets.push_back(std::make_shared<const std::vector<double>>(set.surfaces[s].net));
+    }
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return e.what();
+  }
+  if (!std::isfinite(time))
+  {
+    return "time " + std::to_string(time) + " is not finite";
+  }
+  state->Set = set;
+  for (auto& volume : state->Set.volumes)
+  {
+    volume.net.clear();
+  }
+  for (auto& surface : state->Set.surfaces)
+  {
+    surface.net.clear();
+  }
+  state->Times.push_back(time);
+  state->Nets.push_back(std::move(nets));
+  this->Contents = state;
+  return std::string();
+}
+
+std::string vtkIGANurbsData::AddTimeStep(double time, const std::vector<std::vector<double>>& nets)
+{
+  const State& current = *this->Contents;
+  if (current.Times.empty())
+  {
+    return "there are no patches yet (call SetPatches first)";
+  }
+  if (!(time > current.Times.back()) || !std::isfinite(time))
+  {
+    return "time " + std::to_string(time) + " does not follow the last time step " +
+           std::to_string(current.Times.back());
+  }
+  if (static_cast<int>(nets.size()) != current.Set.patchCount())
+  {
+    return std::to_string(nets.size()) + " control nets given for " +
+           std::to_string(current.Set.patchCount()) + " patches";
+  }
+  const size_t volumes = current.Set.volumes.size();
+  for (size_t p = 0; p < nets.size(); ++p)
+  {
+    const std::string problem =
+      p < volumes ? iga::checkControlNet(current.Set.volumes[p], nets[p])
+                  : iga::checkControlNet(current.Set.surfaces[p - volumes], nets[p]);
+    if (!problem.empty())
+    {
+      return "time " + std::to_string(time) + ", patch " + std::to_string(p) + ": " + problem;
+    }
+  }
+  // Copy on write: a shallow copy keeps seeing the old steps.
+  auto state = std::make_shared<State>(current);
+  state->Times.push_back(time);
+  state->Nets.emplace_back();
+  for (const auto& net : nets)
+  {
+    state->Nets.back().push_back(std::make_shared<const std::vector<double>>(net));
+  }
+  this->Contents = state;
+  this->Modified();
+  return std::string();
+}
+
+iga::NurbsSet<double> vtkIGANurbsData::GetPatches(int step) const
+{
+  iga::NurbsSet<double> set = this->Contents->Set;
+  const size_t volumes = set.volumes.size();
+  for (int p = 0; p < set.patchCount(); ++p)
+  {
+    const auto& net = this->GetControlNet(step, p);
+    if (static_cast<size_t>(p) < volumes)
+    {
+      set.volumes[p].net = net;
+    }
+    else
+    {
+      set.surfaces[p - volumes].net = net;
+    }
+  }
+  return set;
+}
+
+int vtkIGANurbsData::GetNumberOfPatches() const
+{
+  return this->Contents->Set.patchCount();
+}
+
+int vtkIGANurbsData::GetNumberOfTimeSteps() const
+{
+  return static_cast<int>(this->Contents->Times.size());
+}
+
+std::vector<double> vtkIGANurbsData::GetTimeSteps() const
+{
+  return this->Contents->Times;
+}
+
+const std::vector<double>& vtkIGANurbsData::GetControlNet(int step, int patch) const
+{
+  static const std::vector<double> empty;
+  const State& s = *this->Contents;
+  if (step < 0 || step >= static_cast<int>(s.Nets.size()) || patch < 0 ||
+      patch >= s.Set.patchCount())
+  {
+    return empty;
+  }
+  return *s.Nets[step][patch];
+}
+
+vtkIdType vtkIGANurbsData::GetNumberOfBezierCells() const
+{
+  vtkIdType count = 0;
+  for (const auto& e : this->Contents->VolumeExtractions)
+  {
+    count += e->elementCount();
+  }
+  for (const auto& e : this->Contents->SurfaceExtractions)
+  {
+    count += e->elementCount();
+  }
+  return count;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int step)
+{
+  const std::shared_ptr<const State> contents = this->Contents;
+  const State& s = *contents;
+  step = std::clamp(step, 0, std::max(0, static_cast<int>(s.Times.size()) - 1));
+  if (this->CachedGrid && this->CachedContents == contents && this->CachedStep == step)
+  {
+    return this->CachedGrid;
+  }
+  const int channels = s.Set.channels();
+  const size_t volumeCount = s.Set.volumes.size();
+  vtkNew<vtkIntArray> patchIds;
+  patchIds->SetName(kPatchArray);
+  vtkNew<vtkIntArray> spans;
+  spans->SetName(kSpanArray);
+  spans->SetNumberOfComponents(3);
+
+  // Volumes through the shared hexahedron conversion, surfaces appended after them.
+  iga::VolumeSet<double> volumes;
+  volumes.attributeNames = s.Set.attributeNames;
+  for (size_t v = 0; v < volumeCount && !s.Nets.empty(); ++v)
+  {
+    auto patches = s.VolumeExtractions[v]->apply(*s.Nets[step][v], channels);
+    for (size_t e = 0; e < patches.size(); ++e)
+    {
+      int span[3];
+      s.VolumeExtractions[v]->elementIndex(static_cast<int>(e), span);
+      patchIds->InsertNextValue(static_cast<int>(v));
+      spans->InsertNextTypedTuple(span);
+      volumes.patches.push_back(std::move(patches[e]));
+    }
+  }
+  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(volumes);
+  vtkPoints* points = grid->GetPoints();
+  vtkPointData* pd = grid->GetPointData();
+  vtkDataArray* weights = pd->GetRationalWeights();
+  vtkDataArray* degrees = grid->GetCellData()->GetHigherOrderDegrees();
+  std::vector<vtkDataArray*> attributes;
+  for (const auto& name : s.Set.attributeNames)
+  {
+    attributes.push_back(pd->GetArray(name.c_str()));
+  }
+  std::vector<vtkIdType> ids;
+  for (size_t f = 0; f < s.Set.surfaces.size() && !s.Nets.empty(); ++f)
+  {
+    const auto& extraction = *s.SurfaceExtractions[f];
+    const auto patches = extraction.apply(*s.Nets[step][volumeCount + f], channels);
+    for (size_t e = 0; e < patches.size(); ++e)
+    {
+      const auto view = patches[e].view();
+      ids.resize(view.pointCount());
+      for (int j = 0, linear = 0; j <= view.degree[1]; ++j)
+      {
+        for (int i = 0; i <= view.degree[0]; ++i, ++linear)
+        {
+          const double* cp = view.point(linear);
+          const double w = cp[iga::kWeightChannel];
+          const vtkIdType id = points->InsertNextPoint(cp[0] / w, cp[1] / w, cp[2] / w);
+          weights->InsertNextTuple1(w);
+          for (size_t a = 0; a < attributes.size(); ++a)
+          {
+            attributes[a]->InsertNextTuple1(cp[iga::kFirstAttributeChannel + a] / w);
+          }
+          ids[vtkHigherOrderQuadrilateral::PointIndexFromIJK(i, j, view.degree)] = id;
+        }
+      }
+      grid->InsertNextCell(
+        VTK_BEZIER_QUADRILATERAL, static_cast<vtkIdType>(ids.size()), ids.data());
+      degrees->InsertNextTuple3(view.degree[0], view.degree[1], 0);
+      int span[3] = { 0, 0, 0 };
+      extraction.elementIndex(static_cast<int>(e), span);
+      patchIds->InsertNextValue(static_cast<int>(volumeCount + f));
+      spans->InsertNextTypedTuple(span);
+    }
+  }
+  grid->GetCellData()->AddArray(patchIds);
+  grid->GetCellData()->AddArray(spans);
+
+  // The description, so that the class can be rebuilt from the grid alone.
+  vtkNew<vtkIntArray> info;
+  info->SetName(kInfoArray);
+  info->SetNumberOfComponents(kInfoComponents);
+  vtkNew<vtkDoubleArray> knots;
+  knots->SetName(kKnotsArray);
+  vtkNew<vtkDoubleArray> net;
+  net->SetName(kNetArray);
+  net->SetNumberOfComponents(channels);
+  auto describe = [&](int dim, const int* degree, const int* netSize,
+                    const std::vector<double>* knotVectors, const std::vector<double>& values)
+  {
+    int tuple[kInfoComponents] = { dim, 0, 0, 0, 1, 1, 1 };
+    for (int d = 0; d < dim; ++d)
+    {
+      tuple[1 + d] = degree[d];
+      tuple[4 + d] = netSize[d];
+      for (double knot : knotVectors[d])
+      {
+        knots->InsertNextValue(knot);
+      }
+    }
+    info->InsertNextTypedTuple(tuple);
+    for (size_t v = 0; v < values.size(); v += channels)
+    {
+      net->InsertNextTuple(values.data() + v);
+    }
+  };
+  for (int p = 0; p < s.Set.patchCount(); ++p)
+  {
+    const auto& values = *s.Nets[step][p];
+    if (static_cast<size_t>(p) < volumeCount)
+    {
+      const auto& v = s.Set.volumes[p];
+      describe(3, v.degree, v.netSize, v.knots, values);
+    }
+    else
+    {
+      const auto& f = s.Set.surfaces[p - volumeCount];
+      describe(2, f.degree, f.netSize, f.knots, values);
+    }
+  }
+  vtkNew<vtkStringArray> names;
+  names->SetName(kNamesArray);
+  for (const auto& name : s.Set.attributeNames)
+  {
+    names->InsertNextValue(name);
+  }
+  vtkNew<vtkDoubleArray> time;
+  time->SetName(kTimeArray);
+  time->InsertNextValue(s.Times.empty() ? 0.0 : s.Times[step]);
+  vtkFieldData* fd = grid->GetFieldData();
+  fd->AddArray(info);
+  fd->AddArray(knots);
+  fd->AddArray(net);
+  fd->AddArray(names);
+  fd->AddArray(time);
+
+  this->CachedGrid = grid;
+  this->CachedContents = contents;
+  this->CachedStep = step;
+  return grid;
+}
+
+std::string vtkIGANurbsData::FromUnstructuredGrid(vtkUnstructuredGrid* grid, vtkIGANurbsData* data)
+{
+  data->Contents = std::make_shared<State>();
+  data->Modified();
+  vtkFieldData* fd = grid ? grid->GetFieldData() : nullptr;
+  auto* info = fd ? vtkIntArray::SafeDownCast(fd->GetAbstractArray(kInfoArray)) : nullptr;
+  auto* knots = fd ? vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(kKnotsArray)) : nullptr;
+  auto* net = fd ? vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(kNetArray)) : nullptr;
+  auto* names = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(kNamesArray)) : nullptr;
+  if (!info || !knots || !net || !names)
+  {
+    return std::string("the grid carries no NURBS description (field data '") + kInfoArray +
+           "', '" + kKnotsArray + "', '" + kNetArray + "' and '" + kNamesArray + "')";
+  }
+  if (info->GetNumberOfComponents() != kInfoComponents)
+  {
+    return std::string("field array '") + kInfoArray + "' has " +
+           std::to_string(info->GetNumberOfComponents()) + " components, expected " +
+           std::to_string(kInfoComponents);
+  }
+  iga::NurbsSet<double> set;
+  for (vtkIdType n = 0; n < names->GetNumberOfValues(); ++n)
+  {
+    set.attributeNames.push_back(names->GetValue(n));
+  }
+  const int channels = set.channels();
+  if (net->GetNumberOfComponents() != channels)
+  {
+    return std::string("field array '") + kNetArray + "' has " +
+           std::to_string(net->GetNumberOfComponents()) + " components, expected " +
+           std::to_string(channels) + " for " + std::to_string(set.attributeNames.size()) +
+           " attributes";
+  }
+  vtkIdType knotAt = 0, pointAt = 0;
+  std::string error;
+  auto fill = [&](auto& patch, int p, const int* tuple) -> bool
+  {
+    constexpr int dim = PatchDimension<std::remove_reference_t<decltype(patch)>>::value;
+    size_t points = 1;
+    for (int d = 0; d < dim; ++d)
+    {
+      patch.degree[d] = tuple[1 + d];
+      patch.netSize[d] = tuple[4 + d];
+      const vtkIdType count = static_cast<vtkIdType>(tuple[1 + d]) + tuple[4 + d] + 1;
+      if (tuple[1 + d] < 1 || tuple[4 + d] < 1 || knotAt + count > knots->GetNumberOfTuples())
+      {
+        error = "patch " + std::to_string(p) + ": degree " + std::to_string(tuple[1 + d]) +
+                " and " + std::to_string(tuple[4 + d]) + " control points in direction " +
+                std::to_string(d) + " do not fit field array '" + kKnotsArray + "'";
+        return false;
+      }
+      patch.knots[d].assign(knots->GetPointer(knotAt), knots->GetPointer(knotAt) + count);
+      knotAt += count;
+      points *= static_cast<size_t>(tuple[4 + d]);
+    }
+    if (pointAt + static_cast<vtkIdType>(points) > net->GetNumberOfTuples())
+    {
+      error = "patch " + std::to_string(p) + ": its " + std::to_string(points) +
+              " control points do not fit field array '" + kNetArray + "'";
+      return false;
+    }
+    patch.channels = channels;
+    patch.net.assign(
+      net->GetPointer(pointAt * channels), net->GetPointer(pointAt * channels) + points * channels);
+    pointAt += static_cast<vtkIdType>(points);
+    return true;
+  };
+  for (vtkIdType p = 0; p < info->GetNumberOfTuples(); ++p)
+  {
+    int tuple[kInfoComponents];
+    info->GetTypedTuple(p, tuple);
+    if (tuple[0] == 3 && set.surfaces.empty())
+    {
+      set.volumes.emplace_back();
+      if (!fill(set.volumes.back(), static_cast<int>(p), tuple))
+      {
+        return error;
+      }
+    }
+    else if (tuple[0] == 2)
+    {
+      set.surfaces.emplace_back();
+      if (!fill(set.surfaces.back(), static_cast<int>(p), tuple))
+      {
+        return error;
+      }
+    }
+    else
+    {
+      return "patch " + std::to_string(p) + ": parametric dimension " + std::to_string(tuple[0]) +
+             " is not 3 (volumes, first) or 2 (surfaces, after the volumes)";
+    }
+  }
+  if (knotAt != knots->GetNumberOfTuples() || pointAt != net->GetNumberOfTuples())
+  {
+    return std::string("field arrays '") + kKnotsArray + "' and '" + kNetArray +
+           "' hold more values than the patches of '" + kInfoArray + "' use";
+  }
+  auto* time = vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(kTimeArray));
+  const double t = time && time->GetNumberOfTuples() > 0 ? time->GetValue(0) : 0.0;
+  return data->SetPatches(set, t);
+}
+
+void vtkIGANurbsData::FillTimeInformation(vtkInformation* outInfo) const
+{
+  const auto& times = this->Contents->Times;
+  if (times.size() > 1)
+  {
+    outInfo->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { times.front(), times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
+  else
+  {
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  }
+}
+
+int vtkIGANurbsData::FindTimeStep(double time) const
+{
+  const auto& times = this->Contents->Times;
+  const auto after = std::upper_bound(times.begin(), times.end(), time);
+  return after == times.begin() ? 0 : static_cast<int>(after - times.begin()) - 1;
+}
+
+int vtkIGANurbsData::RequestedTimeStep(vtkInformation* outInfo) const
+{
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    return this->FindTimeStep(outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()));
+  }
+  return 0;
+}
+
+void vtkIGANurbsData::FillOutput(vtkInformation* outInfo)
+{
+  const int step = this->RequestedTimeStep(outInfo);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
+  output->ShallowCopy(this->ToUnstructuredGrid(step));
+  if (!this->Contents->Times.empty())
+  {
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), this->Contents->Times[step]);
+  }
+}
+
+void vtkIGANurbsData::ShallowCopy(vtkIGANurbsData* other)
+{
+  if (other && other != this)
+  {
+    this->Contents = other->Contents;
+    this->Modified();
+  }
+}
+
+void vtkIGANurbsData::DeepCopy(vtkIGANurbsData* other)
+{
+  if (!other || other == this)
+  {
+    return;
+  }
+  auto state = std::make_shared<State>(*other->Contents);
+  for (auto& step : state->Nets)
+  {
+    for (auto& net : step)
+    {
+      net = std::make_shared<const std::vector<double>>(*net);
+    }
+  }
+  for (auto& e : state->VolumeExtractions)
+  {
+    e = std::make_shared<const iga::BezierExtraction<double, 3>>(*e);
+  }
+  for (auto& e : state->SurfaceExtractions)
+  {
+    e = std::make_shared<const iga::BezierExtraction<double, 2>>(*e);
+  }
+  this->Contents = state;
+  this->Modified();
+}
+
+unsigned long vtkIGANurbsData::GetActualMemorySize()
+{
+  const State& s = *this->Contents;
+  size_t bytes = sizeof(State);
+  auto operatorBytes = [](const auto& extraction, int dim)
+  {
+    size_t b = 0;
+    for (int d = 0; d < dim; ++d)
+    {
+      const auto& op = extraction.direction(d);
+      b += (op.matrices.size() + op.spanStart.size() + op.spanEnd.size()) * sizeof(double) +
+           op.firstBasis.size() * sizeof(int);
+    }
+    return b;
+  };
+  for (size_t v = 0; v < s.Set.volumes.size(); ++v)
+  {
+    bytes +=
+      knotCount(s.Set.volumes[v]) * sizeof(double) + operatorBytes(*s.VolumeExtractions[v], 3);
+  }
+  for (size_t f = 0; f < s.Set.surfaces.size(); ++f)
+  {
+    bytes +=
+      knotCount(s.Set.surfaces[f]) * sizeof(double) + operatorBytes(*s.SurfaceExtractions[f], 2);
+  }
+  for (const auto& step : s.Nets)
+  {
+    for (const auto& net : step)
+    {
+      bytes += net->size() * sizeof(double);
+    }
+  }
+  for (const auto& name : s.Set.attributeNames)
+  {
+    bytes += name.size();
+  }
+  unsigned long kib = static_cast<unsigned long>((bytes + 1023) / 1024);
+  if (this->CachedGrid)
+  {
+    kib += this->CachedGrid->GetActualMemorySize();
+  }
+  return kib;
+}

@@ -1,0 +1,114 @@
+/**
+ * @class   vtkIGANurbsData
+ * @brief   Tensor-product NURBS / B-spline volumes and surfaces with a time-varying control net,
+ *          and their Bézier cells for the pipeline.
+ *
+ * Holds one or more patches (iga::NurbsSet: degrees, knot vectors, homogeneous control nets with
+ * weights and any number of named attributes on the control points) and one control net per
+ * patch and time step; the attributes live in the nets, so they may vary in time too.
+ *
+ * Design: ParaView only transports, describes and redistributes VTK's own data types, so this
+ * class is not a vtkDataObject and never travels down a pipeline. Readers and sources keep it and
+ * put out what ToUnstructuredGrid() makes of the requested time step: a vtkUnstructuredGrid of
+ * VTK_BEZIER_HEXAHEDRON (volumes) and VTK_BEZIER_QUADRILATERAL (surfaces) cells, one per
+ * non-empty knot span, laid out as vtkIGABezierHexahedra does (VTK point ordering, no shared
+ * points, "RationalWeights" and "HigherOrderDegrees" flagged active, one point array per
+ * attribute). That grid also carries the NURBS description, so FromUnstructuredGrid() rebuilds
+ * this class from any such grid after transport:
+ *  - cell data "NurbsPatch" (source patch index) and "NurbsKnotSpan" (3 components: element
+ *    index along each parametric direction, 0 for a surface's third);
+ *  - field data "NurbsPatchInfo" (7 int components per patch: parametric dimension, degree[3],
+ *    netSize[3]; a surface has degree 0 and netSize 1 in direction 2), "NurbsKnots" (all knot
+ *    vectors, patch by patch, direction by direction), "NurbsControlNet" (the homogeneous control
+ *    points of the grid's time step, channels() components, patch by patch, first direction
+ *    fastest), "NurbsAttributeNames" and "NurbsTime" (the grid's time).
+ *
+ * The knot vectors are fixed, so the Bézier extraction operators are built once and every time
+ * step is extracted by small matrix products; the grid of the last requested step is cached.
+ * Shallow copies share the (immutable) description, nets and extraction operators.
+ */
+#ifndef vtkIGANurbsData_h
+#define vtkIGANurbsData_h
+
+#include "IGAViewFiltersModule.h" // for export macro
+#include "iga/NurbsSet.h"         // for NurbsSet
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for return value
+
+#include <memory> // for shared_ptr
+#include <string> // for error messages
+#include <vector> // for time steps
+
+class vtkInformation;
+class vtkUnstructuredGrid;
+
+class IGAVIEWFILTERS_EXPORT vtkIGANurbsData : public vtkObject
+{
+public:
+  static vtkIGANurbsData* New();
+  vtkTypeMacro(vtkIGANurbsData, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Replaces the contents by `set` as the only time step, at `time`. Returns an empty string,
+  /// or one sentence naming the patch and the problem (bad knots, net size, non-finite values,
+  /// non-positive weights); the object is then left empty.
+  std::string SetPatches(const iga::NurbsSet<double>& set, double time = 0.0);
+
+  /// Appends a time step: one control net per patch (volumes first, then surfaces), each the
+  /// size of that patch's net. Times must increase. Returns "" or the problem.
+  std::string AddTimeStep(double time, const std::vector<std::vector<double>>& nets);
+
+  /// The patches with the control nets of `step`.
+  iga::NurbsSet<double> GetPatches(int step = 0) const;
+  int GetNumberOfPatches() const;
+  int GetNumberOfTimeSteps() const;
+  std::vector<double> GetTimeSteps() const;
+  /// Control net of one patch at one step (empty when out of range).
+  const std::vector<double>& GetControlNet(int step, int patch) const;
+  /// Number of Bézier cells ToUnstructuredGrid() produces.
+  vtkIdType GetNumberOfBezierCells() const;
+
+  /// The Bézier cells of `step` with the NURBS description (see the class description). Cached:
+  /// asking for the same step again returns the same grid until the contents change.
+  vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(int step = 0);
+
+  /// Rebuilds `data` (one time step, the grid's "NurbsTime") from a grid made by
+  /// ToUnstructuredGrid(). Returns "" or the problem; `data` is left empty then.
+  static std::string FromUnstructuredGrid(vtkUnstructuredGrid* grid, vtkIGANurbsData* data);
+
+  ///@{
+  /// Temporal pipeline: advertises TIME_STEPS / TIME_RANGE (only when there is more than one
+  /// step), picks the step for UPDATE_TIME_STEP (the last one not after it, or the first), and
+  /// fills the output grid of `outInfo` with it (DATA_TIME_STEP set).
+  void FillTimeInformation(vtkInformation* outInfo) const;
+  int FindTimeStep(double time) const;
+  int RequestedTimeStep(vtkInformation* outInfo) const;
+  void FillOutput(vtkInformation* outInfo);
+  ///@}
+
+  ///@{
+  /// Shallow copies share the description, nets and operators (copy on write); deep copies own
+  /// theirs. Neither copies the cached grid.
+  void ShallowCopy(vtkIGANurbsData* other);
+  void DeepCopy(vtkIGANurbsData* other);
+  ///@}
+
+  /// Memory in KiB (vtkDataObject's convention): description, nets, operators and cached grid.
+  unsigned long GetActualMemorySize();
+
+protected:
+  vtkIGANurbsData();
+  ~vtkIGANurbsData() override;
+
+private:
+  vtkIGANurbsData(const vtkIGANurbsData&) = delete;
+  void operator=(const vtkIGANurbsData&) = delete;
+
+  struct State;
+  std::shared_ptr<const State> Contents;
+  vtkSmartPointer<vtkUnstructuredGrid> CachedGrid;
+  int CachedStep = -1;
+  std::shared_ptr<const State> CachedContents; // what CachedGrid was made from
+};
+
+#endif

@@ -1,0 +1,82 @@
+#include "vtkIGANurbsReader.h"
+
+#include "vtkIGANurbsData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <fstream>
+#include <sstream>
+
+vtkIGANurbsReader::vtkIGANurbsReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkIGANurbsReader::~vtkIGANurbsReader()
+{
+  this->SetFileName(nullptr);
+}
+
+void vtkIGANurbsReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "Patches: " << this->Data->GetNumberOfPatches() << "\n";
+}
+
+vtkIGANurbsData* vtkIGANurbsReader::GetNurbsData()
+{
+  return this->Data;
+}
+
+int vtkIGANurbsReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // Errors wait for RequestData, so that a bad file gives one message, not one per pass.
+  const std::string file = this->FileName ? this->FileName : "";
+  const std::string stamp =
+    file + "\n" + std::to_string(vtksys::SystemTools::ModifiedTime(file.c_str()));
+  if (stamp != this->ParsedFile)
+  {
+    this->ParsedFile = stamp;
+    this->Data->SetPatches(iga::NurbsSet<double>());
+    std::ifstream in(file, std::ios::binary);
+    if (file.empty())
+    {
+      this->Error = "no FileName set";
+    }
+    else if (!in)
+    {
+      this->Error = file + ": cannot open the file";
+    }
+    else
+    {
+      std::ostringstream text;
+      text << in.rdbuf();
+      const std::string problem = this->ReadNurbs(text.str(), this->Data);
+      this->Error.clear();
+      if (!problem.empty())
+      {
+        // "FILE:LINE: problem" when the subclass names a line, "FILE: problem" otherwise.
+        const bool hasLine = problem[0] >= '0' && problem[0] <= '9';
+        this->Error = file + (hasLine ? ":" : ": ") + problem;
+        this->Data->SetPatches(iga::NurbsSet<double>());
+      }
+    }
+  }
+  this->Data->FillTimeInformation(outputVector->GetInformationObject(0));
+  return 1;
+}
+
+int vtkIGANurbsReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  if (!this->Error.empty())
+  {
+    vtkErrorMacro(<< this->Error);
+    return 0;
+  }
+  this->Data->FillOutput(outputVector->GetInformationObject(0));
+  return 1;
+}

@@ -1,0 +1,64 @@
+/**
+ * @class   vtkIGANurbsReader
+ * @brief   Base of the NURBS file readers: parses FileName into a vtkIGANurbsData and puts out its
+ *          Bézier cells.
+ *
+ * The output is a vtkUnstructuredGrid of VTK_BEZIER_HEXAHEDRON / VTK_BEZIER_QUADRILATERAL cells
+ * with the NURBS description in field and cell data (see vtkIGANurbsData). The file is parsed
+ * once per change of FileName or of the file's modification time. Files with several time steps
+ * advertise them (TIME_STEPS) and the requested one is put out.
+ *
+ * Problems with the file are reported once, by vtkErrorMacro, as "FILE:LINE: problem" (LINE is
+ * left out where the file as a whole is at fault), and RequestData then returns 0. Subclasses
+ * implement ReadNurbs().
+ */
+#ifndef vtkIGANurbsReader_h
+#define vtkIGANurbsReader_h
+
+#include "IGAViewFiltersModule.h" // for export macro
+#include "vtkNew.h"               // for vtkNew
+#include "vtkUnstructuredGridAlgorithm.h"
+#include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
+
+#include <string> // for the parse state
+
+class vtkIGANurbsData;
+
+class IGAVIEWFILTERS_EXPORT vtkIGANurbsReader : public vtkUnstructuredGridAlgorithm
+{
+public:
+  vtkTypeMacro(vtkIGANurbsReader, vtkUnstructuredGridAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The file to read.
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+  /// The patches read (empty until the reader has been updated or when the file is bad).
+  VTK_WRAPEXCLUDE vtkIGANurbsData* GetNurbsData();
+
+protected:
+  vtkIGANurbsReader();
+  ~vtkIGANurbsReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// Reads `text`, the contents of FileName, into `data`. Returns "" or the problem as
+  /// "LINE: problem" (or just "problem" for the file as a whole).
+  virtual std::string ReadNurbs(const std::string& text, vtkIGANurbsData* data) = 0;
+
+  char* FileName = nullptr;
+
+private:
+  vtkIGANurbsReader(const vtkIGANurbsReader&) = delete;
+  void operator=(const vtkIGANurbsReader&) = delete;
+
+  vtkNew<vtkIGANurbsData> Data;
+  std::string Error;      // of the last parse, empty when it succeeded
+  std::string ParsedFile; // FileName and modification time of the last parse
+};
+
+#endif

@@ -1,0 +1,141 @@
+// A VTK-free container of tensor-product NURBS / B-spline patches (trivariate volumes and
+// bivariate surfaces) as file readers produce them, and the attributes that make geometry-only
+// files useful for isosurfaces. Host only.
+#pragma once
+
+#include "iga/BSpline.h"
+
+#include <string>
+#include <vector>
+
+namespace iga
+{
+
+/// Patches that share attribute names. Every control net is homogeneous in the standard layout
+/// (w*x, w*y, w*z, w, w*a_0, ...), first parametric direction fastest, with channels() values per
+/// control point. Patch index p < volumes.size() is a volume, the rest are surfaces in order.
+template<class T>
+struct NurbsSet
+{
+  std::vector<BSplinePatch<T, 3>> volumes;
+  std::vector<BSplinePatch<T, 2>> surfaces;
+  std::vector<std::string> attributeNames;
+
+  int channels() const { return kFirstAttributeChannel + static_cast<int>(attributeNames.size()); }
+  int patchCount() const { return static_cast<int>(volumes.size() + surfaces.size()); }
+};
+
+/// Number of control points of a patch.
+template<class T, int Dim>
+size_t controlPointCount(const BSplinePatch<T, Dim>& patch)
+{
+  size_t count = 1;
+  for (int d = 0; d < Dim; ++d)
+  {
+    count *= static_cast<size_t>(patch.netSize[d] > 0 ? patch.netSize[d] : 0);
+  }
+  return count;
+}
+
+/// Empty when the control net of `patch` holds netSize points of `channels` finite values with
+/// positive weights; otherwise one sentence naming the first bad control point by its indices.
+template<class T, int Dim>
+std::string checkControlNet(const BSplinePatch<T, Dim>& patch, const std::vector<T>& net)
+{
+  const size_t points = controlPointCount(patch);
+  if (net.size() != points * static_cast<size_t>(patch.channels))
+  {
+    return "control net has " + std::to_string(net.size()) + " values, expected " +
+           std::to_string(points * patch.channels);
+  }
+  for (size_t p = 0; p < points; ++p)
+  {
+    std::string where = "control point (";
+    size_t rest = p;
+    for (int d = 0; d < Dim; ++d)
+    {
+      where += (d ? ", " : "") + std::to_string(rest % patch.netSize[d]);
+      rest /= patch.netSize[d];
+    }
+    where += ")";
+    const T* point = net.data() + p * patch.channels;
+    for (int c = 0; c < patch.channels; ++c)
+    {
+      if (!isFinite(point[c]))
+      {
+        return where + " has a non-finite value in channel " + std::to_string(c);
+      }
+    }
+    if (!(point[kWeightChannel] > T(0)))
+    {
+      return where + " has non-positive weight " + std::to_string(point[kWeightChannel]);
+    }
+  }
+  return std::string();
+}
+
+/// Greville abscissae xi_i = (t_{i+1} + ... + t_{i+p}) / p of the `count` B-splines of degree p:
+/// with these control values a polynomial B-spline reproduces its parameter, sum xi_i N_i(u) = u.
+template<class T>
+std::vector<T> grevilleAbscissae(const std::vector<T>& knots, int degree, int count)
+{
+  std::vector<T> xi(static_cast<size_t>(count), T(0));
+  for (int i = 0; i < count; ++i)
+  {
+    for (int k = 1; k <= degree; ++k)
+    {
+      xi[i] += knots[i + k];
+    }
+    xi[i] /= T(degree);
+  }
+  return xi;
+}
+
+/// Names of the attributes geometryNet() adds, in channel order.
+inline std::vector<std::string> geometryAttributeNames()
+{
+  return { "x", "y", "z", "parameter_u", "parameter_v", "parameter_w" };
+}
+
+/// Fills patch.net (and patch.channels) from Euclidean control points (3 values each, first
+/// direction fastest) and weights, adding the geometryAttributeNames() attributes so that
+/// geometry-only files (G+Smo, GeoPDEs) can be contoured:
+///  - "x", "y", "z": the control point coordinates. Exact: attributes share the rational basis of
+///    the geometry, so they reproduce the physical coordinates everywhere.
+///  - "parameter_u/v/w": the Greville abscissae along each direction (w = 0 on surfaces). Exact
+///    for polynomial patches; with varying weights they are the rational blend of the abscissae,
+///    which follows the parameter closely but not exactly.
+/// `knots`, `degree` and `netSize` must be set and valid.
+template<class T, int Dim>
+void setGeometryNet(
+  BSplinePatch<T, Dim>& patch, const std::vector<T>& euclidean, const std::vector<T>& weights)
+{
+  const int channels = kFirstAttributeChannel + 6;
+  const size_t points = controlPointCount(patch);
+  std::vector<T> greville[Dim];
+  for (int d = 0; d < Dim; ++d)
+  {
+    greville[d] = grevilleAbscissae(patch.knots[d], patch.degree[d], patch.netSize[d]);
+  }
+  patch.channels = channels;
+  patch.net.assign(points * channels, T(0));
+  for (size_t p = 0; p < points; ++p)
+  {
+    const T w = weights[p];
+    T* cp = patch.net.data() + p * channels;
+    for (int c = 0; c < 3; ++c)
+    {
+      cp[c] = w * euclidean[3 * p + c];
+      cp[kFirstAttributeChannel + c] = w * euclidean[3 * p + c];
+    }
+    cp[kWeightChannel] = w;
+    size_t rest = p;
+    for (int d = 0; d < Dim; ++d)
+    {
+      cp[kFirstAttributeChannel + 3 + d] = w * greville[d][rest % patch.netSize[d]];
+      rest /= patch.netSize[d];
+    }
+  }
+}
+
+} // namespace iga

@@ -1,0 +1,304 @@
+// vtkIGANurbsData: Bézier extraction against Cox-de Boor evaluation (through VTK's own cell
+// interpolation), the grid round trip, time steps in the pipeline, copies and memory.
+#include "NurbsTestUtilities.h"
+#include "vtkIGANurbsData.h"
+
+#include "vtkCellType.h"
+#include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnstructuredGridAlgorithm.h"
+
+#include <cmath>
+
+using namespace igatest;
+
+namespace
+{
+
+/// A random open knot vector of `count` control points with repeated interior knots.
+std::vector<double> randomKnots(std::mt19937& rng, int degree, int count)
+{
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<double> interior;
+  while (static_cast<int>(interior.size()) < count - degree - 1)
+  {
+    const double knot = 0.05 + 0.9 * unit(rng);
+    const int repeat =
+      std::min<int>(1 + (unit(rng) < 0.3), count - degree - 1 - int(interior.size()));
+    interior.insert(interior.end(), repeat, knot);
+  }
+  std::sort(interior.begin(), interior.end());
+  std::vector<double> knots(degree + 1, -0.5);
+  knots.insert(knots.end(), interior.begin(), interior.end());
+  knots.insert(knots.end(), degree + 1, 2.0);
+  return knots;
+}
+
+template<int Dim>
+iga::BSplinePatch<double, Dim> randomPatch(std::mt19937& rng, int attributes)
+{
+  std::uniform_real_distribution<double> coord(-1, 1), weight(0.3, 3);
+  iga::BSplinePatch<double, Dim> patch;
+  patch.channels = iga::kFirstAttributeChannel + attributes;
+  size_t points = 1;
+  for (int d = 0; d < Dim; ++d)
+  {
+    patch.degree[d] = std::uniform_int_distribution<int>(1, 3)(rng);
+    patch.netSize[d] = patch.degree[d] + std::uniform_int_distribution<int>(1, 4)(rng);
+    patch.knots[d] = randomKnots(rng, patch.degree[d], patch.netSize[d]);
+    points *= patch.netSize[d];
+  }
+  for (size_t p = 0; p < points; ++p)
+  {
+    const double w = weight(rng);
+    for (int c = 0; c < patch.channels; ++c)
+      patch.net.push_back(c == iga::kWeightChannel ? w : w * coord(rng));
+  }
+  return patch;
+}
+
+iga::NurbsSet<double> randomSet(unsigned seed)
+{
+  std::mt19937 rng(seed);
+  iga::NurbsSet<double> set;
+  set.attributeNames = { "pressure", "temperature" };
+  set.volumes = { randomPatch<3>(rng, 2), randomPatch<3>(rng, 2) };
+  set.surfaces = { randomPatch<2>(rng, 2) };
+  return set;
+}
+
+vtkIdType expectedCells(const iga::NurbsSet<double>& set)
+{
+  vtkIdType cells = 0;
+  for (const auto& v : set.volumes)
+    cells += vtkIdType(
+      knotSpans(v.knots[0]).size() * knotSpans(v.knots[1]).size() * knotSpans(v.knots[2]).size());
+  for (const auto& s : set.surfaces)
+    cells += vtkIdType(knotSpans(s.knots[0]).size() * knotSpans(s.knots[1]).size());
+  return cells;
+}
+
+TEST(NurbsData, ExtractionMatchesCoxDeBoorThroughVTKCells)
+{
+  for (unsigned seed = 1; seed <= 5; ++seed)
+  {
+    const auto set = randomSet(seed);
+    vtkNew<vtkIGANurbsData> data;
+    ASSERT_EQ(data->SetPatches(set), "");
+    const auto grid = data->ToUnstructuredGrid();
+    ASSERT_EQ(grid->GetNumberOfCells(), expectedCells(set));
+    ASSERT_EQ(data->GetNumberOfBezierCells(), expectedCells(set));
+    int hexahedra = 0, quadrilaterals = 0;
+    for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+    {
+      hexahedra += grid->GetCellType(c) == VTK_BEZIER_HEXAHEDRON;
+      quadrilaterals += grid->GetCellType(c) == VTK_BEZIER_QUADRILATERAL;
+    }
+    EXPECT_EQ(quadrilaterals,
+      knotSpans(set.surfaces[0].knots[0]).size() * knotSpans(set.surfaces[0].knots[1]).size());
+    EXPECT_EQ(hexahedra + quadrilaterals, grid->GetNumberOfCells());
+    std::mt19937 rng(seed + 100);
+    const double worst = compareWithCoxDeBoor(set, grid, rng, 40);
+    EXPECT_LT(worst, 1e-9);
+  }
+}
+
+TEST(NurbsData, GridRoundTripRebuildsTheSameNurbs)
+{
+  const auto set = randomSet(7);
+  vtkNew<vtkIGANurbsData> data;
+  ASSERT_EQ(data->SetPatches(set, 2.5), "");
+  const auto grid = data->ToUnstructuredGrid();
+  vtkNew<vtkIGANurbsData> back;
+  ASSERT_EQ(vtkIGANurbsData::FromUnstructuredGrid(grid, back), "");
+  EXPECT_EQ(back->GetTimeSteps(), std::vector<double>{ 2.5 });
+  const auto rebuilt = back->GetPatches();
+  EXPECT_EQ(rebuilt.attributeNames, set.attributeNames);
+  ASSERT_EQ(rebuilt.volumes.size(), 2u);
+  ASSERT_EQ(rebuilt.surfaces.size(), 1u);
+  for (int v = 0; v < 2; ++v)
+    for (int d = 0; d < 3; ++d)
+    {
+      EXPECT_EQ(rebuilt.volumes[v].degree[d], set.volumes[v].degree[d]);
+      EXPECT_EQ(rebuilt.volumes[v].knots[d], set.volumes[v].knots[d]);
+    }
+  EXPECT_EQ(rebuilt.volumes[1].net, set.volumes[1].net);
+  EXPECT_EQ(rebuilt.surfaces[0].net, set.surfaces[0].net);
+  EXPECT_EQ(rebuilt.surfaces[0].knots[1], set.surfaces[0].knots[1]);
+  // grid -> class -> grid gives the same cells and points.
+  const auto again = back->ToUnstructuredGrid();
+  ASSERT_EQ(again->GetNumberOfPoints(), grid->GetNumberOfPoints());
+  ASSERT_EQ(again->GetNumberOfCells(), grid->GetNumberOfCells());
+  for (vtkIdType p = 0; p < grid->GetNumberOfPoints(); p += 7)
+  {
+    double a[3], b[3];
+    grid->GetPoint(p, a);
+    again->GetPoint(p, b);
+    for (int d = 0; d < 3; ++d)
+      EXPECT_EQ(a[d], b[d]);
+    EXPECT_EQ(grid->GetPointData()->GetRationalWeights()->GetComponent(p, 0),
+      again->GetPointData()->GetRationalWeights()->GetComponent(p, 0));
+  }
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+    EXPECT_EQ(grid->GetCellType(c), again->GetCellType(c));
+}
+
+TEST(NurbsData, BadInputIsNamed)
+{
+  vtkNew<vtkIGANurbsData> data;
+  auto set = randomSet(3);
+  set.volumes[1].net[iga::kWeightChannel] = -2; // control point (0, 0, 0) of patch 1
+  EXPECT_NE(data->SetPatches(set).find("patch 1 (volume): control point (0, 0, 0) has "
+                                       "non-positive weight"),
+    std::string::npos);
+  EXPECT_EQ(data->GetNumberOfPatches(), 0);
+  set = randomSet(3);
+  set.surfaces[0].knots[1][1] = 5; // non-monotone
+  EXPECT_NE(data->SetPatches(set).find("patch 2 (surface): direction 1: knots are not "
+                                       "non-decreasing"),
+    std::string::npos);
+  set = randomSet(3);
+  set.volumes[0].net.pop_back();
+  EXPECT_NE(data->SetPatches(set).find("patch 0 (volume): control net has"), std::string::npos);
+  set = randomSet(3);
+  set.volumes[0].net[5] = NAN;
+  EXPECT_NE(
+    data->SetPatches(set).find("control point (0, 0, 0) has a non-finite value in channel 5"),
+    std::string::npos);
+
+  ASSERT_EQ(data->SetPatches(randomSet(3), 1.0), "");
+  auto nets = std::vector<std::vector<double>>{ set.volumes[0].net };
+  EXPECT_NE(
+    data->AddTimeStep(2.0, nets).find("1 control nets given for 3 patches"), std::string::npos);
+  EXPECT_NE(data->AddTimeStep(0.5, {}).find("does not follow"), std::string::npos);
+
+  vtkNew<vtkUnstructuredGrid> plain;
+  EXPECT_NE(vtkIGANurbsData::FromUnstructuredGrid(plain, data).find("carries no NURBS description"),
+    std::string::npos);
+  EXPECT_EQ(data->GetNumberOfPatches(), 0);
+}
+
+/// The nets of `set` moved by `shift` along x, with the first attribute set to `shift` too.
+std::vector<std::vector<double>> shiftedNets(const iga::NurbsSet<double>& set, double shift)
+{
+  std::vector<std::vector<double>> nets;
+  auto add = [&](const auto& patch)
+  {
+    nets.push_back(patch.net);
+    for (size_t p = 0; p < nets.back().size(); p += patch.channels)
+    {
+      const double w = nets.back()[p + iga::kWeightChannel];
+      nets.back()[p] += w * shift;
+      nets.back()[p + iga::kFirstAttributeChannel] = w * shift;
+    }
+  };
+  for (const auto& v : set.volumes)
+    add(v);
+  for (const auto& s : set.surfaces)
+    add(s);
+  return nets;
+}
+
+/// A minimal time-aware source around vtkIGANurbsData, as readers use it.
+class NurbsSource : public vtkUnstructuredGridAlgorithm
+{
+public:
+  static NurbsSource* New();
+  vtkTypeMacro(NurbsSource, vtkUnstructuredGridAlgorithm);
+  vtkNew<vtkIGANurbsData> Data;
+
+protected:
+  NurbsSource() { this->SetNumberOfInputPorts(0); }
+  int RequestInformation(
+    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    this->Data->FillTimeInformation(out->GetInformationObject(0));
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    this->Data->FillOutput(out->GetInformationObject(0));
+    return 1;
+  }
+};
+vtkStandardNewMacro(NurbsSource);
+
+TEST(NurbsData, TimeStepsFollowThePipelineRequest)
+{
+  const auto set = randomSet(11);
+  vtkNew<NurbsSource> source;
+  ASSERT_EQ(source->Data->SetPatches(set, 0.0), "");
+  ASSERT_EQ(source->Data->AddTimeStep(1.0, shiftedNets(set, 1.0)), "");
+  ASSERT_EQ(source->Data->AddTimeStep(3.0, shiftedNets(set, 3.0)), "");
+  source->UpdateInformation();
+  vtkInformation* info = source->GetOutputInformation(0);
+  ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  ASSERT_EQ(info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()), 3);
+  EXPECT_EQ(info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[2], 3.0);
+  EXPECT_EQ(info->Get(vtkStreamingDemandDrivenPipeline::TIME_RANGE())[1], 3.0);
+
+  vtkNew<vtkIGANurbsData> still;
+  ASSERT_EQ(still->SetPatches(set), "");
+  const auto rest = still->ToUnstructuredGrid();
+  // Between steps the earlier one is shown; before the first, the first.
+  for (const auto& [request, step] : std::vector<std::pair<double, double>>{
+         { 1.7, 1.0 }, { 3.0, 3.0 }, { -4.0, 0.0 }, { 0.0, 0.0 } })
+  {
+    source->UpdateTimeStep(request);
+    auto* output = vtkUnstructuredGrid::SafeDownCast(source->GetOutputDataObject(0));
+    ASSERT_EQ(output->GetNumberOfPoints(), rest->GetNumberOfPoints());
+    EXPECT_EQ(output->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), step);
+    for (vtkIdType p = 0; p < output->GetNumberOfPoints(); p += 5)
+    {
+      EXPECT_NEAR(output->GetPoint(p)[0], rest->GetPoint(p)[0] + step, 1e-12);
+      EXPECT_NEAR(output->GetPoint(p)[1], rest->GetPoint(p)[1], 1e-12);
+      if (step > 0)
+      {
+        EXPECT_NEAR(output->GetPointData()->GetArray("pressure")->GetComponent(p, 0), step, 1e-12);
+      }
+    }
+    EXPECT_EQ(output->GetFieldData()->GetArray("NurbsTime")->GetComponent(0, 0), step);
+  }
+}
+
+TEST(NurbsData, CopiesShareOrOwnAndTheGridIsCached)
+{
+  const auto set = randomSet(5);
+  vtkNew<vtkIGANurbsData> data;
+  ASSERT_EQ(data->SetPatches(set), "");
+  const auto first = data->ToUnstructuredGrid();
+  EXPECT_EQ(data->ToUnstructuredGrid().Get(), first.Get()) << "same step: cached grid";
+
+  vtkNew<vtkIGANurbsData> shallow;
+  shallow->ShallowCopy(data);
+  EXPECT_EQ(&shallow->GetControlNet(0, 1), &data->GetControlNet(0, 1)) << "shared net";
+  ASSERT_EQ(shallow->AddTimeStep(1.0, shiftedNets(set, 1.0)), "");
+  EXPECT_EQ(shallow->GetNumberOfTimeSteps(), 2);
+  EXPECT_EQ(data->GetNumberOfTimeSteps(), 1) << "copy on write";
+
+  vtkNew<vtkIGANurbsData> deep;
+  deep->DeepCopy(shallow);
+  EXPECT_EQ(deep->GetNumberOfTimeSteps(), 2);
+  EXPECT_NE(&deep->GetControlNet(1, 0), &shallow->GetControlNet(1, 0));
+  EXPECT_EQ(deep->GetControlNet(1, 0), shallow->GetControlNet(1, 0));
+
+  ASSERT_EQ(data->AddTimeStep(2.0, shiftedNets(set, 2.0)), "");
+  EXPECT_NE(data->ToUnstructuredGrid(0).Get(), first.Get()) << "contents changed: new grid";
+
+  // Memory: the two steps' nets (doubles) plus the cached grid, in KiB.
+  size_t values = 0;
+  for (int p = 0; p < data->GetNumberOfPatches(); ++p)
+    values += data->GetControlNet(0, p).size() + data->GetControlNet(1, p).size();
+  vtkNew<vtkIGANurbsData> fresh;
+  fresh->DeepCopy(data);
+  const unsigned long withoutGrid = fresh->GetActualMemorySize();
+  EXPECT_GE(withoutGrid, values * sizeof(double) / 1024);
+  EXPECT_LT(withoutGrid, values * sizeof(double) / 1024 + 16);
+  const auto grid = fresh->ToUnstructuredGrid(1);
+  EXPECT_EQ(fresh->GetActualMemorySize(), withoutGrid + grid->GetActualMemorySize());
+}
+
+} // namespace

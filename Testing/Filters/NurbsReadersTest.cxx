@@ -1,0 +1,354 @@
+// vtkIGAGismoReader and vtkIGAGeoPDEsReader on the samples in Data/ (analytic shapes), on real
+// files from G+Smo and GeoPDEs in ../shared/data (skipped visibly when absent), and on damaged
+// files (one error naming file and line, no output).
+#include "NurbsTestUtilities.h"
+#include "vtkIGAGeoPDEsReader.h"
+#include "vtkIGAGismoReader.h"
+#include "vtkIGANurbsData.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellType.h"
+#include "vtkDataArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+using namespace igatest;
+
+namespace
+{
+
+const std::string kData = IGAVIEW_DATA_DIR;
+const std::string kShared = IGAVIEW_SHARED_DATA_DIR;
+
+bool exists(const std::string& path)
+{
+  return std::ifstream(path).good();
+}
+
+std::string slurp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Runs a reader on a file; collects the reader's error messages.
+template<class Reader>
+vtkSmartPointer<vtkUnstructuredGrid> read(
+  const std::string& file, std::vector<std::string>* errors = nullptr, Reader** keep = nullptr)
+{
+  static std::vector<std::string> ignored;
+  auto reader = vtkSmartPointer<Reader>::New();
+  std::vector<std::string>* sink = errors ? errors : &ignored;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(sink);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
+  reader->AddObserver(vtkCommand::ErrorEvent, onError);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->ShallowCopy(reader->GetOutput());
+  if (keep)
+  {
+    *keep = reader;
+    reader->Register(nullptr);
+  }
+  return grid;
+}
+
+/// The NURBS a reader holds after reading `file`, and its grid.
+template<class Reader>
+std::pair<iga::NurbsSet<double>, vtkSmartPointer<vtkUnstructuredGrid>> readNurbs(
+  const std::string& file)
+{
+  Reader* reader = nullptr;
+  std::vector<std::string> errors;
+  auto grid = read<Reader>(file, &errors, &reader);
+  EXPECT_TRUE(errors.empty()) << file << ": " << (errors.empty() ? "" : errors[0]);
+  auto set = reader->GetNurbsData()->GetPatches();
+  reader->Delete();
+  return { set, grid };
+}
+
+std::vector<double> at(vtkUnstructuredGrid* grid, vtkIdType cell, double u, double v, double w)
+{
+  const double pcoords[3] = { u, v, w };
+  return evaluateCell(grid, cell, pcoords, iga::geometryAttributeNames());
+}
+
+/// The quarter ring samples: radius 1 + v exactly on the rational circle, z = w, "x" = x.
+void checkQuarterRing(vtkUnstructuredGrid* grid)
+{
+  ASSERT_EQ(grid->GetNumberOfCells(), 1);
+  EXPECT_EQ(grid->GetCellType(0), VTK_BEZIER_HEXAHEDRON);
+  double degrees[3];
+  grid->GetCellData()->GetHigherOrderDegrees()->GetTuple(0, degrees);
+  EXPECT_EQ(degrees[0], 2);
+  EXPECT_EQ(degrees[1], 1);
+  EXPECT_EQ(degrees[2], 1);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int s = 0; s < 50; ++s)
+  {
+    const double u = unit(rng), v = unit(rng), w = unit(rng);
+    const auto value = at(grid, 0, u, v, w);
+    EXPECT_NEAR(std::hypot(value[0], value[1]), 1 + v, 1e-13);
+    EXPECT_NEAR(value[2], w, 1e-13);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(value[3 + c], value[c], 1e-13) << "attribute " << c << " is the coordinate";
+  }
+}
+
+TEST(NurbsReaders, GismoQuarterRing)
+{
+  checkQuarterRing(read<vtkIGAGismoReader>(kData + "/gismo_quarter_ring.xml"));
+}
+
+TEST(NurbsReaders, GeoPDEsQuarterRingEqualsTheGismoOne)
+{
+  const auto geopdes = read<vtkIGAGeoPDEsReader>(kData + "/geopdes_quarter_ring.txt");
+  checkQuarterRing(geopdes);
+  const auto gismo = read<vtkIGAGismoReader>(kData + "/gismo_quarter_ring.xml");
+  ASSERT_EQ(geopdes->GetNumberOfPoints(), gismo->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < gismo->GetNumberOfPoints(); ++p)
+    for (int d = 0; d < 3; ++d)
+      EXPECT_NEAR(geopdes->GetPoint(p)[d], gismo->GetPoint(p)[d], 1e-15);
+}
+
+TEST(NurbsReaders, GismoMultiPatchReadsItsPatchesOnly)
+{
+  const auto [set, grid] = readNurbs<vtkIGAGismoReader>(kData + "/gismo_two_blocks.xml");
+  ASSERT_EQ(set.volumes.size(), 2u);
+  EXPECT_TRUE(set.surfaces.empty()) << "geometry 12 is outside the MultiPatch";
+  ASSERT_EQ(grid->GetNumberOfCells(), 3); // 2 knot spans + 1
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int s = 0; s < 30; ++s)
+  {
+    // Block 10 is polynomial with Greville control x: parameter_u = x = u exactly.
+    const double t = unit(rng);
+    const int cell = s % 2;
+    const auto value = at(grid, cell, t, unit(rng), unit(rng));
+    EXPECT_NEAR(value[0], 0.5 * (cell + t), 1e-14);
+    EXPECT_NEAR(value[6], value[0], 1e-14) << "parameter_u";
+    // Block 11: z rises to 1.5 at x = 2 on its top face.
+    const auto top = at(grid, 2, t, unit(rng), 1.0);
+    EXPECT_NEAR(top[2], 1 + 0.5 * (top[0] - 1), 1e-14);
+  }
+  compareWithCoxDeBoor(set, grid, rng, 20);
+}
+
+TEST(NurbsReaders, GismoSurfaceIsABezierQuadrilateral)
+{
+  const auto grid = read<vtkIGAGismoReader>(kData + "/gismo_quarter_cylinder_surface.xml");
+  ASSERT_EQ(grid->GetNumberOfCells(), 1);
+  EXPECT_EQ(grid->GetCellType(0), VTK_BEZIER_QUADRILATERAL);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int s = 0; s < 30; ++s)
+  {
+    const double u = unit(rng), v = unit(rng);
+    const auto value = at(grid, 0, u, v, 0);
+    EXPECT_NEAR(std::hypot(value[0], value[1]), 1.0, 1e-14);
+    EXPECT_NEAR(value[2], 2 * v, 1e-14);
+    EXPECT_EQ(value[8], 0.0) << "parameter_w of a surface";
+  }
+}
+
+TEST(NurbsReaders, GeoPDEsVersion07MultipatchWithSections)
+{
+  const auto [set, grid] = readNurbs<vtkIGAGeoPDEsReader>(kData + "/geopdes_two_cubes_v07.txt");
+  ASSERT_EQ(set.volumes.size(), 2u);
+  ASSERT_EQ(grid->GetNumberOfCells(), 2);
+  double bounds[6];
+  grid->GetBounds(bounds);
+  EXPECT_EQ(bounds[0], 0.0);
+  EXPECT_EQ(bounds[1], 2.0);
+  EXPECT_EQ(bounds[5], 1.0);
+  std::mt19937 rng(6);
+  compareWithCoxDeBoor(set, grid, rng, 20);
+}
+
+#define REQUIRE_SHARED(path)                                                                       \
+  if (!exists(path))                                                                               \
+  GTEST_SKIP() << "real file " << path << " is absent (../shared/data not available)"
+
+TEST(NurbsReadersRealFiles, GismoQuarterCylinder)
+{
+  const std::string file = kShared + "/gismo/quarter_cylinder.xml";
+  REQUIRE_SHARED(file);
+  const auto [set, grid] = readNurbs<vtkIGAGismoReader>(file);
+  ASSERT_EQ(set.volumes.size(), 1u);
+  const auto& patch = set.volumes[0];
+  EXPECT_EQ(patch.degree[0], 2);
+  EXPECT_EQ(patch.degree[1], 2);
+  EXPECT_EQ(patch.degree[2], 1);
+  EXPECT_EQ(patch.net[patch.channels + iga::kWeightChannel], 0.7071067812); // written weight
+  ASSERT_EQ(grid->GetNumberOfCells(), 1);
+  // Radii 1, 1.5, 2 along v (so r = 1 + v), height 5 along w.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int s = 0; s < 50; ++s)
+  {
+    const double u = unit(rng), v = unit(rng), w = unit(rng);
+    const auto value = at(grid, 0, u, v, w);
+    EXPECT_NEAR(std::hypot(value[0], value[1]), 1 + v, 1e-9); // 10-digit weight in the file
+    EXPECT_NEAR(value[2], 5 * w, 1e-12);
+  }
+  EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 50), 1e-12);
+}
+
+TEST(NurbsReadersRealFiles, GismoTwistedPipeWithRepeatedKnot)
+{
+  const std::string file = kShared + "/gismo/twisted_pipe.xml";
+  REQUIRE_SHARED(file);
+  const auto [set, grid] = readNurbs<vtkIGAGismoReader>(file);
+  ASSERT_EQ(set.volumes.size(), 1u);
+  EXPECT_EQ(set.volumes[0].netSize[0], 10);
+  // Spans: 6 along u (0.3333333 and 0.6666667 repeated), 2 and 2.
+  EXPECT_EQ(grid->GetNumberOfCells(), 24);
+  std::mt19937 rng(8);
+  EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 100), 1e-12);
+}
+
+TEST(NurbsReadersRealFiles, GismoGshapedVolume)
+{
+  const std::string file = kShared + "/gismo/GshapedVolume.xml";
+  REQUIRE_SHARED(file);
+  const auto [set, grid] = readNurbs<vtkIGAGismoReader>(file);
+  ASSERT_EQ(set.volumes.size(), 1u);
+  EXPECT_EQ(grid->GetNumberOfCells(), 7);
+  double bounds[6];
+  grid->GetBounds(bounds);
+  EXPECT_EQ(bounds[4], 0.0);
+  EXPECT_EQ(bounds[5], 1.0);
+  std::mt19937 rng(9);
+  EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 100), 1e-12);
+}
+
+TEST(NurbsReadersRealFiles, GismoTeapotSurfaces)
+{
+  const std::string file = kShared + "/gismo/teapot.xml";
+  REQUIRE_SHARED(file);
+  const auto [set, grid] = readNurbs<vtkIGAGismoReader>(file);
+  EXPECT_TRUE(set.volumes.empty());
+  ASSERT_EQ(set.surfaces.size(), 32u);
+  ASSERT_EQ(grid->GetNumberOfCells(), 32);
+  for (vtkIdType c = 0; c < 32; ++c)
+  {
+    EXPECT_EQ(grid->GetCellType(c), VTK_BEZIER_QUADRILATERAL);
+    EXPECT_EQ(grid->GetCellData()->GetHigherOrderDegrees()->GetComponent(c, 0), 3);
+  }
+  // Patch 0's corner (u, v) = (0, 0) is its first control point, (1.4, 0, 2.4).
+  const auto corner = at(grid, 0, 0, 0, 0);
+  EXPECT_NEAR(corner[0], 1.4, 1e-15);
+  EXPECT_NEAR(corner[2], 2.4, 1e-15);
+  std::mt19937 rng(10);
+  EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 10), 1e-12);
+}
+
+TEST(NurbsReadersRealFiles, GeoPDEsTwoCubesVersion21)
+{
+  const std::string file = kShared + "/geopdes/geo_2cubesb.txt";
+  REQUIRE_SHARED(file);
+  const auto [set, grid] = readNurbs<vtkIGAGeoPDEsReader>(file);
+  ASSERT_EQ(set.volumes.size(), 2u);
+  EXPECT_EQ(grid->GetNumberOfCells(), 4); // knot 0.4 splits v of patch 1 and w of patch 2
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const auto cells = cellsBySpan(grid);
+  for (int s = 0; s < 30; ++s)
+  {
+    // Patch 1: x = 0.5 u (control 0, 0.25, 0.5), z = w; patch 2: x = 0.5 + 0.5 u.
+    const double u = unit(rng), v = unit(rng), w = unit(rng);
+    const auto one = at(grid, cells.at({ 0, 0, s % 2, 0 }), u, v, w);
+    EXPECT_NEAR(one[0], 0.5 * u, 1e-14);
+    EXPECT_NEAR(one[2], w, 1e-14);
+    const auto two = at(grid, cells.at({ 1, 0, 0, s % 2 }), u, v, w);
+    EXPECT_NEAR(two[0], 0.5 + 0.5 * u, 1e-14);
+  }
+  EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 100), 1e-12);
+}
+
+/// Writes `text` to a temporary file and reads it; expects one error that names the file and
+/// contains `expected`, and no cells.
+template<class Reader>
+void expectError(const std::string& name, const std::string& text, const std::string& expected)
+{
+  const std::string file = testing::TempDir() + "/" + name;
+  std::ofstream(file, std::ios::binary) << text;
+  std::vector<std::string> errors;
+  const auto grid = read<Reader>(file, &errors);
+  ASSERT_EQ(errors.size(), 1u) << name;
+  EXPECT_NE(errors[0].find(file + ":"), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find(expected), std::string::npos) << "got: " << errors[0];
+  EXPECT_EQ(grid->GetNumberOfCells(), 0);
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to)
+{
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
+{
+  const std::string good = slurp(kData + "/gismo_quarter_ring.xml");
+  using R = vtkIGAGismoReader;
+  const std::string truncated = good.substr(0, good.size() / 2);
+  const auto lastLine = std::count(truncated.begin(), truncated.end(), '\n') + 1;
+  expectError<R>(
+    "truncated.xml", truncated, ":" + std::to_string(lastLine) + ": not well-formed XML");
+  expectError<R>("count.xml", replaced(good, "   0 2 1\n", "   0 2\n"),
+    ":20: <coefs> has 35 values, expected 36");
+  expectError<R>("knots.xml", replaced(good, "0 0 1 1</KnotVector>", "0 1 0 1</KnotVector>"),
+    ":12: <KnotVector> (direction 1): knots are not non-decreasing at index 2");
+  expectError<R>("weight.xml", replaced(good, "<weights>1 ", "<weights>-1 "),
+    ":18: <weights> weight 1 is -1.000000, weights must be positive");
+  expectError<R>("nan.xml", replaced(good, "   1 1 0\n", "   1 nan 0\n"),
+    ":20: <coefs> value 5 'nan' is not finite");
+  expectError<R>("type.xml", replaced(good, "TensorNurbs3\"", "THBSpline3\""),
+    ":5: <Geometry> type 'THBSpline3' is not supported");
+  expectError<R>("degree.xml", replaced(good, "degree=\"2\"", "degree=\"x\""),
+    ":9: <KnotVector> needs an integer attribute degree");
+  expectError<R>("empty.xml", "<xml></xml>", "has no <Geometry> or <MultiPatch> element");
+  const std::string blocks = slurp(kData + "/gismo_two_blocks.xml");
+  expectError<R>("ids.xml", replaced(blocks, "10 11</patches>", "10 13</patches>"),
+    ":72: <patches> refers to geometry id 13, which no top-level <Geometry> has");
+  std::vector<std::string> errors;
+  read<R>(testing::TempDir() + "/no_such_file.xml", &errors);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("no_such_file.xml: cannot open the file"), std::string::npos);
+}
+
+TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
+{
+  const std::string good = slurp(kData + "/geopdes_quarter_ring.txt");
+  using R = vtkIGAGeoPDEsReader;
+  expectError<R>("truncated.txt", good.substr(0, good.find("0 0 0 1 1 1")),
+    ":7: the file ends where knot vector 1 should follow");
+  expectError<R>(
+    "count.txt", replaced(good, "3 2 2\n", "3 2 3\n"), ":10: knot vector 3: 4 values, expected 5");
+  expectError<R>("knots.txt", replaced(good, "0 0 0 1 1 1", "0 0 1 0 1 1"),
+    ":8: knot vector 1: knots are not non-decreasing at index 3");
+  expectError<R>("weight.txt", replaced(good, "\n1 0.70710678118654757 1 1", "\n1 0 1 1"),
+    ":14: weights: weight 2 is 0.000000, weights must be positive");
+  expectError<R>("nan.txt", replaced(good, "3 3 1\nPATCH 1\n2 1 1", "3 3 1\nPATCH 1\n2 nan 1"),
+    ":6: degrees: '2 nan 1' is not a line of finite numbers");
+  expectError<R>("dimension.txt", replaced(good, "3 3 1\n", "1 3 1\n"),
+    ":4: header: parametric dimension 1 in physical dimension 3 is not supported");
+  expectError<R>("junk.txt", good + "JUNK 1\n", ":15: 'JUNK 1' follows the patches");
+  const std::string cubes = slurp(kData + "/geopdes_two_cubes_v07.txt");
+  expectError<R>("interfaces.txt", replaced(cubes, "3 2 1 1\n", "3 2 2 1\n"),
+    "the header announces 2 interfaces, the file has 1");
+  expectError<R>("side.txt", replaced(cubes, "1 2\n2 1\n1 1 1", "1 2\n3 1\n1 1 1"),
+    "interface side: patch 3 side 1 does not exist");
+}
+
+} // namespace
