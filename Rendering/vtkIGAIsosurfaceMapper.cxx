@@ -14,6 +14,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderPass.h"
 #include "vtkOpenGLRenderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -56,6 +57,8 @@ struct vtkIGAIsosurfaceMapper::Internals
   vtkNew<vtkTextureObject> ColourTexture;
   vtkNew<vtkTextureObject> DepthTexture;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  std::vector<vtkOpenGLRenderPass*> ShaderPasses; ///< the render passes Quad's shader has
+  vtkMTimeType ShaderTime = 0;
   vtkTimeStamp UploadTime;
   vtkTimeStamp FrameTime;
 };
@@ -611,18 +614,55 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       in.UploadTime = vtkTimeStamp(); // the colours go back up next time
     }
   }
-  if (!in.Quad)
+  // Render passes (order-independent translucency, depth peeling, ...) hook into the shader as
+  // into vtkOpenGLPolyDataMapper's, through the DepthPeeling markers; their depth tests read
+  // gl_FragCoord.z, which for this quad is the surface's depth igaDepth.
+  std::vector<vtkOpenGLRenderPass*> passes;
+  vtkMTimeType passTime = 0;
+  vtkInformation* keys = actor->GetPropertyKeys();
+  if (keys && keys->Has(vtkOpenGLRenderPass::RenderPasses()))
   {
+    for (int k = 0; k < keys->Length(vtkOpenGLRenderPass::RenderPasses()); ++k)
+    {
+      passes.push_back(
+        static_cast<vtkOpenGLRenderPass*>(keys->Get(vtkOpenGLRenderPass::RenderPasses(), k)));
+      passTime = std::max(passTime, passes.back()->GetShaderStageMTime());
+    }
+  }
+  if (!in.Quad || passes != in.ShaderPasses || passTime > in.ShaderTime)
+  {
+    std::string vertex = vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader();
+    std::string geometry;
     std::string fragment = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
     vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Decl",
       "uniform sampler2D colourTexture;\n"
-      "uniform sampler2D depthTexture;\n");
+      "uniform sampler2D depthTexture;\n"
+      "float igaDepth;\n"
+      "//VTK::DepthPeeling::Dec\n");
     vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Impl",
       "  vec4 colour = texture(colourTexture, texCoord);\n"
       "  if (colour.a <= 0.0) { discard; }\n"
-      "  gl_FragDepth = texture(depthTexture, texCoord).r;\n"
-      "  gl_FragData[0] = colour;\n");
-    in.Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, fragment.c_str(), nullptr));
+      "  igaDepth = texture(depthTexture, texCoord).r;\n"
+      "  gl_FragDepth = igaDepth;\n"
+      "  //VTK::DepthPeeling::PreColor\n"
+      "  gl_FragData[0] = vec4(colour.rgb / colour.a, colour.a);\n"
+      "  //VTK::DepthPeeling::Impl\n");
+    for (vtkOpenGLRenderPass* pass : passes)
+    {
+      pass->PreReplaceShaderValues(vertex, geometry, fragment, this, actor);
+    }
+    for (vtkOpenGLRenderPass* pass : passes)
+    {
+      pass->PostReplaceShaderValues(vertex, geometry, fragment, this, actor);
+    }
+    vtkShaderProgram::Substitute(fragment, "gl_FragCoord.z", "igaDepth", true);
+    if (in.Quad)
+    {
+      in.Quad->ReleaseGraphicsResources(window);
+    }
+    in.Quad.reset(new vtkOpenGLQuadHelper(window, vertex.c_str(), fragment.c_str(), nullptr));
+    in.ShaderPasses = passes;
+    in.ShaderTime = passTime;
   }
   else
   {
@@ -640,13 +680,19 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   vtkOpenGLState* state = window->GetState();
   vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
-  state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthFunc(GL_LEQUAL);
-  state->vtkglDepthMask(GL_TRUE);
+  if (passes.empty()) // render passes set up the depth state they need
+  {
+    state->vtkglEnable(GL_DEPTH_TEST);
+    state->vtkglDepthFunc(GL_LEQUAL);
+  }
   in.ColourTexture->Activate();
   in.DepthTexture->Activate();
   in.Quad->Program->SetUniformi("colourTexture", in.ColourTexture->GetTextureUnit());
   in.Quad->Program->SetUniformi("depthTexture", in.DepthTexture->GetTextureUnit());
+  for (vtkOpenGLRenderPass* pass : passes)
+  {
+    pass->SetShaderParameters(in.Quad->Program, this, actor, in.Quad->VAO);
+  }
   in.Quad->Render();
   in.ColourTexture->Deactivate();
   in.DepthTexture->Deactivate();

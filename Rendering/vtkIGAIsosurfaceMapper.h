@@ -21,7 +21,11 @@
  * selection (vtkHardwareSelector, vtkPropPicker) draws VTK's ids: the prop, the composite block,
  * the process and the cell (the patch the hit lies in); point ids are not drawn.
  *
- * Current limits: opaque surfaces only (the first hit is drawn, whatever the opacity).
+ * A property opacity below 1 blends the first hit over what lies behind it in VTK's default
+ * translucent pass, whose order-independent translucency hooks into this mapper's shader like
+ * into vtkOpenGLPolyDataMapper's (render passes' DepthPeeling markers); the surface's own
+ * further layers are not drawn. Known limit: with depth peeling (vtkDualDepthPeelingPass,
+ * ParaView's default for translucent geometry) a translucent isosurface is not drawn yet.
  */
 #ifndef vtkIGAIsosurfaceMapper_h
 #define vtkIGAIsosurfaceMapper_h

@@ -176,6 +176,29 @@ TEST(IsosurfaceMapper, OccludesAndIsOccludedByOrdinaryActors)
   EXPECT_LT(scene.pixel(i, j)[1], 30);
 }
 
+/// A half-opaque red isosurface in front of an opaque green sphere, through VTK's default
+/// translucent pass (its order-independent translucency hooks into the mapper's shader).
+TEST(IsosurfaceMapper, TranslucentSurfaceBlendsOverWhatIsBehind)
+{
+  Scene scene;
+  scene.addSphere(0.55, 0, 0.2, 0.3); // inside the isosurface
+  scene.isosurface->GetProperty()->SetOpacity(0.5);
+  scene.isosurface->GetProperty()->SetAmbient(1);
+  scene.isosurface->GetProperty()->SetDiffuse(0);
+  scene.isosurface->GetProperty()->SetSpecular(0);
+  scene.render();
+  const double inside[3] = { 0.55, -0.3, 0.2 }, elsewhere[3] = { -0.5, -0.8, -0.2 };
+  int i, j;
+  double depth;
+  scene.display(inside, i, j, depth);
+  // Half red surface over the full green sphere.
+  EXPECT_NEAR(scene.pixel(i, j)[0], 128, 4);
+  EXPECT_NEAR(scene.pixel(i, j)[1], 128, 4);
+  scene.display(elsewhere, i, j, depth);
+  EXPECT_NEAR(scene.pixel(i, j)[0], 128, 4) << "half red over the black background";
+  EXPECT_NEAR(scene.pixel(i, j)[1], 0, 4);
+}
+
 TEST(IsosurfaceMapper, ReusesTheFrameUntilSomethingChanges)
 {
   Scene scene;
