@@ -1,5 +1,7 @@
 #include "vtkIGAGeoPDEsReader.h"
 
+#include "IGAReadError.h"
+
 #include "vtkIGANurbsData.h"
 #include "vtkObjectFactory.h"
 
@@ -14,14 +16,6 @@ vtkStandardNewMacro(vtkIGAGeoPDEsReader);
 
 namespace
 {
-struct ReadError : std::runtime_error
-{
-  ReadError(long line, const std::string& what)
-    : std::runtime_error(line > 0 ? std::to_string(line) + ": " + what : what)
-  {
-  }
-};
-
 struct Line
 {
   long number = 0;
@@ -74,7 +68,7 @@ public:
   {
     if (this->atEnd())
     {
-      throw ReadError(
+      throw IGAReadError(
         this->LastLine, std::string("the file ends where ") + what + " should follow");
     }
     return this->Lines[this->Next];
@@ -93,13 +87,13 @@ public:
     std::vector<double> values;
     if (!parseNumbers(line.text, values))
     {
-      throw ReadError(
+      throw IGAReadError(
         line.number, std::string(what) + ": '" + line.text + "' is not a line of finite numbers");
     }
     if (count >= 0 && static_cast<long>(values.size()) != count)
     {
-      throw ReadError(line.number, std::string(what) + ": " + std::to_string(values.size()) +
-                                     " values, expected " + std::to_string(count));
+      throw IGAReadError(line.number, std::string(what) + ": " + std::to_string(values.size()) +
+                                        " values, expected " + std::to_string(count));
     }
     return values;
   }
@@ -113,9 +107,9 @@ public:
     {
       if (value != std::floor(value) || value < lo || value > hi)
       {
-        throw ReadError(number, std::string(what) + ": " + std::to_string(value) +
-                                  " is not an integer in " + std::to_string(lo) + ".." +
-                                  std::to_string(hi));
+        throw IGAReadError(number, std::string(what) + ": " + std::to_string(value) +
+                                     " is not an integer in " + std::to_string(lo) + ".." +
+                                     std::to_string(hi));
       }
       result.push_back(static_cast<int>(value));
     }
@@ -170,7 +164,7 @@ void readPatch(GeoPDEsLines& lines, int rdim, iga::BSplinePatch<double, Dim>& pa
     }
     catch (const std::invalid_argument& e)
     {
-      throw ReadError(number, what + ": " + e.what());
+      throw IGAReadError(number, what + ": " + e.what());
     }
     patch.degree[d] = degrees[d];
     patch.netSize[d] = counts[d];
@@ -191,8 +185,8 @@ void readPatch(GeoPDEsLines& lines, int rdim, iga::BSplinePatch<double, Dim>& pa
   {
     if (!(weights[p] > 0))
     {
-      throw ReadError(weightLine, "weights: weight " + std::to_string(p + 1) + " is " +
-                                    std::to_string(weights[p]) + ", weights must be positive");
+      throw IGAReadError(weightLine, "weights: weight " + std::to_string(p + 1) + " is " +
+                                       std::to_string(weights[p]) + ", weights must be positive");
     }
     for (int c = 0; c < rdim; ++c)
     {
@@ -221,8 +215,8 @@ void checkSections(GeoPDEsLines& lines, int ndim, int patches, int interfaces)
         const auto side = lines.integers("interface side (patch side)", 2, 1, 1000000);
         if (side[0] > patches || side[1] > 2 * ndim)
         {
-          throw ReadError(number, "interface side: patch " + std::to_string(side[0]) + " side " +
-                                    std::to_string(side[1]) + " does not exist");
+          throw IGAReadError(number, "interface side: patch " + std::to_string(side[0]) + " side " +
+                                       std::to_string(side[1]) + " does not exist");
         }
       }
       lines.integers("interface orientation", ndim == 3 ? 3 : 1, -1, 1);
@@ -240,22 +234,22 @@ void checkSections(GeoPDEsLines& lines, int ndim, int patches, int interfaces)
         const auto side = lines.integers("boundary side (patch side)", 2, 1, 1000000);
         if (side[0] > patches || side[1] > 2 * ndim)
         {
-          throw ReadError(number, "boundary side: patch " + std::to_string(side[0]) + " side " +
-                                    std::to_string(side[1]) + " does not exist");
+          throw IGAReadError(number, "boundary side: patch " + std::to_string(side[0]) + " side " +
+                                       std::to_string(side[1]) + " does not exist");
         }
       }
     }
     else
     {
-      throw ReadError(line.number, "'" + line.text +
-                                     "' follows the patches; expected INTERFACE, SUBDOMAIN or "
-                                     "BOUNDARY (or more patches than the header's count)");
+      throw IGAReadError(line.number, "'" + line.text +
+                                        "' follows the patches; expected INTERFACE, SUBDOMAIN or "
+                                        "BOUNDARY (or more patches than the header's count)");
     }
   }
   if (interfaces >= 0 && seenInterfaces != interfaces)
   {
-    throw ReadError(0, "the header announces " + std::to_string(interfaces) +
-                         " interfaces, the file has " + std::to_string(seenInterfaces));
+    throw IGAReadError(0, "the header announces " + std::to_string(interfaces) +
+                            " interfaces, the file has " + std::to_string(seenInterfaces));
   }
 }
 }
@@ -279,7 +273,7 @@ std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsD
     const size_t dims = old ? 1 : 2;
     if (header.size() < dims || header.size() > dims + 3)
     {
-      throw ReadError(
+      throw IGAReadError(
         headerLine, "header: " + std::to_string(header.size()) + " values, expected " +
                       (old ? "N Np [Ni Ns] (v.0.7)" : "ndim rdim Np [Ni Ns] (v.2.1)"));
     }
@@ -289,13 +283,13 @@ std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsD
     const int interfaces = header.size() > dims + 1 ? header[dims + 1] : -1;
     if (ndim < 2 || ndim > 3 || rdim < ndim || rdim > 3)
     {
-      throw ReadError(headerLine, "header: parametric dimension " + std::to_string(ndim) +
-                                    " in physical dimension " + std::to_string(rdim) +
-                                    " is not supported (volumes 3 in 3, surfaces 2 in 2 or 3)");
+      throw IGAReadError(headerLine, "header: parametric dimension " + std::to_string(ndim) +
+                                       " in physical dimension " + std::to_string(rdim) +
+                                       " is not supported (volumes 3 in 3, surfaces 2 in 2 or 3)");
     }
     if (patches < 1)
     {
-      throw ReadError(headerLine, "header: the number of patches is 0");
+      throw IGAReadError(headerLine, "header: the number of patches is 0");
     }
     for (int p = 0; p < patches; ++p)
     {
@@ -312,7 +306,7 @@ std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsD
     }
     checkSections(lines, ndim, patches, interfaces);
   }
-  catch (const ReadError& e)
+  catch (const IGAReadError& e)
   {
     return e.what();
   }

@@ -1,5 +1,7 @@
 #include "vtkIGAGismoReader.h"
 
+#include "IGAReadError.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkIGANurbsData.h"
 #include "vtkNew.h"
@@ -20,15 +22,6 @@ vtkStandardNewMacro(vtkIGAGismoReader);
 
 namespace
 {
-/// A problem at a line of the file (0: the file as a whole).
-struct ReadError : std::runtime_error
-{
-  ReadError(long line, const std::string& what)
-    : std::runtime_error(line > 0 ? std::to_string(line) + ": " + what : what)
-  {
-  }
-};
-
 class GismoParser
 {
 public:
@@ -47,7 +40,7 @@ public:
 
   [[noreturn]] void fail(const vtkXMLDataElement* element, const std::string& what) const
   {
-    throw ReadError(this->lineOf(element),
+    throw IGAReadError(this->lineOf(element),
       "<" + std::string(const_cast<vtkXMLDataElement*>(element)->GetName()) + "> " + what);
   }
 
@@ -356,7 +349,7 @@ std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsDat
       gismo.readGeometry(geometry, set);
     }
   }
-  catch (const ReadError& e)
+  catch (const IGAReadError& e)
   {
     return e.what();
   }
