@@ -1,0 +1,275 @@
+#include "vtkIGAIsosurfaceRepresentation.h"
+
+#include "vtkIGAIsosurfaceMapper.h"
+
+#include "vtkCompositeDataSet.h"
+#include "vtkDataObject.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkMergeBlocks.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutlineSource.h"
+#include "vtkPVLODActor.h"
+#include "vtkPVRenderView.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkTransform.h"
+#include "vtkUnstructuredGrid.h"
+
+vtkStandardNewMacro(vtkIGAIsosurfaceRepresentation);
+
+vtkIGAIsosurfaceRepresentation::vtkIGAIsosurfaceRepresentation()
+{
+  this->Actor->SetProperty(this->Property);
+  this->Actor->SetMapper(this->Mapper);
+  this->Actor->SetLODMapper(this->OutlineMapper);
+  this->Mapper->SetScalarVisibility(0);
+  this->Mapper->SetScalarModeToUsePointFieldData();
+  this->OutlineMapper->SetScalarVisibility(0);
+  vtkMath::UninitializeBounds(this->DataBounds);
+}
+
+vtkIGAIsosurfaceRepresentation::~vtkIGAIsosurfaceRepresentation() = default;
+
+void vtkIGAIsosurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mapper:\n";
+  this->Mapper->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Cells in this piece: " << (this->Cache ? this->Cache->GetNumberOfCells() : 0)
+     << "\n";
+}
+
+int vtkIGAIsosurfaceRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkIGAIsosurfaceRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // A rank without data (or without cells) still takes part in every view pass with an empty
+  // piece, so that the collective delivery and compositing steps match on all ranks.
+  this->Cache = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkMath::UninitializeBounds(this->DataBounds);
+  if (inputVector[0]->GetNumberOfInformationObjects() == 1)
+  {
+    vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+    if (auto* grid = vtkUnstructuredGrid::SafeDownCast(input))
+    {
+      this->Cache->ShallowCopy(grid);
+    }
+    else if (vtkCompositeDataSet::SafeDownCast(input))
+    {
+      this->MergeBlocks->SetInputDataObject(input);
+      this->MergeBlocks->Update();
+      this->Cache->ShallowCopy(this->MergeBlocks->GetOutputDataObject(0));
+    }
+    else if (input)
+    {
+      vtkErrorMacro(<< "IGA Isosurface needs an unstructured grid of Bézier hexahedra, not a "
+                    << input->GetClassName());
+    }
+  }
+  if (this->Cache->GetNumberOfCells() > 0)
+  {
+    // The control points bound the patches (convex hull property).
+    this->Cache->GetBounds(this->DataBounds);
+  }
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+int vtkIGAIsosurfaceRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    // Each rank keeps its own piece; the view reduces the bounds over ranks for the camera
+    // and clipping range, and IceT composites the ranks' colour and depth.
+    vtkPVRenderView::SetPiece(inInfo, this, this->Cache);
+    vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+  }
+  else if (request_type == vtkPVView::REQUEST_UPDATE_LOD())
+  {
+    vtkNew<vtkPolyData> outline;
+    if (vtkMath::AreBoundsInitialized(this->DataBounds))
+    {
+      this->Outline->SetBounds(this->DataBounds);
+      this->Outline->Update();
+      outline->ShallowCopy(this->Outline->GetOutput());
+    }
+    vtkPVRenderView::SetPieceLOD(inInfo, this, outline);
+    vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
+  }
+  else if (request_type == vtkPVView::REQUEST_RENDER())
+  {
+    auto* piece = vtkUnstructuredGrid::SafeDownCast(vtkPVView::GetDeliveredPiece(inInfo, this));
+    // An empty piece draws nothing; the mapper would report it as bad input.
+    this->Mapper->SetInputDataObject(piece && piece->GetNumberOfCells() > 0 ? piece : nullptr);
+    this->OutlineMapper->SetInputDataObject(vtkPVView::GetDeliveredPieceLOD(inInfo, this));
+    this->Actor->SetEnableLOD(inInfo->Has(vtkPVRenderView::USE_LOD()) ? 1 : 0);
+  }
+  return 1;
+}
+
+bool vtkIGAIsosurfaceRepresentation::AddToView(vtkView* view)
+{
+  if (auto* renderView = vtkPVRenderView::SafeDownCast(view))
+  {
+    renderView->GetRenderer()->AddActor(this->Actor);
+    return this->Superclass::AddToView(view);
+  }
+  return false;
+}
+
+bool vtkIGAIsosurfaceRepresentation::RemoveFromView(vtkView* view)
+{
+  if (auto* renderView = vtkPVRenderView::SafeDownCast(view))
+  {
+    renderView->GetRenderer()->RemoveActor(this->Actor);
+    return this->Superclass::RemoveFromView(view);
+  }
+  return false;
+}
+
+void vtkIGAIsosurfaceRepresentation::SetVisibility(bool val)
+{
+  this->Superclass::SetVisibility(val);
+  this->Actor->SetVisibility(val ? 1 : 0);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetNumberOfIsovalues(int count)
+{
+  this->Mapper->SetNumberOfIsovalues(count);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetIsovalue(int index, double value)
+{
+  this->Mapper->SetIsovalue(index, value);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetSurfaceArray(
+  int, int, int, int fieldAssociation, const char* name)
+{
+  if (name && *name && fieldAssociation != vtkDataObject::FIELD_ASSOCIATION_POINTS)
+  {
+    vtkErrorMacro(<< "the surface array '" << name << "' must be a point array");
+    return;
+  }
+  this->Mapper->SetSurfaceArrayName(name);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetNumberOfThreads(int threads)
+{
+  this->Mapper->SetNumberOfThreads(threads);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetInputArrayToProcess(
+  int idx, int port, int connection, int fieldAssociation, const char* name)
+{
+  this->Superclass::SetInputArrayToProcess(idx, port, connection, fieldAssociation, name);
+  if (idx != 0)
+  {
+    return;
+  }
+  // The mapper samples point attributes at the hits; cell colouring falls back to the
+  // solid colour.
+  const bool byPoints =
+    name && *name && fieldAssociation == vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  if (name && *name && !byPoints)
+  {
+    vtkWarningMacro(<< "IGA Isosurface colours by point arrays only; '" << name
+                    << "' is drawn in the solid colour");
+  }
+  this->Mapper->SetScalarVisibility(byPoints ? 1 : 0);
+  this->Mapper->SelectColorArray(byPoints ? name : nullptr);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetLookupTable(vtkScalarsToColors* lut)
+{
+  this->Mapper->SetLookupTable(lut);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetOpacity(double value)
+{
+  this->Property->SetOpacity(value);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetAmbient(double value)
+{
+  this->Property->SetAmbient(value);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetDiffuse(double value)
+{
+  this->Property->SetDiffuse(value);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetSpecular(double value)
+{
+  this->Property->SetSpecular(value);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetSpecularPower(double value)
+{
+  this->Property->SetSpecularPower(value);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetAmbientColor(double r, double g, double b)
+{
+  this->Property->SetAmbientColor(r, g, b);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetDiffuseColor(double r, double g, double b)
+{
+  this->Property->SetDiffuseColor(r, g, b);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetSpecularColor(double r, double g, double b)
+{
+  this->Property->SetSpecularColor(r, g, b);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetOrientation(double x, double y, double z)
+{
+  this->Actor->SetOrientation(x, y, z);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetOrigin(double x, double y, double z)
+{
+  this->Actor->SetOrigin(x, y, z);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetPosition(double x, double y, double z)
+{
+  this->Actor->SetPosition(x, y, z);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetScale(double x, double y, double z)
+{
+  this->Actor->SetScale(x, y, z);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetUserTransform(const double matrix[16])
+{
+  vtkNew<vtkTransform> transform;
+  transform->SetMatrix(matrix);
+  this->Actor->SetUserTransform(transform);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetPickable(int value)
+{
+  this->Actor->SetPickable(value);
+}

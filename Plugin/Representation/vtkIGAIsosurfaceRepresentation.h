@@ -1,0 +1,109 @@
+/**
+ * @class   vtkIGAIsosurfaceRepresentation
+ * @brief   ParaView representation "IGA Isosurface": draws the pixel-exact isosurfaces of an
+ *          unstructured grid of Bézier hexahedra with vtkIGAIsosurfaceMapper, without
+ *          tessellating (vtkGeometryRepresentation would extract a surface first).
+ *
+ * Each rank keeps its own piece of the input (SetPiece) and reports its bounds; the view must
+ * render remotely (SetRequiresDistributedRendering), so every pvserver/pvbatch rank draws its
+ * patches with correct window depth and IceT composites the ranks' images by depth. Composite
+ * inputs are merged into one grid per rank. While interacting, the view may ask for a LOD: the
+ * piece's outline.
+ *
+ * Property setters follow the surface representation's names so the XML can share them with it
+ * (colouring through ColorArrayName/LookupTable, Opacity, Specular, transforms).
+ */
+#ifndef vtkIGAIsosurfaceRepresentation_h
+#define vtkIGAIsosurfaceRepresentation_h
+
+#include "IGAViewRepresentationModule.h" // for export macro
+#include "vtkNew.h"                      // for vtkNew
+#include "vtkPVDataRepresentation.h"
+#include "vtkSmartPointer.h" // for vtkSmartPointer
+
+class vtkIGAIsosurfaceMapper;
+class vtkMergeBlocks;
+class vtkOutlineSource;
+class vtkPolyDataMapper;
+class vtkProperty;
+class vtkPVLODActor;
+class vtkScalarsToColors;
+class vtkUnstructuredGrid;
+
+class IGAVIEWREPRESENTATION_EXPORT vtkIGAIsosurfaceRepresentation : public vtkPVDataRepresentation
+{
+public:
+  static vtkIGAIsosurfaceRepresentation* New();
+  vtkTypeMacro(vtkIGAIsosurfaceRepresentation, vtkPVDataRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
+  void SetVisibility(bool val) override;
+
+  ///@{
+  /// Isosurface settings, forwarded to the mapper.
+  void SetNumberOfIsovalues(int count);
+  void SetIsovalue(int index, double value);
+  /// The point array defining the surface (ParaView's 5-element array selection).
+  void SetSurfaceArray(int idx, int port, int connection, int fieldAssociation, const char* name);
+  void SetNumberOfThreads(int threads);
+  ///@}
+
+  ///@{
+  /// Colouring: ColorArrayName (index 0) selects a point array mapped through the lookup table.
+  void SetInputArrayToProcess(
+    int idx, int port, int connection, int fieldAssociation, const char* name) override;
+  using Superclass::SetInputArrayToProcess;
+  void SetLookupTable(vtkScalarsToColors* lut);
+  ///@}
+
+  ///@{
+  /// Forwarded to the property.
+  void SetOpacity(double value);
+  void SetAmbient(double value);
+  void SetDiffuse(double value);
+  void SetSpecular(double value);
+  void SetSpecularPower(double value);
+  void SetAmbientColor(double r, double g, double b);
+  void SetDiffuseColor(double r, double g, double b);
+  void SetSpecularColor(double r, double g, double b);
+  ///@}
+
+  ///@{
+  /// Forwarded to the actor.
+  void SetOrientation(double x, double y, double z);
+  void SetOrigin(double x, double y, double z);
+  void SetPosition(double x, double y, double z);
+  void SetScale(double x, double y, double z);
+  void SetUserTransform(const double matrix[16]);
+  void SetPickable(int value);
+  ///@}
+
+  vtkIGAIsosurfaceMapper* GetMapper() { return this->Mapper; }
+
+protected:
+  vtkIGAIsosurfaceRepresentation();
+  ~vtkIGAIsosurfaceRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+private:
+  vtkIGAIsosurfaceRepresentation(const vtkIGAIsosurfaceRepresentation&) = delete;
+  void operator=(const vtkIGAIsosurfaceRepresentation&) = delete;
+
+  vtkNew<vtkIGAIsosurfaceMapper> Mapper;
+  vtkNew<vtkPolyDataMapper> OutlineMapper;
+  vtkNew<vtkOutlineSource> Outline;
+  vtkNew<vtkProperty> Property;
+  vtkNew<vtkPVLODActor> Actor;
+  vtkNew<vtkMergeBlocks> MergeBlocks;
+  /// This rank's piece, as a grid of Bézier hexahedra (possibly empty).
+  vtkSmartPointer<vtkUnstructuredGrid> Cache;
+  double DataBounds[6];
+};
+
+#endif

@@ -1,0 +1,69 @@
+"""pvpython: the "IGA Isosurface" representation of the IGAView plugin draws the bundled tube's
+temperature = 0 sheet coloured by radius; the image matches the baseline and its pixels show
+the surface where the sheet is and the background elsewhere.
+
+Usage: pvpython test_isosurface_representation.py PLUGIN DATA_DIR BASELINE_DIR WORK_DIR"""
+import os
+import sys
+# Spelled builtins.*: pvbatch's script namespace gets numpy_interface's sum/max/min, which are
+# MPI reductions that only rank 0 would enter here.
+import builtins
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from paraview import simple  # noqa: E402
+
+import iga_scene  # noqa: E402
+
+plugin, data_dir, baseline_dir, work_dir = sys.argv[1:5]
+os.makedirs(work_dir, exist_ok=True)
+simple.LoadPlugin(plugin)
+
+# Offered for unstructured grids, not for poly data (the representation's input domain).
+sphere_display = simple.Show(simple.Sphere())
+assert "IGA Isosurface" not in sphere_display.Representation.Available
+simple.Delete(sphere_display)
+
+reader = simple.XMLUnstructuredGridReader(FileName=[os.path.join(data_dir, "twisted_tube.vtu")])
+view = iga_scene.make_view()
+display = iga_scene.show_isosurface(reader, view)
+assert "IGA Isosurface" in display.Representation.Available
+
+# The isovalue range offered by the panel is the surface array's range in the data.
+domain = display.GetProperty("IGAIsovalues").SMProperty.GetDomain("scalar_range")
+data_range = reader.PointData["temperature"].GetRange()
+assert (domain.GetMinimum(0), domain.GetMaximum(0)) == tuple(data_range), data_range
+assert data_range[0] < 0.0 < data_range[1], data_range
+
+shot, difference = iga_scene.check_image(view, baseline_dir, iga_scene.BASELINE, work_dir)
+(width, height), pixel = iga_scene.read_rgb(shot)
+assert (width, height) == tuple(iga_scene.SIZE), (width, height)
+background = tuple(round(255 * c) for c in iga_scene.BACKGROUND)
+for corner in [(0, 0), (width - 1, 0), (0, height - 1), (width - 1, height - 1)]:
+    assert pixel(*corner) == background, (corner, pixel(*corner))
+# The camera looks at (0.2, 0, 1), on the tube's axis inside its hole (inner radius 0.5): the
+# centre shows the background through the hole, the sheet lies left and right of it.
+centre = pixel(width // 2, height // 2)
+assert centre == background, centre
+left, right = pixel(45, 139), pixel(240, 89)
+for side in (left, right):
+    assert builtins.max(abs(a - b) for a, b in zip(side, background)) > 100, side
+# Coloured through the lookup table: the sheet spans the radii 0.5 (blue) to 1 (red).
+pixels = [pixel(i, j) for j in range(0, height, 2) for i in range(0, width, 2)]
+bluish = builtins.sum(1 for r, g, b in pixels if b > r + 60)
+reddish = builtins.sum(1 for r, g, b in pixels if r > b + 60)
+covered = builtins.sum(1 for p in pixels if p != background)
+assert bluish > 50 and reddish > 50, (bluish, reddish)
+print(f"IGA Isosurface representation: image difference {difference:.3f} (threshold 10), "
+      f"{covered} of {len(pixels)} sampled pixels covered, {bluish} bluish, {reddish} reddish, "
+      f"centre {centre}")
+
+# A second isovalue adds a second sheet: more pixels covered.
+display.IGAIsovalues = [0.0, 0.5]
+simple.Render(view)
+two = os.path.join(work_dir, "two_isovalues.png")
+simple.SaveScreenshot(two, view, ImageResolution=iga_scene.SIZE, TransparentBackground=0)
+_, pixel2 = iga_scene.read_rgb(two)
+covered2 = builtins.sum(1 for j in range(0, height, 2) for i in range(0, width, 2) if pixel2(i, j) != background)
+assert covered2 > covered, (covered2, covered)
+print(f"two isovalues: {covered2} sampled pixels covered (one: {covered})")
