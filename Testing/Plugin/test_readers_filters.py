@@ -1,0 +1,72 @@
+"""pvpython: the IGAView plugin's readers and deformation filters as ParaView proxies: file
+dialog extensions, Bezier cells out, time steps for the animation toolbar, deformations that
+undo each other, and a NURBS file drawn by the "IGA Isosurface" representation.
+
+Usage: pvpython test_readers_filters.py PLUGIN DATA_DIR WORK_DIR"""
+import builtins  # pvpython scripts see numpy_interface's sum/max in their namespace
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from paraview import servermanager, simple  # noqa: E402
+
+import iga_scene  # noqa: E402
+
+plugin, data_dir, work_dir = sys.argv[1:4]
+os.makedirs(work_dir, exist_ok=True)
+simple.LoadPlugin(plugin)
+VTK_BEZIER_HEXAHEDRON = 79
+
+# The file dialog offers the readers for their extensions.
+factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+filters = factory.GetSupportedFileTypes(servermanager.ActiveConnection.Session)
+assert "G+Smo NURBS geometry (*.xml)" in filters, filters
+assert "GeoPDEs NURBS geometry (*.txt)" in filters, filters
+
+# The same quarter ring (radii 1..2, height 1) in both formats.
+gismo = simple.IGAGSmoReader(FileName=os.path.join(data_dir, "gismo_quarter_ring.xml"))
+geopdes = simple.IGAGeoPDEsReader(FileName=os.path.join(data_dir, "geopdes_quarter_ring.txt"))
+for reader in (gismo, geopdes):
+    reader.UpdatePipeline()
+    grid = servermanager.Fetch(reader)
+    assert grid.GetNumberOfCells() > 0
+    assert all(grid.GetCellType(c) == VTK_BEZIER_HEXAHEDRON for c in range(grid.GetNumberOfCells()))
+    bounds = reader.GetDataInformation().GetBounds()
+    # The quarter ring spans x, y in [0, 2] (control points reach the corner (2, 2)) and z in [0, 1].
+    assert [round(b, 12) for b in bounds] == [0.0, 2.0, 0.0, 2.0, 0.0, 1.0], bounds
+    assert "z" in reader.PointData.keys(), reader.PointData.keys()
+
+# Drawn by the representation: the isosurface z = 0.5 of the G+Smo file covers pixels.
+view = simple.CreateRenderView(ViewSize=[200, 160])
+display = simple.Show(gismo, view)
+display.SetRepresentationType("IGA Isosurface")
+display.IGASurfaceArray = ["POINTS", "z"]
+display.IGAIsovalues = [0.5]
+simple.ResetCamera(view)
+shot = os.path.join(work_dir, "gismo_quarter_ring.png")
+simple.SaveScreenshot(shot, view, ImageResolution=[200, 160], TransparentBackground=0)
+(width, height), pixel = iga_scene.read_rgb(shot)
+background = pixel(0, 0)
+covered = builtins.sum(1 for j in range(height) for i in range(width) if pixel(i, j) != background)
+assert covered > 500, covered
+
+# A synthetic deformation is a time series for the animation toolbar; time 0 is the input.
+source = simple.IGATwistedTube()
+bend = simple.IGASyntheticDeformation(Input=source, Mode="Bend", GenerateDisplacement=1)
+steps = list(bend.TimestepValues)
+assert len(steps) == 11 and all(abs(t - i / 10) < 1e-15 for i, t in enumerate(steps)), steps
+bend.UpdatePipeline(0.0)
+assert bend.GetDataInformation().GetBounds() == source.GetDataInformation().GetBounds()
+bend.UpdatePipeline(1.0)
+bent = bend.GetDataInformation().GetBounds()
+assert bent != source.GetDataInformation().GetBounds(), bent
+# Displacing the control points back by the generated displacement restores the input.
+back = simple.IGADisplaceControlPoints(Input=bend, ScaleFactor=-1.0)
+back.Displacement = ["POINTS", "Displacement"]
+back.UpdatePipeline(1.0)
+restored = back.GetDataInformation().GetBounds()
+original = source.GetDataInformation().GetBounds()
+assert builtins.max(abs(a - b) for a, b in zip(restored, original)) < 1e-12, (restored, original)
+print(f"readers: quarter ring bounds {bounds}; isosurface z = 0.5 covers {covered} pixels; "
+      f"bend at time 1 bounds {bent}, displaced back to {restored}")
