@@ -67,3 +67,28 @@ _, pixel2 = iga_scene.read_rgb(two)
 covered2 = builtins.sum(1 for j in range(0, height, 2) for i in range(0, width, 2) if pixel2(i, j) != background)
 assert covered2 > covered, (covered2, covered)
 print(f"two isovalues: {covered2} sampled pixels covered (one: {covered})")
+
+# While interacting with LOD on (threshold 0: always), the view draws the outline instead: far
+# fewer pixels than the surfaces, but some.
+from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter  # noqa: E402
+
+
+def covered_now():
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(view.GetRenderWindow())
+    grab.ShouldRerenderOff()
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    scalars = grab.GetOutput().GetPointData().GetScalars()
+    return builtins.sum(1 for i in range(scalars.GetNumberOfTuples())
+                        if scalars.GetTuple(i)[:3] != background)
+
+
+view.LODThreshold = 0.0
+simple.Render(view)
+still = covered_now()
+view.InteractiveRender()
+interactive = covered_now()
+assert view.GetClientSideObject().GetUsedLODForLastRender()
+assert 0 < interactive < 0.5 * still, (interactive, still)
+print(f"LOD while interacting: outline covers {interactive} pixels, the surfaces {still}")
