@@ -7,7 +7,6 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
-#include "vtkMergeBlocks.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutlineSource.h"
 #include "vtkPVLODActor.h"
@@ -40,8 +39,8 @@ void vtkIGAIsosurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Mapper:\n";
   this->Mapper->PrintSelf(os, indent.GetNextIndent());
-  os << indent << "Cells in this piece: " << (this->Cache ? this->Cache->GetNumberOfCells() : 0)
-     << "\n";
+  os << indent << "Cells in this piece: "
+     << (this->Cache ? this->Cache->GetNumberOfElements(vtkDataObject::CELL) : 0) << "\n";
 }
 
 int vtkIGAIsosurfaceRepresentation::FillInputPortInformation(int, vtkInformation* info)
@@ -59,29 +58,32 @@ int vtkIGAIsosurfaceRepresentation::RequestData(
   // piece, so that the collective delivery and compositing steps match on all ranks.
   this->Cache = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkMath::UninitializeBounds(this->DataBounds);
-  if (inputVector[0]->GetNumberOfInformationObjects() == 1)
+  vtkDataObject* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+                           ? vtkDataObject::GetData(inputVector[0], 0)
+                           : nullptr;
+  // The control points bound the patches (convex hull property).
+  if (auto* grid = vtkUnstructuredGrid::SafeDownCast(input))
   {
-    vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
-    if (auto* grid = vtkUnstructuredGrid::SafeDownCast(input))
+    this->Cache->ShallowCopy(grid);
+    if (grid->GetNumberOfCells() > 0)
     {
-      this->Cache->ShallowCopy(grid);
-    }
-    else if (vtkCompositeDataSet::SafeDownCast(input))
-    {
-      this->MergeBlocks->SetInputDataObject(input);
-      this->MergeBlocks->Update();
-      this->Cache->ShallowCopy(this->MergeBlocks->GetOutputDataObject(0));
-    }
-    else if (input)
-    {
-      vtkErrorMacro(<< "IGA Isosurface needs an unstructured grid of Bézier hexahedra, not a "
-                    << input->GetClassName());
+      grid->GetBounds(this->DataBounds);
     }
   }
-  if (this->Cache->GetNumberOfCells() > 0)
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
   {
-    // The control points bound the patches (convex hull property).
-    this->Cache->GetBounds(this->DataBounds);
+    // The mapper draws composites itself (and picks their blocks).
+    this->Cache.TakeReference(composite->NewInstance());
+    this->Cache->ShallowCopy(composite);
+    if (composite->GetNumberOfCells() > 0)
+    {
+      composite->GetBounds(this->DataBounds);
+    }
+  }
+  else if (input)
+  {
+    vtkErrorMacro(<< "IGA Isosurface needs an unstructured grid of Bézier hexahedra, not a "
+                  << input->GetClassName());
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
@@ -100,6 +102,14 @@ int vtkIGAIsosurfaceRepresentation::ProcessViewRequest(
     vtkPVRenderView::SetPiece(inInfo, this, this->Cache);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
     vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    if (this->Property->GetOpacity() < 1.0)
+    {
+      // Translucent surfaces blend across ranks: IceT must composite the ranks in visibility
+      // order, sorted by the pieces' bounds (the data stays where it is).
+      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+      vtkPVRenderView::SetOrderedCompositingConfiguration(
+        inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->DataBounds);
+    }
   }
   else if (request_type == vtkPVView::REQUEST_UPDATE_LOD())
   {
@@ -115,9 +125,10 @@ int vtkIGAIsosurfaceRepresentation::ProcessViewRequest(
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
-    auto* piece = vtkUnstructuredGrid::SafeDownCast(vtkPVView::GetDeliveredPiece(inInfo, this));
     // An empty piece draws nothing; the mapper would report it as bad input.
-    this->Mapper->SetInputDataObject(piece && piece->GetNumberOfCells() > 0 ? piece : nullptr);
+    vtkDataObject* piece = vtkPVView::GetDeliveredPiece(inInfo, this);
+    const bool empty = !piece || piece->GetNumberOfElements(vtkDataObject::CELL) == 0;
+    this->Mapper->SetInputDataObject(empty ? nullptr : piece);
     this->OutlineMapper->SetInputDataObject(vtkPVView::GetDeliveredPieceLOD(inInfo, this));
     this->Actor->SetEnableLOD(inInfo->Has(vtkPVRenderView::USE_LOD()) ? 1 : 0);
   }

@@ -6,9 +6,9 @@
  *
  * Each rank keeps its own piece of the input (SetPiece) and reports its bounds; the view must
  * render remotely (SetRequiresDistributedRendering), so every pvserver/pvbatch rank draws its
- * patches with correct window depth and IceT composites the ranks' images by depth. Composite
- * inputs are merged into one grid per rank. While interacting, the view may ask for a LOD: the
- * piece's outline.
+ * patches with correct window depth and IceT composites the ranks' images by depth (in
+ * visibility order, from the pieces' bounds, when translucent). Composite inputs go to the mapper
+ * as they are. While interacting, the view may ask for a LOD: the piece's outline.
  *
  * Property setters follow the surface representation's names so the XML can share them with it
  * (colouring through ColorArrayName/LookupTable, Opacity, Specular, transforms).
@@ -22,13 +22,12 @@
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
 class vtkIGAIsosurfaceMapper;
-class vtkMergeBlocks;
+class vtkDataObject;
 class vtkOutlineSource;
 class vtkPolyDataMapper;
 class vtkProperty;
 class vtkPVLODActor;
 class vtkScalarsToColors;
-class vtkUnstructuredGrid;
 
 class IGAVIEWREPRESENTATION_EXPORT vtkIGAIsosurfaceRepresentation : public vtkPVDataRepresentation
 {
@@ -100,9 +99,8 @@ private:
   vtkNew<vtkOutlineSource> Outline;
   vtkNew<vtkProperty> Property;
   vtkNew<vtkPVLODActor> Actor;
-  vtkNew<vtkMergeBlocks> MergeBlocks;
-  /// This rank's piece, as a grid of Bézier hexahedra (possibly empty).
-  vtkSmartPointer<vtkUnstructuredGrid> Cache;
+  /// This rank's piece: a grid of Bézier hexahedra or a composite of them (possibly empty).
+  vtkSmartPointer<vtkDataObject> Cache;
   double DataBounds[6];
 };
 

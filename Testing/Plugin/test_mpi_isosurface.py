@@ -69,10 +69,10 @@ assert builtins.sum(split_counts) == 8 and builtins.max(split_counts) < 8 and bu
 view = iga_scene.make_view()
 
 
-def render_alone(source, name, camera=iga_scene.CAMERA):
+def render_alone(source, name, camera=iga_scene.CAMERA, opacity=1.0):
     for shown in simple.GetSources().values():
         simple.Hide(shown, view)
-    iga_scene.show_isosurface(source, view, camera)
+    iga_scene.show_isosurface(source, view, camera).Opacity = opacity
     png = os.path.join(work_dir, name + ".png")
     simple.SaveScreenshot(png, view, ImageResolution=iga_scene.SIZE, TransparentBackground=0)
     return png
@@ -82,6 +82,11 @@ def render_alone(source, name, camera=iga_scene.CAMERA):
 iga_scene.show_isosurface(redistributed, view)
 split_png, to_baseline = iga_scene.check_image(view, baseline_dir, iga_scene.BASELINE, work_dir)
 to_whole = iga_scene.compare_images(split_png, render_alone(reader, "whole"), work_dir)
+
+# Translucent (ordered compositing by the pieces' bounds): the same image as on one rank.
+to_whole_translucent = iga_scene.compare_images(
+    render_alone(redistributed, "split_translucent", opacity=0.5),
+    render_alone(reader, "whole_translucent", opacity=0.5), work_dir)
 
 # Looking (down) along the line between the two ranks' pieces, one hides the other: the composite is
 # right only where IceT keeps, per pixel, the rank with the nearer depth.
@@ -117,7 +122,8 @@ assert len(contested) > 100, (len(contested), len(overlap))
 assert len(union - covered.keys()) <= 0.005 * len(covered), sorted(union - covered.keys())[:20]
 assert len(covered.keys() - union) <= 0.005 * len(covered), sorted(covered.keys() - union)[:20]
 print(f"{ranks} ranks, serial test's camera: split image vs all on rank 0 {to_whole:.3f}, vs the "
-      f"serial baseline {to_baseline:.3f} (threshold 10)")
+      f"serial baseline {to_baseline:.3f}, at opacity 0.5 vs all on rank 0 {to_whole_translucent:.3f} "
+      f"(threshold 10)")
 print(f"camera along the pieces' centres {centres[0]} -> {centres[1]}: split vs all on rank 0 "
       f"{to_whole_along:.3f}; {len(covered)} pixels covered, by each rank's piece alone "
       f"{[len(p) for p in parts]}, by both {len(overlap)} ({len(contested)} in different "

@@ -51,6 +51,32 @@ background = pixel(0, 0)
 covered = builtins.sum(1 for j in range(height) for i in range(width) if pixel(i, j) != background)
 assert covered > 500, covered
 
+# A composite input (both G+Smo files grouped) goes to the mapper as it is: from the same
+# camera it covers what the ring alone covers, and more.
+blocks = simple.IGAGSmoReader(FileName=os.path.join(data_dir, "gismo_two_blocks.xml"))
+group = simple.GroupDatasets(Input=[gismo, blocks])
+simple.Hide(gismo, view)
+
+
+def coverage(source, name):
+    for shown in (gismo, group):
+        simple.Hide(shown, view)
+    shown = simple.Show(source, view)
+    shown.SetRepresentationType("IGA Isosurface")
+    shown.IGASurfaceArray = ["POINTS", "z"]
+    shown.IGAIsovalues = [0.5]
+    png = os.path.join(work_dir, name + ".png")
+    simple.SaveScreenshot(png, view, ImageResolution=[200, 160], TransparentBackground=0)
+    (w, h), px = iga_scene.read_rgb(png)
+    return {(i, j) for j in range(h) for i in range(w) if px(i, j) != background}
+
+
+simple.Show(group, view)
+simple.ResetCamera(view)
+grouped, ring_alone = coverage(group, "grouped"), coverage(gismo, "ring_alone")
+assert len(ring_alone) > 100 and len(grouped) > len(ring_alone) + 100, (len(grouped), len(ring_alone))
+assert len(ring_alone - grouped) < 0.01 * len(ring_alone), len(ring_alone - grouped)
+
 # A synthetic deformation is a time series for the animation toolbar; time 0 is the input.
 source = simple.IGATwistedTube()
 bend = simple.IGASyntheticDeformation(Input=source, Mode="Bend", GenerateDisplacement=1)
@@ -69,4 +95,5 @@ restored = back.GetDataInformation().GetBounds()
 original = source.GetDataInformation().GetBounds()
 assert builtins.max(abs(a - b) for a, b in zip(restored, original)) < 1e-12, (restored, original)
 print(f"readers: quarter ring bounds {bounds}; isosurface z = 0.5 covers {covered} pixels; "
+      f"grouped with the two blocks {len(grouped)}, the ring alone then {len(ring_alone)}; "
       f"bend at time 1 bounds {bent}, displaced back to {restored}")
