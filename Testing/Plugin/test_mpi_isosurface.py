@@ -62,9 +62,14 @@ reader = simple.XMLUnstructuredGridReader(FileName=[os.path.join(data_dir, "twis
 redistributed = simple.RedistributeDataSet(Input=reader)
 # The single-piece file lands on rank 0; RedistributeDataSet spreads whole cells over all ranks.
 whole_counts, split_counts = cells_per_rank(reader), cells_per_rank(redistributed)
-print("cells per rank: read", whole_counts, "redistributed", split_counts)
+# The bundled source answers piece requests itself: whole patches, disjoint per rank.
+source_counts = cells_per_rank(simple.IGATwistedTube())
+assert source_counts == [8 * (r + 1) // ranks - 8 * r // ranks for r in range(ranks)], source_counts
+print("cells per rank: read", whole_counts, "redistributed", split_counts, "IGA Twisted Tube",
+      source_counts)
 assert whole_counts == [8] + [0] * (ranks - 1), whole_counts
-assert builtins.sum(split_counts) == 8 and builtins.max(split_counts) < 8 and builtins.min(split_counts) > 0, split_counts
+assert builtins.sum(split_counts) == 8, split_counts
+assert 0 < builtins.min(split_counts) and builtins.max(split_counts) < 8, split_counts
 
 view = iga_scene.make_view()
 
@@ -122,7 +127,8 @@ assert len(contested) > 100, (len(contested), len(overlap))
 assert len(union - covered.keys()) <= 0.005 * len(covered), sorted(union - covered.keys())[:20]
 assert len(covered.keys() - union) <= 0.005 * len(covered), sorted(covered.keys() - union)[:20]
 print(f"{ranks} ranks, serial test's camera: split image vs all on rank 0 {to_whole:.3f}, vs the "
-      f"serial baseline {to_baseline:.3f}, at opacity 0.5 vs all on rank 0 {to_whole_translucent:.3f} "
+      f"serial baseline {to_baseline:.3f}, at opacity 0.5 vs all on rank 0 "
+      f"{to_whole_translucent:.3f} "
       f"(threshold 10)")
 print(f"camera along the pieces' centres {centres[0]} -> {centres[1]}: split vs all on rank 0 "
       f"{to_whole_along:.3f}; {len(covered)} pixels covered, by each rank's piece alone "
