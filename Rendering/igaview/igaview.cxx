@@ -397,8 +397,9 @@ struct Viewer
   }
 };
 
-/// The viewer: an interactive window, or with --keys the same key handling offscreen.
-int runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
+/// The viewer: an interactive window, or with --keys the same key handling offscreen (the
+/// caller then writes the last frame like `render` does).
+void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
 {
   vtkInformation* info = viewer.producer->GetOutputInformation(0);
   if (info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
@@ -432,7 +433,7 @@ int runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
         viewer.mapper->GetLastEngineTime());
     }
     window->Render();
-    return options.hasOutput ? -1 : 0; // -1: write the PNG like render does
+    return;
   }
   window->SetOffScreenRendering(0);
   window->SetWindowName("igaview");
@@ -458,7 +459,6 @@ int runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
   interactor->Initialize();
   window->Render();
   interactor->Start();
-  return 0;
 }
 
 } // namespace
@@ -539,9 +539,9 @@ int main(int argc, char** argv)
     vtkNew<vtkTextActor> readout;
     Viewer viewer{ producer, mapper, renderer, readout, set.attributeNames[surface], isovalues,
       0.02 * (surfaceRange[1] - surfaceRange[0]), {}, 0 };
-    const int result = runViewer(options, viewer, window);
-    if (result >= 0)
-      return result;
+    runViewer(options, viewer, window);
+    if (options.keys.empty() || !options.hasOutput)
+      return 0;
   }
   else
   {
