@@ -2,6 +2,8 @@
 // the per-pixel basic scheme and a brute-force reference, over the shared pixel-problem kernels.
 #include "iga/sst/Engine.h"
 
+#include "CudaEngine.h"
+
 #include "iga/Validation.h"
 #include "iga/sst/PixelProblem.h"
 
@@ -9,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -1366,12 +1369,79 @@ View makeView(const Camera& camera, int width, int height)
   return view;
 }
 
+const char* backendName(Backend backend)
+{
+  switch (backend)
+  {
+    case Backend::Automatic:
+      return "auto";
+    case Backend::Cpu:
+      return "cpu";
+    case Backend::Cuda:
+      return "cuda";
+  }
+  return "unknown";
+}
+
+Backend parseBackend(const std::string& name)
+{
+  for (Backend backend : { Backend::Automatic, Backend::Cpu, Backend::Cuda })
+  {
+    if (name == backendName(backend))
+    {
+      return backend;
+    }
+  }
+  throw std::invalid_argument("backend '" + name + "' is not auto, cpu or cuda");
+}
+
 FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, Method method, GBuffer& out)
 {
   FrameReport report;
   report.method = methodName(method);
+  Backend wanted = settings.backend;
+  if (wanted == Backend::Automatic)
+  {
+    const char* forced = std::getenv("IGAVIEW_BACKEND");
+    if (forced && *forced)
+    {
+      try
+      {
+        wanted = parseBackend(forced);
+      }
+      catch (const std::invalid_argument& e)
+      {
+        throw std::invalid_argument(std::string("IGAVIEW_BACKEND: ") + e.what());
+      }
+    }
+  }
+  if (method == Method::SharedSubdivisionTree && wanted != Backend::Cpu)
+  {
+    std::string why;
+    if (cuda::usable(why))
+    {
+      try
+      {
+        cuda::render(patches, view, settings, out, report);
+        report.backend = backendName(Backend::Cuda);
+        return report;
+      }
+      catch (const cuda::Failure& e)
+      {
+        report = FrameReport();
+        report.method = methodName(method);
+        report.notice = std::string("CUDA frame failed (") + e.what() + "), drawn on CPU threads";
+      }
+    }
+    else
+    {
+      report.notice = (wanted == Backend::Cuda ? "CUDA asked for, but " : "") + why +
+                      ": drawing on CPU threads";
+    }
+  }
   Renderer(patches, view, settings, report).run(method, out);
+  report.backend = backendName(Backend::Cpu);
   return report;
 }
 

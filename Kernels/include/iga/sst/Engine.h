@@ -24,6 +24,17 @@ enum class Method
   BruteForce,            ///< uniform subdivision and multi-start Newton: slow, for tests only
 };
 
+/// Where the shared-subdivision-tree engine runs. Automatic picks CUDA when the library was
+/// built with it and a usable device exists, else CPU threads; the environment variable
+/// IGAVIEW_BACKEND (cpu, cuda or auto) overrides Automatic. The basic scheme and brute force
+/// always run on CPU threads.
+enum class Backend
+{
+  Automatic,
+  Cpu,
+  Cuda,
+};
+
 struct Settings
 {
   int width = 512;
@@ -37,7 +48,8 @@ struct Settings
   std::vector<std::array<double, 4>> clipPlanes;
   int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
   size_t memoryBudgetBytes = size_t(2) << 30; ///< cap on subdivision storage
-  int threads = 0;                            ///< 0: all hardware threads
+  int threads = 0;                            ///< 0: all hardware threads (CPU backend)
+  Backend backend = Backend::Automatic;
   /// Newton's acceptance window: a fraction of a pixel, and of the attribute's range.
   double pixelTolerance = 1e-3;
   double isoTolerance = 1e-7;
@@ -85,6 +97,10 @@ struct GBuffer
 struct FrameReport
 {
   std::string method;
+  std::string backend; ///< "cpu" or "cuda": where the frame was computed
+  /// One line when the backend differs from the one asked for or a CUDA frame fell back to the
+  /// CPU (why), empty otherwise.
+  std::string notice;
   int threads = 0;
   int iterations = 0;          ///< solution/subdivision rounds
   size_t unresolvedPixels = 0; ///< pixels with work left when a cap was hit
@@ -129,6 +145,10 @@ FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camer
 void patchBounds(const std::vector<BezierVolume<double>>& patches, double* bounds);
 
 const char* methodName(Method method);
+
+/// "auto", "cpu" or "cuda"; parseBackend is its inverse and throws std::invalid_argument.
+const char* backendName(Backend backend);
+Backend parseBackend(const std::string& name);
 
 } // namespace sst
 } // namespace iga
