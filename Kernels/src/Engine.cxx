@@ -6,6 +6,7 @@
 
 #include "iga/Validation.h"
 #include "iga/sst/PixelProblem.h"
+#include "iga/sst/Tree.h"
 
 #include <algorithm>
 #include <atomic>
@@ -139,31 +140,6 @@ size_t bytesOf(const V& v)
   return v.capacity() * sizeof(typename V::value_type);
 }
 
-/// A sub-patch of an input patch for one isovalue: level and integer offsets locate it in the
-/// input patch's parameter cube ([offset, offset + 1] / 2^level per direction).
-struct Node
-{
-  int patch;
-  int iso;
-  int level;
-  int offset[3];
-  size_t coeff; ///< start of its screen coefficients in the owning pool
-  NodeInfo<double> info;
-  uint32_t initial = 0;    ///< the initial node (SAG work item) it descends from
-  bool implicit = false;   ///< SST: stands for all round pixels in its box, without tuples yet
-  bool overBudget = false; ///< SST: an implicit node the memory cap did not let split
-};
-
-/// A ray/isosurface root before shading.
-struct RawHit
-{
-  uint32_t pixel;
-  int patch;
-  int iso;
-  double ndcDepth;
-  double u[3]; ///< in the input patch's parameter cube
-};
-
 class Renderer
 {
 public:
@@ -289,6 +265,16 @@ private:
       }
       ++this->Clip.count;
     }
+    this->Frame.width = s.width;
+    this->Frame.height = s.height;
+    this->Frame.firstHitOnly = s.firstHitOnly;
+    this->Frame.maxSubdivisionDepth = s.maxSubdivisionDepth;
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Frame.tolerance[d] = this->Tolerance[d];
+    }
+    this->Frame.clip = this->Clip;
+    this->Frame.isovalues = s.isovalues.data();
     this->PixelCount = size_t(s.width) * s.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, kInfinity);
@@ -301,13 +287,24 @@ private:
       const auto world = this->Patches[p].view();
       std::vector<double> screen(size_t(world.pointCount()) * kScreenChannels);
       makeScreenPatch<double>(world, this->WindowFromWorld, attribute, screen.data());
+      this->ShadingOffsets.push_back(this->ShadingPool.size());
+      this->ShadingPool.resize(this->ShadingPool.size() + world.pointCount() * kShadeChannels);
+      makeShadingPatch(world, attribute,
+        s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1,
+        this->ShadingPool.data() + this->ShadingOffsets.back());
       for (int iso = 0; iso < int(s.isovalues.size()); ++iso)
       {
-        Node root{ int(p), iso, 0, { 0, 0, 0 }, 0, {} };
+        Node root = rootNode(int(p), iso);
         this->addInitialNode(root, screen.data());
       }
     }
     this->trackMemory(bytesOf(this->InitialPool));
+  }
+
+  VolumeView<const double> shadingView(int patch) const
+  {
+    return VolumeView<const double>(this->ShadingPool.data() + this->ShadingOffsets[patch],
+      this->Patches[patch].view().degree, kShadeChannels);
   }
 
   int valueCount(int patch) const
@@ -319,21 +316,6 @@ private:
   {
     return VolumeView<const double>(
       pool.data() + node.coeff, this->Patches[node.patch].view().degree, kScreenChannels);
-  }
-
-  bool onScreen(const Box3<double>& box) const
-  {
-    return box.hi[0] >= 0 && box.lo[0] <= this->Config.width && box.hi[1] >= 0 &&
-           box.lo[1] <= this->Config.height;
-  }
-
-  /// Whether a node may hold visible surface: sign change, not behind the eye, depth and window
-  /// ranges meeting the view volume.
-  bool worthKeeping(const NodeInfo<double>& info) const
-  {
-    return info.mayContainSurface && info.status != ProjectionStatus::BehindEye &&
-           info.visibleDepth &&
-           (info.status != ProjectionStatus::InFront || this->onScreen(info.box));
   }
 
   /// Adds a root to the initial nodes if it may show surface. A root straddling the eye plane
@@ -355,7 +337,7 @@ private:
       {
         const VolumeView<const double> view(pool.data() + node.coeff, degree, kScreenChannels);
         node.info = analyzeNode(view, this->Config.isovalues[node.iso], this->Clip);
-        if (!this->worthKeeping(node.info))
+        if (!worthKeeping(node.info, this->Frame))
         {
           continue;
         }
@@ -388,34 +370,14 @@ private:
     }
   }
 
-  static Node childOf(const Node& parent, int child)
-  {
-    Node node = parent;
-    node.level = parent.level + 1;
-    for (int d = 0; d < 3; ++d)
-    {
-      node.offset[d] = 2 * parent.offset[d] + ((child >> d) & 1);
-    }
-    return node;
-  }
-
   // ---- sweep and group ---------------------------------------------------------------------
-
-  /// Pixel ranges [i0, i1] x [j0, j1] whose centres the box covers.
-  void pixelRange(const Box3<double>& box, int* range) const
-  {
-    range[0] = std::max(0, int(std::ceil(box.lo[0] - 0.5 - 1e-6)));
-    range[1] = std::min(this->Config.width - 1, int(std::floor(box.hi[0] - 0.5 + 1e-6)));
-    range[2] = std::max(0, int(std::ceil(box.lo[1] - 0.5 - 1e-6)));
-    range[3] = std::min(this->Config.height - 1, int(std::floor(box.hi[1] - 0.5 + 1e-6)));
-  }
 
   /// Calls fn(pixel index) for every pixel whose centre the box covers.
   template<class Fn>
   void forEachCoveredPixel(const Box3<double>& box, Fn fn) const
   {
     int range[4];
-    this->pixelRange(box, range);
+    pixelRange(box, this->Config.width, this->Config.height, range);
     for (int j = range[2]; j <= range[3]; ++j)
     {
       for (int i = range[0]; i <= range[1]; ++i)
@@ -491,12 +453,6 @@ private:
 
   // ---- shared subdivision trees ------------------------------------------------------------
 
-  struct Tuple
-  {
-    uint32_t pixel;
-    uint32_t node;
-  };
-
   enum Outcome : uint8_t
   {
     Solved,
@@ -547,16 +503,6 @@ private:
     return false;
   }
 
-  /// An implicit node stands for all pixels of its box in the round; it gets explicit (pixel,
-  /// node) tuples once it is certified, small, or at the depth cap. Before, every pixel would
-  /// fail on it without a certificate, so the paper's loop would split it anyway.
-  bool readyForTuples(const Node& node) const
-  {
-    const Box3<double>& box = node.info.box;
-    return node.info.certified || (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) <= 256.0 ||
-           node.level >= this->Config.maxSubdivisionDepth || node.overBudget;
-  }
-
   /// The SST loop of the paper over one round: overlap (tuples of pixels and node boxes),
   /// solution, subdivision and compaction, until no tuple and no implicit node is left.
   void solveRound(const std::vector<uint32_t>& groupBegin, const std::vector<uint32_t>& groupEnd)
@@ -604,7 +550,7 @@ private:
       std::vector<uint32_t> ready;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
-        if (nodes[n].implicit && this->readyForTuples(nodes[n]))
+        if (nodes[n].implicit && readyForTuples(nodes[n], this->Frame))
         {
           ready.push_back(uint32_t(n));
         }
@@ -755,7 +701,7 @@ private:
         if (nodes[n].implicit)
         {
           int range[4];
-          this->pixelRange(nodes[n].info.box, range);
+          pixelRange(nodes[n].info.box, this->Config.width, this->Config.height, range);
           split[n] = range[0] <= range[1] && range[2] <= range[3] ? 1 : 0;
         }
         if (split[n] && nodes[n].level >= this->Config.maxSubdivisionDepth)
@@ -826,7 +772,7 @@ private:
               child.coeff = poolOffset[k] + size_t(c) * count;
               const auto view = this->nodeView(child, childPool);
               child.info = analyzeNodeBounds(view, this->Config.isovalues[child.iso], this->Clip);
-              keep[8 * k + c] = this->worthKeeping(child.info) ? 1 : 0;
+              keep[8 * k + c] = worthKeeping(child.info, this->Frame) ? 1 : 0;
               // Explicit children are analysed once they are known to receive pixels.
               if (child.implicit && keep[8 * k + c])
               {
@@ -973,7 +919,7 @@ private:
 
   void recordHit(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
   {
-    this->Hits.push_back(this->makeRawHit(pixel, node, u, ndcDepth));
+    this->Hits.push_back(rawHitOf(pixel, node, u, ndcDepth));
     this->BestDepth[pixel] = std::min(this->BestDepth[pixel], ndcDepth);
   }
 
@@ -1027,7 +973,7 @@ private:
                 this->Config.isovalues[node.iso], this->Tolerance, u, ndc, this->Clip);
               if (result == TupleOutcome::Hit)
               {
-                perPixel[p].push_back(this->makeRawHit(uint32_t(p), node, u, ndc));
+                perPixel[p].push_back(rawHitOf(uint32_t(p), node, u, ndc));
                 best = std::min(best, ndc);
               }
               if (result != TupleOutcome::Undecided)
@@ -1050,7 +996,7 @@ private:
                 child.coeff = size_t(c) * count;
                 child.info = analyzeNode(
                   this->nodeView(child, children), this->Config.isovalues[child.iso], this->Clip);
-                if (this->worthKeeping(child.info))
+                if (worthKeeping(child.info, this->Frame))
                 {
                   child.coeff = arena.size();
                   arena.insert(arena.end(), children.begin() + size_t(c) * count,
@@ -1075,17 +1021,6 @@ private:
     this->trackMemory(
       this->baseBytes() + *std::max_element(peak.begin(), peak.end()) * size_t(this->Threads));
     this->Report.msSolution = millisecondsSince(stage);
-  }
-
-  RawHit makeRawHit(uint32_t pixel, const Node& node, const double* u, double ndc) const
-  {
-    RawHit hit{ pixel, node.patch, node.iso, ndc, {} };
-    const double scale = std::ldexp(1.0, -node.level);
-    for (int d = 0; d < 3; ++d)
-    {
-      hit.u[d] = std::min(1.0, std::max(0.0, (node.offset[d] + u[d]) * scale));
-    }
-    return hit;
   }
 
   // ---- brute force -------------------------------------------------------------------------
@@ -1118,7 +1053,8 @@ private:
             child.coeff = (k * 8 + c) * size_t(count);
             child.info = analyzeNode(
               this->nodeView(child, nextPool), this->Config.isovalues[child.iso], this->Clip);
-            if (this->worthKeeping(child.info) && child.info.status == ProjectionStatus::InFront)
+            if (worthKeeping(child.info, this->Frame) &&
+                child.info.status == ProjectionStatus::InFront)
             {
               next.push_back(child);
             }
@@ -1171,7 +1107,7 @@ private:
                       this->Config.isovalues[leaf.iso], this->Tolerance, start, u, ndc,
                       this->Clip) == TupleOutcome::Hit)
                 {
-                  perPixel[p].push_back(this->makeRawHit(uint32_t(p), leaf, u, ndc));
+                  perPixel[p].push_back(rawHitOf(uint32_t(p), leaf, u, ndc));
                 }
               }
             }
@@ -1191,8 +1127,7 @@ private:
 
   void fillGBuffer(GBuffer& out)
   {
-    // Group by pixel, shade, sort front to back, merge duplicates (a root on a face shared by
-    // two sub-patches is found in both), keep the first in first-hit mode.
+    // Group by pixel, shade, sort front to back and merge duplicates.
     std::vector<uint32_t> offsets(this->PixelCount + 1, 0);
     for (const auto& hit : this->Hits)
     {
@@ -1207,11 +1142,14 @@ private:
         source[fill[this->Hits[h].pixel]++] = uint32_t(h);
       }
     }
-    const double* eye = this->TheView.eye;
-    const double* forward = this->TheView.forward;
-    // Two roots closer along the ray than this fraction of a pixel's footprint are one root:
-    // Newton places roots within 1e-6 pixel of the ray.
-    const double footprint = this->TheView.pixelFootprint;
+    ShadingView viewer{};
+    for (int d = 0; d < 3; ++d)
+    {
+      viewer.eye[d] = this->TheView.eye[d];
+      viewer.forward[d] = this->TheView.forward[d];
+    }
+    viewer.parallel = this->TheView.parallel;
+    viewer.hasColor = this->Config.colorAttribute >= 0;
     std::vector<Hit> shaded(this->Hits.size());
     std::vector<uint32_t> keptCount(this->PixelCount, 0);
     parallelFor(this->PixelCount, this->Threads,
@@ -1219,41 +1157,14 @@ private:
       {
         for (size_t p = begin; p < end; ++p)
         {
-          const auto first = shaded.begin() + offsets[p], last = shaded.begin() + offsets[p + 1];
           for (uint32_t k = offsets[p]; k < offsets[p + 1]; ++k)
           {
-            shaded[k] = this->shade(this->Hits[source[k]], eye, forward);
+            const RawHit& raw = this->Hits[source[k]];
+            shaded[k] = shadeHit(this->shadingView(raw.patch), raw, viewer);
           }
-          std::sort(first, last,
-            [](const Hit& a, const Hit& b)
-            {
-              if (a.eyeDepth != b.eyeDepth)
-                return a.eyeDepth < b.eyeDepth;
-              if (a.isovalue != b.isovalue)
-                return a.isovalue < b.isovalue;
-              return a.patch < b.patch;
-            });
-          auto write = first;
-          for (auto it = first; it != last; ++it)
-          {
-            const double tolerance =
-              1e-4 * footprint * (this->TheView.parallel ? 1.0 : std::abs(it->eyeDepth));
-            bool duplicate = false;
-            for (auto previous = first; previous != write && !duplicate; ++previous)
-            {
-              duplicate = previous->isovalue == it->isovalue &&
-                          it->eyeDepth - previous->eyeDepth <= tolerance;
-            }
-            if (!duplicate)
-            {
-              *write++ = *it;
-            }
-          }
-          keptCount[p] = uint32_t(write - first);
-          if (this->Config.firstHitOnly)
-          {
-            keptCount[p] = std::min<uint32_t>(keptCount[p], 1);
-          }
+          keptCount[p] =
+            uint32_t(mergePixelHits(shaded.data() + offsets[p], int(offsets[p + 1] - offsets[p]),
+              this->TheView.pixelFootprint, viewer.parallel, this->Config.firstHitOnly));
         }
       });
     out.width = this->Config.width;
@@ -1268,67 +1179,6 @@ private:
     }
   }
 
-  /// World position, normal, depth and colour value of a root, evaluated on the input patch in
-  /// double precision.
-  Hit shade(const RawHit& raw, const double* eye, const double* forward) const
-  {
-    const auto world = this->Patches[raw.patch].view();
-    const int channels = world.channels;
-    std::vector<double> values(channels), derivatives(3 * channels);
-    evaluateHomogeneous<double, 3>(world, raw.u, values.data(), derivatives.data());
-    Hit hit;
-    hit.ndcDepth = raw.ndcDepth;
-    hit.patch = raw.patch;
-    hit.isovalue = raw.iso;
-    double J[3][3], gradient[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      hit.uvw[d] = raw.u[d];
-      hit.position[d] = rationalValue<double, 3>(
-        values.data(), derivatives.data(), channels, d, kWeightChannel, J[d]);
-    }
-    rationalValue<double, 3>(values.data(), derivatives.data(), channels,
-      kFirstAttributeChannel + this->Config.surfaceAttribute, kWeightChannel, gradient);
-    // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J). The cofactor form
-    // stays defined where J is singular (collapsed faces); the orientation is fixed below.
-    double normal[3] = { 0, 0, 0 };
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
-        normal[r] += (J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0]) * gradient[c];
-      }
-    }
-    double toEye[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      toEye[d] = this->TheView.parallel ? -forward[d] : eye[d] - hit.position[d];
-    }
-    normalize3(normal);
-    if (dot3(normal, normal) == 0 || !std::isfinite(normal[0]))
-    {
-      for (int d = 0; d < 3; ++d)
-      {
-        normal[d] = toEye[d];
-      }
-      normalize3(normal);
-    }
-    const double sign = dot3(normal, toEye) < 0 ? -1.0 : 1.0;
-    double offset[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      hit.normal[d] = sign * normal[d];
-      offset[d] = hit.position[d] - eye[d];
-    }
-    hit.eyeDepth = dot3(offset, forward);
-    hit.color =
-      this->Config.colorAttribute >= 0
-        ? values[kFirstAttributeChannel + this->Config.colorAttribute] / values[kWeightChannel]
-        : std::numeric_limits<double>::quiet_NaN();
-    return hit;
-  }
-
   const std::vector<BezierVolume<double>>& Patches;
   const View& TheView;
   const Settings& Config;
@@ -1337,6 +1187,9 @@ private:
   double Tolerance[3] = {};
   Matrix4<double> WindowFromWorld;
   ClipPlanes<double> Clip; ///< Settings::clipPlanes in homogeneous window coordinates
+  FrameConstants Frame{};
+  std::vector<double> ShadingPool; ///< shading patches of the input patches
+  std::vector<size_t> ShadingOffsets;
   size_t PixelCount = 0;
   std::vector<Node> InitialNodes;
   std::vector<double> InitialPool;
@@ -1436,8 +1289,8 @@ FrameReport render(const std::vector<BezierVolume<double>>& patches, const View&
     }
     else
     {
-      report.notice = (wanted == Backend::Cuda ? "CUDA asked for, but " : "") + why +
-                      ": drawing on CPU threads";
+      report.notice =
+        (wanted == Backend::Cuda ? "CUDA asked for, but " : "") + why + ": drawing on CPU threads";
     }
   }
   Renderer(patches, view, settings, report).run(method, out);

@@ -22,9 +22,9 @@ struct Camera
   double clippingRange[2] = { 0.01, 1000.01 };
 };
 
-inline void normalize3(double* v)
+IGA_HD inline void normalize3(double* v)
 {
-  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const double n = squareRoot(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   if (n > 0)
   {
     v[0] /= n;
@@ -33,14 +33,14 @@ inline void normalize3(double* v)
   }
 }
 
-inline void cross3(const double* a, const double* b, double* out)
+IGA_HD inline void cross3(const double* a, const double* b, double* out)
 {
   out[0] = a[1] * b[2] - a[2] * b[1];
   out[1] = a[2] * b[0] - a[0] * b[2];
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-inline double dot3(const double* a, const double* b)
+IGA_HD inline double dot3(const double* a, const double* b)
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }

@@ -1,0 +1,285 @@
+// The shared subdivision tree's per-element steps (node tests, children, hits, shading and the
+// per-pixel merge), written once for the CPU driver and the CUDA driver.
+#pragma once
+
+#include "iga/Camera.h"
+#include "iga/sst/Engine.h"
+#include "iga/sst/PixelProblem.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+namespace iga
+{
+namespace sst
+{
+
+/// A sub-patch of an input patch for one isovalue: level and integer offsets locate it in the
+/// input patch's parameter cube ([offset, offset + 1] / 2^level per direction).
+struct Node
+{
+  int patch;
+  int iso;
+  int level;
+  int offset[3];
+  size_t coeff; ///< start of its screen coefficients in the owning pool
+  NodeInfo<double> info;
+  uint32_t initial; ///< the initial node (SAG work item) it descends from
+  bool implicit;    ///< SST: stands for all round pixels in its box, without tuples yet
+  bool overBudget;  ///< SST: an implicit node the memory cap did not let split
+};
+
+/// A ray/isosurface root before shading.
+struct RawHit
+{
+  uint32_t pixel;
+  int patch;
+  int iso;
+  double ndcDepth;
+  double u[3]; ///< in the input patch's parameter cube
+};
+
+/// A (pixel, node) pair of the SST loop.
+struct Tuple
+{
+  uint32_t pixel;
+  uint32_t node;
+};
+
+/// What every per-element step of a frame reads, passed by value (device code gets a copy).
+struct FrameConstants
+{
+  int width;
+  int height;
+  bool firstHitOnly;
+  int maxSubdivisionDepth;
+  double tolerance[3];     ///< Newton's acceptance window (pixels, pixels, attribute)
+  ClipPlanes<double> clip; ///< in homogeneous window coordinates
+  const double* isovalues; ///< in the driver's memory (host or device)
+};
+
+/// A root node: the whole input patch for one isovalue.
+IGA_HD inline Node rootNode(int patch, int iso)
+{
+  Node node{};
+  node.patch = patch;
+  node.iso = iso;
+  return node;
+}
+
+IGA_HD inline Node childOf(const Node& parent, int child)
+{
+  Node node = parent;
+  node.level = parent.level + 1;
+  for (int d = 0; d < 3; ++d)
+  {
+    node.offset[d] = 2 * parent.offset[d] + ((child >> d) & 1);
+  }
+  return node;
+}
+
+/// Pixel ranges [i0, i1] x [j0, j1] whose centres the box covers (empty when i0 > i1).
+IGA_HD inline void pixelRange(const Box3<double>& box, int width, int height, int* range)
+{
+  const double i0 = ceil(box.lo[0] - 0.5 - 1e-6), i1 = floor(box.hi[0] - 0.5 + 1e-6);
+  const double j0 = ceil(box.lo[1] - 0.5 - 1e-6), j1 = floor(box.hi[1] - 0.5 + 1e-6);
+  range[0] = i0 > 0 ? int(i0) : 0;
+  range[1] = i1 < width - 1 ? int(i1) : width - 1;
+  range[2] = j0 > 0 ? int(j0) : 0;
+  range[3] = j1 < height - 1 ? int(j1) : height - 1;
+}
+
+IGA_HD inline bool onScreen(const Box3<double>& box, int width, int height)
+{
+  return box.hi[0] >= 0 && box.lo[0] <= width && box.hi[1] >= 0 && box.lo[1] <= height;
+}
+
+/// Whether a node may hold visible surface: sign change, not behind the eye, depth and window
+/// ranges meeting the view volume.
+IGA_HD inline bool worthKeeping(const NodeInfo<double>& info, const FrameConstants& frame)
+{
+  return info.mayContainSurface && info.status != ProjectionStatus::BehindEye &&
+         info.visibleDepth &&
+         (info.status != ProjectionStatus::InFront ||
+           onScreen(info.box, frame.width, frame.height));
+}
+
+/// An implicit node stands for all pixels of its box in the round; it gets explicit (pixel,
+/// node) tuples once it is certified, small, or at a cap. Before, every pixel would fail on it
+/// without a certificate, so the paper's loop would split it anyway.
+IGA_HD inline bool readyForTuples(const Node& node, const FrameConstants& frame)
+{
+  const Box3<double>& box = node.info.box;
+  return node.info.certified || (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) <= 256.0 ||
+         node.level >= frame.maxSubdivisionDepth || node.overBudget;
+}
+
+/// Whether a node's box holds the pixel and, in first-hit mode, may lie before its best hit.
+IGA_HD inline bool mayHitPixel(
+  const Node& node, uint32_t pixel, double bestDepth, const FrameConstants& frame)
+{
+  return boxCoversPixel(node.info.box, int(pixel % frame.width), int(pixel / frame.width)) &&
+         !(frame.firstHitOnly && node.info.box.lo[2] > bestDepth);
+}
+
+/// A root in node coordinates, moved to the input patch's parameter cube.
+IGA_HD inline RawHit rawHitOf(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
+{
+  RawHit hit;
+  hit.pixel = pixel;
+  hit.patch = node.patch;
+  hit.iso = node.iso;
+  hit.ndcDepth = ndcDepth;
+  const double scale = ldexp(1.0, -node.level);
+  for (int d = 0; d < 3; ++d)
+  {
+    const double v = (node.offset[d] + u[d]) * scale;
+    hit.u[d] = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+  }
+  return hit;
+}
+
+// ---- shading ---------------------------------------------------------------------------------
+
+/// Channels of a shading patch: the world patch reduced to what a hit needs.
+constexpr int kShadeX = 0; ///< x, y, z homogeneous, then the weight
+constexpr int kShadeWeight = 3;
+constexpr int kShadeSurface = 4;
+constexpr int kShadeColor = 5;
+constexpr int kShadeChannels = 6;
+
+/// Copies position, weight, surface and colour attribute (the surface again without a colour
+/// attribute) of a world patch into pointCount * kShadeChannels values.
+IGA_HD inline void makeShadingPatch(
+  const VolumeView<const double>& world, int surfaceChannel, int colorChannel, double* out)
+{
+  for (int p = 0; p < world.pointCount(); ++p)
+  {
+    const double* cp = world.point(p);
+    double* s = out + p * kShadeChannels;
+    for (int c = 0; c < 3; ++c)
+    {
+      s[kShadeX + c] = cp[c];
+    }
+    s[kShadeWeight] = cp[kWeightChannel];
+    s[kShadeSurface] = cp[surfaceChannel];
+    s[kShadeColor] = cp[colorChannel >= 0 ? colorChannel : surfaceChannel];
+  }
+}
+
+/// The viewer as shading sees it.
+struct ShadingView
+{
+  double eye[3];
+  double forward[3];
+  bool parallel;
+  bool hasColor;
+};
+
+/// World position, normal (facing the viewer), depth and colour value of a root, evaluated on
+/// its shading patch in double precision.
+IGA_HD inline Hit shadeHit(
+  const VolumeView<const double>& shading, const RawHit& raw, const ShadingView& viewer)
+{
+  double values[kShadeChannels], derivatives[3 * kShadeChannels];
+  evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives);
+  Hit hit;
+  hit.ndcDepth = raw.ndcDepth;
+  hit.patch = raw.patch;
+  hit.isovalue = raw.iso;
+  double J[3][3], gradient[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    hit.uvw[d] = raw.u[d];
+    hit.position[d] = rationalValue<double, 3>(
+      values, derivatives, kShadeChannels, kShadeX + d, kShadeWeight, J[d]);
+  }
+  rationalValue<double, 3>(
+    values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, gradient);
+  // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J). The cofactor form
+  // stays defined where J is singular (collapsed faces); the orientation is fixed below.
+  double normal[3] = { 0, 0, 0 };
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
+      normal[r] += (J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0]) * gradient[c];
+    }
+  }
+  double toEye[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    toEye[d] = viewer.parallel ? -viewer.forward[d] : viewer.eye[d] - hit.position[d];
+  }
+  normalize3(normal);
+  if (dot3(normal, normal) == 0 || !isFinite(normal[0]))
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      normal[d] = toEye[d];
+    }
+    normalize3(normal);
+  }
+  const double sign = dot3(normal, toEye) < 0 ? -1.0 : 1.0;
+  double offset[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    hit.normal[d] = sign * normal[d];
+    offset[d] = hit.position[d] - viewer.eye[d];
+  }
+  hit.eyeDepth = dot3(offset, viewer.forward);
+  hit.color = viewer.hasColor ? values[kShadeColor] / values[kShadeWeight] : nan("");
+  return hit;
+}
+
+IGA_HD inline bool hitBefore(const Hit& a, const Hit& b)
+{
+  if (a.eyeDepth != b.eyeDepth)
+  {
+    return a.eyeDepth < b.eyeDepth;
+  }
+  if (a.isovalue != b.isovalue)
+  {
+    return a.isovalue < b.isovalue;
+  }
+  return a.patch < b.patch;
+}
+
+/// Sorts one pixel's hits front to back and merges duplicates (a root on a face shared by two
+/// sub-patches is found in both: two roots of one isovalue closer along the ray than 1e-4 of a
+/// pixel's footprint are one, as Newton places roots within 1e-6 pixel of the ray). Returns how
+/// many are kept at the front, at most one in first-hit mode.
+IGA_HD inline int mergePixelHits(
+  Hit* hits, int count, double footprint, bool parallel, bool firstHitOnly)
+{
+  for (int k = 1; k < count; ++k) // insertion sort: a pixel has a handful of hits
+  {
+    const Hit moving = hits[k];
+    int at = k;
+    for (; at > 0 && hitBefore(moving, hits[at - 1]); --at)
+    {
+      hits[at] = hits[at - 1];
+    }
+    hits[at] = moving;
+  }
+  int kept = 0;
+  for (int k = 0; k < count; ++k)
+  {
+    const double tolerance = 1e-4 * footprint * (parallel ? 1.0 : absValue(hits[k].eyeDepth));
+    bool duplicate = false;
+    for (int previous = 0; previous < kept && !duplicate; ++previous)
+    {
+      duplicate = hits[previous].isovalue == hits[k].isovalue &&
+                  hits[k].eyeDepth - hits[previous].eyeDepth <= tolerance;
+    }
+    if (!duplicate)
+    {
+      hits[kept++] = hits[k];
+    }
+  }
+  return firstHitOnly && kept > 1 ? 1 : kept;
+}
+
+} // namespace sst
+} // namespace iga
