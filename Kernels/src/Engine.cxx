@@ -3,6 +3,7 @@
 #include "iga/sst/Engine.h"
 
 #include "CudaEngine.h"
+#include "FramePlan.h"
 
 #include "iga/Validation.h"
 #include "iga/sst/PixelProblem.h"
@@ -74,8 +75,6 @@ namespace
 
 using Clock = std::chrono::steady_clock;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-/// Sub-patches per level kept while splitting a patch at the eye plane.
-constexpr size_t kMaxEyePlaneNodes = size_t(1) << 16;
 
 double millisecondsSince(Clock::time_point start)
 {
@@ -187,123 +186,17 @@ private:
 
   void setup()
   {
-    const Settings& s = this->Config;
-    if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
-    {
-      throw std::invalid_argument("image size " + std::to_string(s.width) + "x" +
-                                  std::to_string(s.height) + " is outside 1..16384 per side");
-    }
-    if (s.isovalues.empty())
-    {
-      throw std::invalid_argument("no isovalue given");
-    }
-    for (double iso : s.isovalues)
-    {
-      if (!std::isfinite(iso))
-      {
-        throw std::invalid_argument("isovalue is not finite");
-      }
-    }
-    if (s.maxSubdivisionDepth < 0 || s.maxSubdivisionDepth > 40)
-    {
-      throw std::invalid_argument("maximum subdivision depth must lie in 0..40");
-    }
-    this->Threads = s.threads > 0 ? s.threads : std::max(1u, std::thread::hardware_concurrency());
-    this->Report.threads = this->Threads;
-    const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
-    double attributeLo = kInfinity, attributeHi = -kInfinity;
-    for (size_t p = 0; p < this->Patches.size(); ++p)
-    {
-      const auto view = this->Patches[p].view();
-      const std::string problem = checkPatch<double, 3>(view);
-      if (!problem.empty())
-      {
-        throw std::invalid_argument("patch " + std::to_string(p) + ": " + problem);
-      }
-      if (s.surfaceAttribute < 0 || attribute >= view.channels ||
-          (s.colorAttribute >= 0 && kFirstAttributeChannel + s.colorAttribute >= view.channels))
-      {
-        throw std::invalid_argument("patch " + std::to_string(p) + " has " +
-                                    std::to_string(view.channels - kFirstAttributeChannel) +
-                                    " attributes; the surface uses " +
-                                    std::to_string(s.surfaceAttribute) + ", the colour " +
-                                    std::to_string(s.colorAttribute));
-      }
-      double lo, hi;
-      rationalRange(view, attribute, kWeightChannel, lo, hi);
-      attributeLo = std::min(attributeLo, lo);
-      attributeHi = std::max(attributeHi, hi);
-    }
-    const double range = attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
-    if (s.clipPlanes.size() > size_t(kMaxClipPlanes))
-    {
-      throw std::invalid_argument("at most " + std::to_string(kMaxClipPlanes) +
-                                  " clipping planes are supported, got " +
-                                  std::to_string(s.clipPlanes.size()));
-    }
-    this->Tolerance[0] = this->Tolerance[1] = s.pixelTolerance;
-    this->Tolerance[2] = s.isoTolerance * range;
-
-    // Window coordinates: x, y in pixels (pixel i covers [i, i+1]), z the NDC depth.
-    const double W = s.width, H = s.height;
-    Matrix4<double> window = Matrix4<double>::identity();
-    window.m[0][0] = 0.5 * W;
-    window.m[0][3] = 0.5 * W;
-    window.m[1][1] = 0.5 * H;
-    window.m[1][3] = 0.5 * H;
-    this->WindowFromWorld = multiply(window, this->TheView.worldToClip);
-    this->Clip.count = 0;
-    for (const auto& plane : s.clipPlanes)
-    {
-      const bool finite = std::isfinite(plane[0]) && std::isfinite(plane[1]) &&
-                          std::isfinite(plane[2]) && std::isfinite(plane[3]);
-      if (!finite || (plane[0] == 0 && plane[1] == 0 && plane[2] == 0) ||
-          !transformPlane(this->WindowFromWorld, plane.data(), this->Clip.plane[this->Clip.count]))
-      {
-        throw std::invalid_argument(
-          "clipping plane " + std::to_string(this->Clip.count) + " is not a finite plane");
-      }
-      ++this->Clip.count;
-    }
-    this->Frame.width = s.width;
-    this->Frame.height = s.height;
-    this->Frame.firstHitOnly = s.firstHitOnly;
-    this->Frame.maxSubdivisionDepth = s.maxSubdivisionDepth;
-    for (int d = 0; d < 3; ++d)
-    {
-      this->Frame.tolerance[d] = this->Tolerance[d];
-    }
-    this->Frame.clip = this->Clip;
-    this->Frame.isovalues = s.isovalues.data();
-    this->PixelCount = size_t(s.width) * s.height;
+    this->Plan = planFrame(this->Patches, this->TheView, this->Config, this->Report);
+    this->trackMemory(bytesOf(this->Plan.initialPool) + bytesOf(this->Plan.shadingPool));
+    this->PixelCount = size_t(this->Config.width) * this->Config.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, kInfinity);
-
-    // Screen patches of every input patch, then the subdivision-tree roots: one per (patch,
-    // isovalue) with a possible sign change. Roots straddling the eye plane are split until
-    // their parts lie in front of or behind it.
-    for (size_t p = 0; p < this->Patches.size(); ++p)
-    {
-      const auto world = this->Patches[p].view();
-      std::vector<double> screen(size_t(world.pointCount()) * kScreenChannels);
-      makeScreenPatch<double>(world, this->WindowFromWorld, attribute, screen.data());
-      this->ShadingOffsets.push_back(this->ShadingPool.size());
-      this->ShadingPool.resize(this->ShadingPool.size() + world.pointCount() * kShadeChannels);
-      makeShadingPatch(world, attribute,
-        s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1,
-        this->ShadingPool.data() + this->ShadingOffsets.back());
-      for (int iso = 0; iso < int(s.isovalues.size()); ++iso)
-      {
-        Node root = rootNode(int(p), iso);
-        this->addInitialNode(root, screen.data());
-      }
-    }
-    this->trackMemory(bytesOf(this->InitialPool));
   }
 
   VolumeView<const double> shadingView(int patch) const
   {
-    return VolumeView<const double>(this->ShadingPool.data() + this->ShadingOffsets[patch],
+    return VolumeView<const double>(
+      this->Plan.shadingPool.data() + this->Plan.shadingOffsets[patch],
       this->Patches[patch].view().degree, kShadeChannels);
   }
 
@@ -316,58 +209,6 @@ private:
   {
     return VolumeView<const double>(
       pool.data() + node.coeff, this->Patches[node.patch].view().degree, kScreenChannels);
-  }
-
-  /// Adds a root to the initial nodes if it may show surface. A root straddling the eye plane
-  /// has no finite window box: it is split breadth first until its parts lie in front of the
-  /// eye, behind it, or in front of the near plane (all invisible but the first). Parts still
-  /// straddling at the depth cap or beyond the node budget are counted, not drawn.
-  void addInitialNode(Node root, const double* coeffs)
-  {
-    const int count = this->valueCount(root.patch);
-    const auto rootView = this->Patches[root.patch].view();
-    const int* degree = rootView.degree;
-    std::vector<Node> level = { root };
-    std::vector<double> pool(coeffs, coeffs + count);
-    while (!level.empty())
-    {
-      std::vector<Node> straddling;
-      std::vector<double> straddlingPool;
-      for (Node node : level)
-      {
-        const VolumeView<const double> view(pool.data() + node.coeff, degree, kScreenChannels);
-        node.info = analyzeNode(view, this->Config.isovalues[node.iso], this->Clip);
-        if (!worthKeeping(node.info, this->Frame))
-        {
-          continue;
-        }
-        if (node.info.status == ProjectionStatus::InFront)
-        {
-          const size_t offset = this->InitialPool.size();
-          this->InitialPool.insert(this->InitialPool.end(), view.coeffs, view.coeffs + count);
-          node.coeff = offset;
-          this->InitialNodes.push_back(node);
-          continue;
-        }
-        if (node.level >= this->Config.maxSubdivisionDepth ||
-            straddling.size() + 8 > kMaxEyePlaneNodes)
-        {
-          ++this->Report.droppedAtEyePlane;
-          continue;
-        }
-        const size_t offset = straddlingPool.size();
-        straddlingPool.resize(offset + size_t(8) * count);
-        splitMidpoint<double, 3>(view, straddlingPool.data() + offset);
-        for (int c = 0; c < 8; ++c)
-        {
-          Node child = childOf(node, c);
-          child.coeff = offset + size_t(c) * count;
-          straddling.push_back(child);
-        }
-      }
-      level.swap(straddling);
-      pool.swap(straddlingPool);
-    }
   }
 
   // ---- sweep and group ---------------------------------------------------------------------
@@ -395,20 +236,21 @@ private:
   void sweepAndGroup()
   {
     std::vector<uint32_t> counts(this->PixelCount + 1, 0);
-    for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+    for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
-      this->forEachCoveredPixel(this->InitialNodes[n].info.box, [&](size_t p) { ++counts[p]; });
+      this->forEachCoveredPixel(
+        this->Plan.initialNodes[n].info.box, [&](size_t p) { ++counts[p]; });
     }
     const size_t total = exclusiveScan(counts);
     this->ItemOffsets = counts;
     this->Items.resize(total);
     std::vector<uint32_t> fill(counts.begin(), counts.end() - 1);
-    for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+    for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
-      this->forEachCoveredPixel(
-        this->InitialNodes[n].info.box, [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
+      this->forEachCoveredPixel(this->Plan.initialNodes[n].info.box,
+        [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
     }
-    parallelFor(this->PixelCount, this->Threads,
+    parallelFor(this->PixelCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
         for (size_t p = begin; p < end; ++p)
@@ -417,14 +259,14 @@ private:
             this->Items.begin() + this->ItemOffsets[p + 1],
             [&](uint32_t a, uint32_t b)
             {
-              const double za = this->InitialNodes[a].info.box.lo[2],
-                           zb = this->InitialNodes[b].info.box.lo[2];
+              const double za = this->Plan.initialNodes[a].info.box.lo[2],
+                           zb = this->Plan.initialNodes[b].info.box.lo[2];
               return za < zb || (za == zb && a < b);
             });
         }
       });
     this->trackMemory(
-      bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->InitialPool));
+      bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->Plan.initialPool));
   }
 
   /// The next group of a pixel's work items from `cursor`: in first-hit mode the nearest item
@@ -437,15 +279,15 @@ private:
       return end;
     }
     if (cursor >= end ||
-        this->InitialNodes[this->Items[cursor]].info.box.lo[2] > this->BestDepth[pixel])
+        this->Plan.initialNodes[this->Items[cursor]].info.box.lo[2] > this->BestDepth[pixel])
     {
       return cursor;
     }
-    double groupFar = this->InitialNodes[this->Items[cursor]].info.box.hi[2];
+    double groupFar = this->Plan.initialNodes[this->Items[cursor]].info.box.hi[2];
     size_t last = cursor + 1;
-    while (last < end && this->InitialNodes[this->Items[last]].info.box.lo[2] <= groupFar)
+    while (last < end && this->Plan.initialNodes[this->Items[last]].info.box.lo[2] <= groupFar)
     {
-      groupFar = std::max(groupFar, this->InitialNodes[this->Items[last]].info.box.hi[2]);
+      groupFar = std::max(groupFar, this->Plan.initialNodes[this->Items[last]].info.box.hi[2]);
       ++last;
     }
     return last;
@@ -469,7 +311,7 @@ private:
       const Clock::time_point stage = Clock::now();
       std::vector<uint32_t> ends(this->PixelCount);
       std::atomic<size_t> total{ 0 };
-      parallelFor(this->PixelCount, this->Threads,
+      parallelFor(this->PixelCount, this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           size_t local = 0;
@@ -514,7 +356,7 @@ private:
     std::vector<Node> nodes;
     std::vector<double> pool;
     {
-      std::vector<uint8_t> present(this->InitialNodes.size(), 0);
+      std::vector<uint8_t> present(this->Plan.initialNodes.size(), 0);
       for (size_t p = 0; p < this->PixelCount; ++p)
       {
         for (uint32_t k = groupBegin[p]; k < groupEnd[p]; ++k)
@@ -522,12 +364,12 @@ private:
           present[this->Items[k]] = 1;
         }
       }
-      for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+      for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
       {
         if (present[n])
         {
-          Node node = this->InitialNodes[n];
-          const double* src = this->InitialPool.data() + node.coeff;
+          Node node = this->Plan.initialNodes[n];
+          const double* src = this->Plan.initialPool.data() + node.coeff;
           node.coeff = pool.size();
           node.initial = uint32_t(n);
           node.implicit = true;
@@ -550,7 +392,7 @@ private:
       std::vector<uint32_t> ready;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
-        if (nodes[n].implicit && readyForTuples(nodes[n], this->Frame))
+        if (nodes[n].implicit && readyForTuples(nodes[n], this->Plan.frame))
         {
           ready.push_back(uint32_t(n));
         }
@@ -568,7 +410,7 @@ private:
             }
           });
       };
-      parallelFor(ready.size(), this->Threads,
+      parallelFor(ready.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t k = begin; k < end; ++k)
@@ -578,7 +420,7 @@ private:
         });
       const size_t existing = tuples.size();
       tuples.resize(existing + exclusiveScan(readyCounts));
-      parallelFor(ready.size(), this->Threads,
+      parallelFor(ready.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t k = begin; k < end; ++k)
@@ -590,7 +432,7 @@ private:
               });
           }
         });
-      parallelFor(ready.size(), this->Threads,
+      parallelFor(ready.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t k = begin; k < end; ++k)
@@ -626,7 +468,7 @@ private:
       outcome.assign(tuples.size(), Failed);
       solution.resize(tuples.size() * 4);
       std::atomic<size_t> solves{ 0 };
-      parallelFor(this->PixelCount, this->Threads,
+      parallelFor(this->PixelCount, this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           size_t local = 0;
@@ -651,8 +493,8 @@ private:
               const int i = int(pixel % this->Config.width), j = int(pixel / this->Config.width);
               local += node.info.certified ? 1 : 0;
               switch (solveTuple(this->nodeView(node, pool), node.info, i, j,
-                this->Config.isovalues[node.iso], this->Tolerance, &solution[4 * t],
-                solution[4 * t + 3], this->Clip))
+                this->Config.isovalues[node.iso], this->Plan.frame.tolerance, &solution[4 * t],
+                solution[4 * t + 3], this->Plan.frame.clip))
               {
                 case TupleOutcome::Hit:
                   outcome[t] = Solved;
@@ -757,7 +599,7 @@ private:
       std::vector<double>& childPool = this->ChildPool;
       std::vector<Node> children(toSplit.size() * 8);
       std::vector<uint8_t> keep(children.size(), 0);
-      parallelFor(toSplit.size(), this->Threads,
+      parallelFor(toSplit.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t k = begin; k < end; ++k)
@@ -771,8 +613,9 @@ private:
               Node child = childOf(parent, c);
               child.coeff = poolOffset[k] + size_t(c) * count;
               const auto view = this->nodeView(child, childPool);
-              child.info = analyzeNodeBounds(view, this->Config.isovalues[child.iso], this->Clip);
-              keep[8 * k + c] = worthKeeping(child.info, this->Frame) ? 1 : 0;
+              child.info =
+                analyzeNodeBounds(view, this->Config.isovalues[child.iso], this->Plan.frame.clip);
+              keep[8 * k + c] = worthKeeping(child.info, this->Plan.frame) ? 1 : 0;
               // Explicit children are analysed once they are known to receive pixels.
               if (child.implicit && keep[8 * k + c])
               {
@@ -804,7 +647,7 @@ private:
                !(firstHit && children[c].info.box.lo[2] > this->BestDepth[t.pixel]);
       };
       std::vector<uint32_t> newCounts(tuples.size(), 0);
-      parallelFor(tuples.size(), this->Threads,
+      parallelFor(tuples.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t t = begin; t < end; ++t)
@@ -831,7 +674,7 @@ private:
       }
       std::vector<uint32_t> newOffsets = newCounts;
       std::vector<Tuple> next(exclusiveScan(newOffsets));
-      parallelFor(tuples.size(), this->Threads,
+      parallelFor(tuples.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t t = begin; t < end; ++t)
@@ -873,7 +716,7 @@ private:
         keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(node.patch)));
       }
       std::vector<double> keptPool(keptOffset.back());
-      parallelFor(kept.size(), this->Threads,
+      parallelFor(kept.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t n = begin; n < end; ++n)
@@ -908,7 +751,7 @@ private:
 
   size_t baseBytes() const
   {
-    return bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->InitialPool) +
+    return bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->Plan.initialPool) +
            bytesOf(this->Hits) + bytesOf(this->BestDepth) + bytesOf(this->Unresolved);
   }
 
@@ -932,7 +775,7 @@ private:
     std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
     std::vector<size_t> peak(this->PixelCount, 0);
     std::atomic<size_t> solves{ 0 }, splits{ 0 }, capped{ 0 };
-    parallelFor(this->PixelCount, this->Threads,
+    parallelFor(this->PixelCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
         // The arena holds exactly the stacked nodes' coefficient blocks, in stack order.
@@ -945,7 +788,7 @@ private:
           double best = kInfinity;
           for (uint32_t item = this->ItemOffsets[p]; item < this->ItemOffsets[p + 1]; ++item)
           {
-            const Node& initial = this->InitialNodes[this->Items[item]];
+            const Node& initial = this->Plan.initialNodes[this->Items[item]];
             if (this->Config.firstHitOnly && initial.info.box.lo[2] > best)
             {
               break;
@@ -953,8 +796,8 @@ private:
             const int count = this->valueCount(initial.patch);
             stack.assign(1, initial);
             stack.back().coeff = 0;
-            arena.assign(this->InitialPool.begin() + initial.coeff,
-              this->InitialPool.begin() + initial.coeff + count);
+            arena.assign(this->Plan.initialPool.begin() + initial.coeff,
+              this->Plan.initialPool.begin() + initial.coeff + count);
             while (!stack.empty())
             {
               Node node = stack.back();
@@ -970,7 +813,8 @@ private:
               localSolves += node.info.certified ? 1 : 0;
               double u[3], ndc;
               const TupleOutcome result = solveTuple(this->nodeView(node, current), node.info, i, j,
-                this->Config.isovalues[node.iso], this->Tolerance, u, ndc, this->Clip);
+                this->Config.isovalues[node.iso], this->Plan.frame.tolerance, u, ndc,
+                this->Plan.frame.clip);
               if (result == TupleOutcome::Hit)
               {
                 perPixel[p].push_back(rawHitOf(uint32_t(p), node, u, ndc));
@@ -994,9 +838,9 @@ private:
               {
                 Node child = childOf(node, c);
                 child.coeff = size_t(c) * count;
-                child.info = analyzeNode(
-                  this->nodeView(child, children), this->Config.isovalues[child.iso], this->Clip);
-                if (worthKeeping(child.info, this->Frame))
+                child.info = analyzeNode(this->nodeView(child, children),
+                  this->Config.isovalues[child.iso], this->Plan.frame.clip);
+                if (worthKeeping(child.info, this->Plan.frame))
                 {
                   child.coeff = arena.size();
                   arena.insert(arena.end(), children.begin() + size_t(c) * count,
@@ -1019,7 +863,7 @@ private:
       this->Hits.insert(this->Hits.end(), hits.begin(), hits.end());
     }
     this->trackMemory(
-      this->baseBytes() + *std::max_element(peak.begin(), peak.end()) * size_t(this->Threads));
+      this->baseBytes() + *std::max_element(peak.begin(), peak.end()) * size_t(this->Plan.threads));
     this->Report.msSolution = millisecondsSince(stage);
   }
 
@@ -1032,14 +876,14 @@ private:
     const Clock::time_point stage = Clock::now();
     std::vector<Node> leaves;
     std::vector<double> leafPool;
-    std::vector<uint32_t> leafOffsets(this->InitialNodes.size() + 1, 0);
-    for (size_t n = 0; n < this->InitialNodes.size(); ++n)
+    std::vector<uint32_t> leafOffsets(this->Plan.initialNodes.size() + 1, 0);
+    for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
-      std::vector<Node> level = { this->InitialNodes[n] };
+      std::vector<Node> level = { this->Plan.initialNodes[n] };
       level[0].coeff = 0;
       const int count = this->valueCount(level[0].patch);
-      std::vector<double> pool(this->InitialPool.begin() + this->InitialNodes[n].coeff,
-        this->InitialPool.begin() + this->InitialNodes[n].coeff + count);
+      std::vector<double> pool(this->Plan.initialPool.begin() + this->Plan.initialNodes[n].coeff,
+        this->Plan.initialPool.begin() + this->Plan.initialNodes[n].coeff + count);
       for (int depth = 0; depth < this->Config.bruteForceLevels; ++depth)
       {
         std::vector<Node> next;
@@ -1051,9 +895,9 @@ private:
           {
             Node child = childOf(level[k], c);
             child.coeff = (k * 8 + c) * size_t(count);
-            child.info = analyzeNode(
-              this->nodeView(child, nextPool), this->Config.isovalues[child.iso], this->Clip);
-            if (worthKeeping(child.info, this->Frame) &&
+            child.info = analyzeNode(this->nodeView(child, nextPool),
+              this->Config.isovalues[child.iso], this->Plan.frame.clip);
+            if (worthKeeping(child.info, this->Plan.frame) &&
                 child.info.status == ProjectionStatus::InFront)
             {
               next.push_back(child);
@@ -1076,7 +920,7 @@ private:
     this->trackMemory(this->baseBytes() + bytesOf(leafPool) + bytesOf(leaves));
     std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
     std::atomic<size_t> solves{ 0 };
-    parallelFor(this->PixelCount, this->Threads,
+    parallelFor(this->PixelCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
         size_t local = 0;
@@ -1104,8 +948,8 @@ private:
                 // shared faces would otherwise be lost to rounding); duplicates are
                 // merged later.
                 if (solvePixel<double>(this->nodeView(leaf, leafPool), i, j,
-                      this->Config.isovalues[leaf.iso], this->Tolerance, start, u, ndc,
-                      this->Clip) == TupleOutcome::Hit)
+                      this->Config.isovalues[leaf.iso], this->Plan.frame.tolerance, start, u, ndc,
+                      this->Plan.frame.clip) == TupleOutcome::Hit)
                 {
                   perPixel[p].push_back(rawHitOf(uint32_t(p), leaf, u, ndc));
                 }
@@ -1152,7 +996,7 @@ private:
     viewer.hasColor = this->Config.colorAttribute >= 0;
     std::vector<Hit> shaded(this->Hits.size());
     std::vector<uint32_t> keptCount(this->PixelCount, 0);
-    parallelFor(this->PixelCount, this->Threads,
+    parallelFor(this->PixelCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
         for (size_t p = begin; p < end; ++p)
@@ -1183,16 +1027,8 @@ private:
   const View& TheView;
   const Settings& Config;
   FrameReport& Report;
-  int Threads = 1;
-  double Tolerance[3] = {};
-  Matrix4<double> WindowFromWorld;
-  ClipPlanes<double> Clip; ///< Settings::clipPlanes in homogeneous window coordinates
-  FrameConstants Frame{};
-  std::vector<double> ShadingPool; ///< shading patches of the input patches
-  std::vector<size_t> ShadingOffsets;
+  FramePlan Plan;
   size_t PixelCount = 0;
-  std::vector<Node> InitialNodes;
-  std::vector<double> InitialPool;
   std::vector<uint32_t> ItemOffsets;
   std::vector<uint32_t> Items;
   std::vector<double> BestDepth;
