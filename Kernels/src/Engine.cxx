@@ -269,30 +269,6 @@ private:
       bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->Plan.initialPool));
   }
 
-  /// The next group of a pixel's work items from `cursor`: in first-hit mode the nearest item
-  /// and all items overlapping it in depth (none when the best hit is nearer), else all items.
-  size_t groupEnd(size_t pixel, size_t cursor) const
-  {
-    const size_t end = this->ItemOffsets[pixel + 1];
-    if (!this->Config.firstHitOnly)
-    {
-      return end;
-    }
-    if (cursor >= end ||
-        this->Plan.initialNodes[this->Items[cursor]].info.box.lo[2] > this->BestDepth[pixel])
-    {
-      return cursor;
-    }
-    double groupFar = this->Plan.initialNodes[this->Items[cursor]].info.box.hi[2];
-    size_t last = cursor + 1;
-    while (last < end && this->Plan.initialNodes[this->Items[last]].info.box.lo[2] <= groupFar)
-    {
-      groupFar = std::max(groupFar, this->Plan.initialNodes[this->Items[last]].info.box.hi[2]);
-      ++last;
-    }
-    return last;
-  }
-
   // ---- shared subdivision trees ------------------------------------------------------------
 
   enum Outcome : uint8_t
@@ -317,7 +293,8 @@ private:
           size_t local = 0;
           for (size_t p = begin; p < end; ++p)
           {
-            ends[p] = uint32_t(this->groupEnd(p, cursor[p]));
+            ends[p] = groupEnd(this->Plan.initialNodes.data(), this->Items.data(), cursor[p],
+              this->ItemOffsets[p + 1], this->BestDepth[p], this->Config.firstHitOnly);
             local += ends[p] - cursor[p];
           }
           total += local;
@@ -330,19 +307,6 @@ private:
       this->solveRound(cursor, ends);
       cursor = ends;
     }
-  }
-
-  /// Whether pixel p works on initial node n in this round (n is in its current group).
-  bool inGroup(size_t p, uint32_t n) const
-  {
-    for (uint32_t k = this->GroupBegin[p]; k < this->GroupEnd[p]; ++k)
-    {
-      if (this->Items[k] == n)
-      {
-        return true;
-      }
-    }
-    return false;
   }
 
   /// The SST loop of the paper over one round: overlap (tuples of pixels and node boxes),
@@ -404,7 +368,7 @@ private:
           [&](size_t p)
           {
             if (!(firstHit && node.info.box.lo[2] > this->BestDepth[p]) &&
-                this->inGroup(p, node.initial))
+                inGroup(this->Items.data(), this->GroupBegin[p], this->GroupEnd[p], node.initial))
             {
               fn(p);
             }
@@ -642,9 +606,7 @@ private:
       {
         // Children of nodes in front of the eye are in front too (positive weights stay positive).
         return keep[c] &&
-               boxCoversPixel(children[c].info.box, int(t.pixel % this->Config.width),
-                 int(t.pixel / this->Config.width)) &&
-               !(firstHit && children[c].info.box.lo[2] > this->BestDepth[t.pixel]);
+               mayHitPixel(children[c], t.pixel, this->BestDepth[t.pixel], this->Plan.frame);
       };
       std::vector<uint32_t> newCounts(tuples.size(), 0);
       parallelFor(tuples.size(), this->Plan.threads,

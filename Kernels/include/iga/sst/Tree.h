@@ -122,6 +122,44 @@ IGA_HD inline bool mayHitPixel(
          !(frame.firstHitOnly && node.info.box.lo[2] > bestDepth);
 }
 
+/// The end of a pixel's next group of work items (initial nodes sorted by nearest depth) from
+/// `cursor`: in first-hit mode the nearest item and all items overlapping it in depth (none
+/// when the best hit is nearer), else all items up to `end`.
+IGA_HD inline uint32_t groupEnd(const Node* initialNodes, const uint32_t* items, uint32_t cursor,
+  uint32_t end, double bestDepth, bool firstHitOnly)
+{
+  if (!firstHitOnly)
+  {
+    return end;
+  }
+  if (cursor >= end || initialNodes[items[cursor]].info.box.lo[2] > bestDepth)
+  {
+    return cursor;
+  }
+  double groupFar = initialNodes[items[cursor]].info.box.hi[2];
+  uint32_t last = cursor + 1;
+  while (last < end && initialNodes[items[last]].info.box.lo[2] <= groupFar)
+  {
+    const double far = initialNodes[items[last]].info.box.hi[2];
+    groupFar = far > groupFar ? far : groupFar;
+    ++last;
+  }
+  return last;
+}
+
+/// Whether initial node n is among a pixel's work items [begin, end) of the round.
+IGA_HD inline bool inGroup(const uint32_t* items, uint32_t begin, uint32_t end, uint32_t n)
+{
+  for (uint32_t k = begin; k < end; ++k)
+  {
+    if (items[k] == n)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 /// A root in node coordinates, moved to the input patch's parameter cube.
 IGA_HD inline RawHit rawHitOf(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
 {
