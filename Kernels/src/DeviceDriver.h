@@ -1,0 +1,829 @@
+// The shared-subdivision-tree loop over device-wide primitives (Thrust): every stage is a
+// parallel map, scan, sort or compaction over global node and tuple arrays, as the paper lays
+// it out for the GPU. The per-element steps are Tree.h and PixelProblem.h, shared with the CPU
+// driver. nvcc compiles this for CUDA (CudaEngine.cu); the tests also compile it with g++ for
+// Thrust's sequential host system, which checks the driver's logic on machines without a GPU.
+#pragma once
+
+#include "FramePlan.h"
+
+#include <thrust/binary_search.h>
+#include <thrust/copy.h>
+#include <thrust/count.h>
+#include <thrust/device_vector.h>
+#include <thrust/execution_policy.h>
+#include <thrust/fill.h>
+#include <thrust/for_each.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
+#include <thrust/reduce.h>
+#include <thrust/scan.h>
+#include <thrust/sort.h>
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+namespace iga
+{
+namespace sst
+{
+namespace device
+{
+
+template<class T>
+using Array = thrust::device_vector<T>;
+
+template<class T>
+T* raw(Array<T>& v)
+{
+  return thrust::raw_pointer_cast(v.data());
+}
+
+/// Sizes an array for this frame. Shrinking keeps the allocation, so steady-state frames reuse
+/// the memory of earlier ones instead of allocating.
+template<class T>
+T* sized(Array<T>& v, size_t n)
+{
+  v.resize(n);
+  return raw(v);
+}
+
+/// Calls fn(k) for k in [0, n) on the device.
+template<class Fn>
+void forEach(size_t n, Fn fn)
+{
+  if (n > 0)
+  {
+    thrust::for_each_n(thrust::device, thrust::counting_iterator<size_t>(0), n, fn);
+  }
+}
+
+/// Exclusive scan of uint32 counts in place with one extra slot at the end; returns the total.
+/// Copies device memory to host memory.
+template<class T>
+void download(const T* first, size_t count, T* host)
+{
+  const auto from = thrust::device_pointer_cast(first);
+  thrust::copy(from, from + count, host);
+}
+
+template<class T>
+T readBack(const T* where)
+{
+  T value;
+  download(where, 1, &value);
+  return value;
+}
+
+inline size_t scanCounts(Array<uint32_t>& counts, size_t n)
+{
+  uint32_t* c = raw(counts);
+  thrust::exclusive_scan(thrust::device, c, c + n + 1, c);
+  return readBack(c + n);
+}
+
+/// How many k in [0, n) satisfy pred(k).
+template<class Pred>
+size_t countIf(size_t n, Pred pred)
+{
+  return size_t(thrust::count_if(thrust::device, thrust::counting_iterator<size_t>(0),
+    thrust::counting_iterator<size_t>(n), pred));
+}
+
+/// What a driver knows of an input patch's shape.
+struct PatchShape
+{
+  int degree[3];
+  int screenValues; ///< control points times kScreenChannels
+  size_t shading;   ///< offset of its shading patch
+};
+
+IGA_HD inline VolumeView<const double> viewOf(
+  const Node& node, const double* pool, const PatchShape* shapes)
+{
+  return VolumeView<const double>(pool + node.coeff, shapes[node.patch].degree, kScreenChannels);
+}
+
+/// Orders (pixel, node) tuples by pixel, then nearest node depth, then node.
+struct TupleOrder
+{
+  const Node* nodes;
+  IGA_HD bool operator()(const Tuple& a, const Tuple& b) const
+  {
+    if (a.pixel != b.pixel)
+    {
+      return a.pixel < b.pixel;
+    }
+    const double za = nodes[a.node].info.box.lo[2], zb = nodes[b.node].info.box.lo[2];
+    return za < zb || (za == zb && a.node < b.node);
+  }
+};
+
+struct HitPixelOrder
+{
+  IGA_HD bool operator()(const RawHit& a, const RawHit& b) const { return a.pixel < b.pixel; }
+};
+
+/// Writes per-pixel start offsets (pixelCount + 1 entries) of records sorted by pixel.
+template<class Record>
+void pixelOffsets(const Record* records, size_t count, size_t pixelCount, uint32_t* offsets)
+{
+  forEach(count + 1,
+    [=] IGA_HD(size_t k)
+    {
+      const size_t from = k == 0 ? 0 : size_t(records[k - 1].pixel) + 1;
+      const size_t to = k == count ? pixelCount : size_t(records[k].pixel);
+      for (size_t p = from; p <= to; ++p)
+      {
+        offsets[p] = uint32_t(k);
+      }
+    });
+}
+
+/// Whether pixel (i, j) takes a tuple of an implicit node this round: the box covers it, it is
+/// a work item of the pixel's group and, in first-hit mode, not behind the pixel's best hit.
+IGA_HD inline bool roundCovers(const Node& node, int i, int j, const double* best,
+  const uint32_t* items, const uint32_t* cursor, const uint32_t* ends, const FrameConstants& frame)
+{
+  const size_t p = size_t(j) * frame.width + i;
+  return boxCoversPixel(node.info.box, i, j) &&
+         !(frame.firstHitOnly && node.info.box.lo[2] > best[p]) &&
+         inGroup(items, cursor[p], ends[p], node.initial);
+}
+
+enum Outcome : uint8_t
+{
+  Solved,
+  Failed,
+  Dropped
+};
+
+enum SplitState : uint8_t
+{
+  Keep = 0,
+  Split = 1,
+  AtDepthCap = 2,
+  OverBudget = 3
+};
+
+/// The device engine. Its arrays persist from frame to frame (a pool that only grows), so a
+/// steady stream of frames allocates nothing. Every member is public because CUDA's extended
+/// lambdas may not live in private member functions.
+struct Driver
+{
+  void render(const std::vector<BezierVolume<double>>& patches, const View& view,
+    const Settings& settings, GBuffer& out, FrameReport& report)
+  {
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::time_point t)
+    { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    const Clock::time_point start = Clock::now();
+    FramePlan plan = planFrame(patches, view, settings, report);
+    report.threads = 0;
+    this->upload(patches, settings, plan);
+    this->Report = &report;
+    this->Settings_ = &settings;
+    this->Peak = 0;
+    report.msSetup = ms(start);
+
+    Clock::time_point stage = Clock::now();
+    this->sweepAndGroup();
+    report.msSweepAndGroup = ms(stage);
+    this->sharedSubdivisionTrees();
+    stage = Clock::now();
+    this->fillGBuffer(view, settings, out);
+    report.msGBuffer = ms(stage);
+    report.unresolvedPixels =
+      thrust::count(thrust::device, this->Unresolved.begin(), this->Unresolved.end(), 1);
+    report.peakBytes = this->Peak;
+    report.msTotal = ms(start);
+  }
+
+  void upload(const std::vector<BezierVolume<double>>& patches, const Settings& settings,
+    const FramePlan& plan)
+  {
+    std::vector<PatchShape> shapes(patches.size());
+    for (size_t p = 0; p < patches.size(); ++p)
+    {
+      const auto v = patches[p].view();
+      for (int d = 0; d < 3; ++d)
+      {
+        shapes[p].degree[d] = v.degree[d];
+      }
+      shapes[p].screenValues = v.pointCount() * kScreenChannels;
+      shapes[p].shading = plan.shadingOffsets[p];
+    }
+    this->Shapes = shapes;
+    this->Isovalues = settings.isovalues;
+    this->InitialNodes = plan.initialNodes;
+    this->InitialPool = plan.initialPool;
+    this->ShadingPool = plan.shadingPool;
+    this->Frame = plan.frame;
+    this->Frame.isovalues = raw(this->Isovalues);
+    this->PixelCount = size_t(settings.width) * settings.height;
+    this->Unresolved.assign(this->PixelCount, 0);
+    this->BestDepth.assign(this->PixelCount, std::numeric_limits<double>::infinity());
+    this->HitCount = 0;
+  }
+
+  size_t arrayBytes() const
+  {
+    return this->Nodes.size() * sizeof(Node) + this->Pool.size() * sizeof(double) +
+           this->Children.size() * sizeof(Node) + this->ChildPool.size() * sizeof(double) +
+           this->Tuples.size() * sizeof(Tuple) + this->Next.size() * sizeof(Tuple) +
+           this->Solution.size() * sizeof(double) + this->Hits.size() * sizeof(RawHit) +
+           this->Items.size() * sizeof(Tuple) + this->InitialPool.size() * sizeof(double) +
+           this->ShadingPool.size() * sizeof(double) + this->InitialNodes.size() * sizeof(Node);
+  }
+
+  void trackMemory() { this->Peak = std::max(this->Peak, this->arrayBytes()); }
+
+  // ---- sweep and group ---------------------------------------------------------------------
+
+  /// Per pixel, the initial nodes whose boxes cover it, sorted by nearest depth.
+  void sweepAndGroup()
+  {
+    const size_t nodeCount = this->InitialNodes.size();
+    const Node* nodes = raw(this->InitialNodes);
+    const FrameConstants frame = this->Frame;
+    uint32_t* counts = sized(this->Counts, nodeCount + 1);
+    forEach(nodeCount,
+      [=] IGA_HD(size_t n)
+      {
+        int range[4];
+        pixelRange(nodes[n].info.box, frame.width, frame.height, range);
+        uint32_t count = 0;
+        for (int j = range[2]; j <= range[3]; ++j)
+        {
+          for (int i = range[0]; i <= range[1]; ++i)
+          {
+            count += boxCoversPixel(nodes[n].info.box, i, j) ? 1 : 0;
+          }
+        }
+        counts[n] = count;
+      });
+    const size_t total = scanCounts(this->Counts, nodeCount);
+    Tuple* items = sized(this->Items, total);
+    forEach(nodeCount,
+      [=] IGA_HD(size_t n)
+      {
+        int range[4];
+        pixelRange(nodes[n].info.box, frame.width, frame.height, range);
+        uint32_t write = counts[n];
+        for (int j = range[2]; j <= range[3]; ++j)
+        {
+          for (int i = range[0]; i <= range[1]; ++i)
+          {
+            if (boxCoversPixel(nodes[n].info.box, i, j))
+            {
+              items[write++] = { uint32_t(size_t(j) * frame.width + i), uint32_t(n) };
+            }
+          }
+        }
+      });
+    thrust::sort(thrust::device, items, items + total, TupleOrder{ nodes });
+    pixelOffsets(items, total, this->PixelCount, sized(this->ItemOffsets, this->PixelCount + 1));
+    uint32_t* itemNodes = sized(this->ItemNodes, total);
+    forEach(total, [=] IGA_HD(size_t k) { itemNodes[k] = items[k].node; });
+    this->trackMemory();
+  }
+
+  // ---- shared subdivision trees ------------------------------------------------------------
+
+  void sharedSubdivisionTrees()
+  {
+    using Clock = std::chrono::steady_clock;
+    const size_t pixels = this->PixelCount;
+    thrust::copy(thrust::device, this->ItemOffsets.begin(), this->ItemOffsets.end() - 1,
+      sized(this->Cursor, pixels));
+    sized(this->Ends, pixels);
+    for (;;)
+    {
+      const Clock::time_point stage = Clock::now();
+      const Node* initial = raw(this->InitialNodes);
+      const uint32_t* items = raw(this->ItemNodes);
+      const uint32_t* offsets = raw(this->ItemOffsets);
+      const uint32_t* cursor = raw(this->Cursor);
+      const double* best = raw(this->BestDepth);
+      uint32_t* ends = raw(this->Ends);
+      const bool firstHit = this->Frame.firstHitOnly;
+      forEach(pixels, [=] IGA_HD(size_t p)
+        { ends[p] = groupEnd(initial, items, cursor[p], offsets[p + 1], best[p], firstHit); });
+      const size_t total = thrust::transform_reduce(
+        thrust::device, thrust::counting_iterator<size_t>(0),
+        thrust::counting_iterator<size_t>(pixels),
+        [=] IGA_HD(size_t p) { return size_t(ends[p] - cursor[p]); }, size_t(0),
+        thrust::plus<size_t>());
+      this->Report->msSweepAndGroup +=
+        std::chrono::duration<double, std::milli>(Clock::now() - stage).count();
+      if (total == 0)
+      {
+        break;
+      }
+      this->solveRound();
+      this->Cursor.swap(this->Ends);
+      sized(this->Ends, pixels);
+    }
+  }
+
+  /// Gathers the nodes flagged in `take` (with their coefficients) into Nodes and Pool, in
+  /// order, followed by `extra` flagged nodes of a second source. Returns the node count.
+  size_t gatherNodes(const Node* first, const double* firstPool, const uint8_t* firstTake,
+    size_t firstCount, const Node* second, const double* secondPool, const uint8_t* secondTake,
+    size_t secondCount, bool asRound)
+  {
+    const size_t count = firstCount + secondCount;
+    const PatchShape* shapes = raw(this->Shapes);
+    uint32_t* index = sized(this->Index, count + 1);
+    forEach(count, [=] IGA_HD(size_t n)
+      { index[n] = n < firstCount ? firstTake[n] : secondTake[n - firstCount]; });
+    const size_t kept = scanCounts(this->Index, count);
+    uint64_t* offsets = sized(this->Offsets, kept + 1);
+    Node* nodes = sized(this->NextNodes, kept);
+    forEach(count,
+      [=] IGA_HD(size_t n)
+      {
+        const bool fromFirst = n < firstCount;
+        if (fromFirst ? firstTake[n] : secondTake[n - firstCount])
+        {
+          const Node& node = fromFirst ? first[n] : second[n - firstCount];
+          nodes[index[n]] = node;
+          offsets[index[n]] = uint64_t(shapes[node.patch].screenValues);
+        }
+      });
+    thrust::exclusive_scan(thrust::device, offsets, offsets + kept + 1, offsets);
+    const size_t values = size_t(readBack(offsets + kept));
+    double* pool = sized(this->NextPool, values);
+    forEach(count,
+      [=] IGA_HD(size_t n)
+      {
+        const bool fromFirst = n < firstCount;
+        if (!(fromFirst ? firstTake[n] : secondTake[n - firstCount]))
+        {
+          return;
+        }
+        const uint32_t k = index[n];
+        Node& node = nodes[k];
+        const double* source = (fromFirst ? firstPool : secondPool) + node.coeff;
+        const int valueCount = shapes[node.patch].screenValues;
+        for (int v = 0; v < valueCount; ++v)
+        {
+          pool[offsets[k] + v] = source[v];
+        }
+        node.coeff = offsets[k];
+        if (asRound)
+        {
+          node.initial = uint32_t(n);
+          node.implicit = true;
+        }
+        else if (fromFirst && !node.implicit)
+        {
+          // Explicit children are analysed once they are known to receive pixels.
+          const auto view = viewOf(node, pool, shapes);
+          analyzeNodeSolver(view, node.info);
+          analyzeNodeCentre(view, node.info);
+        }
+      });
+    this->Nodes.swap(this->NextNodes);
+    this->Pool.swap(this->NextPool);
+    return kept;
+  }
+
+  /// The SST loop over one round of SAG groups: overlap, solution, subdivision and compaction
+  /// until no tuple and no implicit node is left.
+  void solveRound()
+  {
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::time_point t)
+    { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    FrameReport& report = *this->Report;
+    const Settings& settings = *this->Settings_;
+    const FrameConstants frame = this->Frame;
+    const size_t pixels = this->PixelCount;
+    const PatchShape* shapes = raw(this->Shapes);
+    const bool firstHit = frame.firstHitOnly;
+
+    // This round's initial nodes, all implicit.
+    {
+      const size_t initialCount = this->InitialNodes.size();
+      uint8_t* present = sized(this->Present, initialCount);
+      thrust::fill(thrust::device, present, present + initialCount, uint8_t(0));
+      const uint32_t* items = raw(this->ItemNodes);
+      const uint32_t* cursor = raw(this->Cursor);
+      const uint32_t* ends = raw(this->Ends);
+      forEach(pixels,
+        [=] IGA_HD(size_t p)
+        {
+          for (uint32_t k = cursor[p]; k < ends[p]; ++k)
+          {
+            present[items[k]] = 1;
+          }
+        });
+      this->NodeCount = this->gatherNodes(raw(this->InitialNodes), raw(this->InitialPool), present,
+        initialCount, nullptr, nullptr, nullptr, 0, true);
+    }
+    size_t tupleCount = 0;
+    while (this->NodeCount > 0)
+    {
+      ++report.iterations;
+      report.maxPatches = std::max(report.maxPatches, this->NodeCount);
+      const size_t nodeCount = this->NodeCount;
+      Node* nodes = raw(this->Nodes);
+      const double* pool = raw(this->Pool);
+      const uint32_t* items = raw(this->ItemNodes);
+      const uint32_t* cursor = raw(this->Cursor);
+      const uint32_t* ends = raw(this->Ends);
+
+      // Overlap stage: implicit nodes that are ready become tuples of the pixels whose centres
+      // their boxes cover (members of the round, not behind a nearer hit).
+      Clock::time_point stage = Clock::now();
+      {
+        const double* best = raw(this->BestDepth);
+        uint32_t* counts = sized(this->Counts, nodeCount + 1);
+        forEach(nodeCount,
+          [=] IGA_HD(size_t n)
+          {
+            uint32_t count = 0;
+            if (nodes[n].implicit && readyForTuples(nodes[n], frame))
+            {
+              int range[4];
+              pixelRange(nodes[n].info.box, frame.width, frame.height, range);
+              for (int j = range[2]; j <= range[3]; ++j)
+              {
+                for (int i = range[0]; i <= range[1]; ++i)
+                {
+                  count += roundCovers(nodes[n], i, j, best, items, cursor, ends, frame) ? 1 : 0;
+                }
+              }
+            }
+            counts[n] = count;
+          });
+        const size_t added = scanCounts(this->Counts, nodeCount);
+        this->Tuples.resize(tupleCount + added);
+        Tuple* tuples = raw(this->Tuples) + tupleCount;
+        forEach(nodeCount,
+          [=] IGA_HD(size_t n)
+          {
+            Node& node = nodes[n];
+            if (!(node.implicit && readyForTuples(node, frame)))
+            {
+              return;
+            }
+            int range[4];
+            pixelRange(node.info.box, frame.width, frame.height, range);
+            uint32_t write = counts[n];
+            for (int j = range[2]; j <= range[3]; ++j)
+            {
+              for (int i = range[0]; i <= range[1]; ++i)
+              {
+                if (roundCovers(node, i, j, best, items, cursor, ends, frame))
+                {
+                  tuples[write++] = { uint32_t(size_t(j) * frame.width + i), uint32_t(n) };
+                }
+              }
+            }
+            node.implicit = false;
+            analyzeNodeCentre(viewOf(node, pool, shapes), node.info);
+          });
+        tupleCount += added;
+      }
+      report.maxTuples = std::max(report.maxTuples, tupleCount);
+      report.msOverlap += ms(stage);
+
+      // Solution stage: each pixel's tuples in order of nearest depth by one thread, so that in
+      // first-hit mode a hit drops the tuples behind it at once.
+      stage = Clock::now();
+      Tuple* tuples = raw(this->Tuples);
+      uint8_t* outcome = sized(this->Outcomes, tupleCount);
+      uint8_t* tried = sized(this->Tried, tupleCount);
+      double* solution = sized(this->Solution, 4 * tupleCount);
+      {
+        thrust::sort(thrust::device, tuples, tuples + tupleCount, TupleOrder{ nodes });
+        uint32_t* start = sized(this->PixelStart, pixels + 1);
+        pixelOffsets(tuples, tupleCount, pixels, start);
+        double* bestDepth = raw(this->BestDepth);
+        forEach(pixels,
+          [=] IGA_HD(size_t pixel)
+          {
+            double best = bestDepth[pixel];
+            const int i = int(pixel % frame.width), j = int(pixel / frame.width);
+            for (uint32_t t = start[pixel]; t < start[pixel + 1]; ++t)
+            {
+              const Node& node = nodes[tuples[t].node];
+              outcome[t] = Failed;
+              tried[t] = 0;
+              if (firstHit && node.info.box.lo[2] > best)
+              {
+                outcome[t] = Dropped;
+                continue;
+              }
+              tried[t] = node.info.certified ? 1 : 0;
+              switch (
+                solveTuple(viewOf(node, pool, shapes), node.info, i, j, frame.isovalues[node.iso],
+                  frame.tolerance, &solution[4 * t], solution[4 * t + 3], frame.clip))
+              {
+                case TupleOutcome::Hit:
+                  outcome[t] = Solved;
+                  best = solution[4 * t + 3] < best ? solution[4 * t + 3] : best;
+                  break;
+                case TupleOutcome::Miss:
+                  outcome[t] = Dropped;
+                  break;
+                case TupleOutcome::Undecided:
+                  break;
+              }
+            }
+            bestDepth[pixel] = best;
+          });
+        report.newtonSolves += thrust::count(thrust::device, tried, tried + tupleCount, 1);
+        // Append the roots.
+        uint32_t* hitIndex = sized(this->Counts, tupleCount + 1);
+        forEach(tupleCount, [=] IGA_HD(size_t t) { hitIndex[t] = outcome[t] == Solved ? 1 : 0; });
+        const size_t newHits = scanCounts(this->Counts, tupleCount);
+        this->Hits.resize(this->HitCount + newHits);
+        RawHit* hits = raw(this->Hits) + this->HitCount;
+        forEach(tupleCount,
+          [=] IGA_HD(size_t t)
+          {
+            if (outcome[t] == Solved)
+            {
+              hits[hitIndex[t]] = rawHitOf(
+                tuples[t].pixel, nodes[tuples[t].node], &solution[4 * t], solution[4 * t + 3]);
+            }
+          });
+        this->HitCount += newHits;
+      }
+      report.msSolution += ms(stage);
+
+      // Subdivision stage: split the nodes some pixel failed on, and the implicit ones whose
+      // boxes still cover pixels.
+      stage = Clock::now();
+      const double* best = raw(this->BestDepth);
+      uint8_t* split = sized(this->SplitFlags, nodeCount);
+      thrust::fill(thrust::device, split, split + nodeCount, uint8_t(Keep));
+      forEach(tupleCount,
+        [=] IGA_HD(size_t t)
+        {
+          if (outcome[t] == Failed && firstHit &&
+              nodes[tuples[t].node].info.box.lo[2] > best[tuples[t].pixel])
+          {
+            outcome[t] = Dropped; // a nearer hit was found this iteration
+          }
+          if (outcome[t] == Failed)
+          {
+            split[tuples[t].node] = Split;
+          }
+        });
+      forEach(nodeCount,
+        [=] IGA_HD(size_t n)
+        {
+          if (nodes[n].implicit)
+          {
+            int range[4];
+            pixelRange(nodes[n].info.box, frame.width, frame.height, range);
+            split[n] = range[0] <= range[1] && range[2] <= range[3] ? Split : Keep;
+          }
+          if (split[n] == Split && nodes[n].level >= frame.maxSubdivisionDepth)
+          {
+            split[n] = AtDepthCap; // its pixels stay unresolved
+          }
+        });
+      uint32_t* toSplit = sized(this->ToSplit, nodeCount);
+      const size_t splitCount =
+        thrust::copy_if(thrust::device, thrust::counting_iterator<uint32_t>(0),
+          thrust::counting_iterator<uint32_t>(uint32_t(nodeCount)), split, toSplit,
+          [] IGA_HD(uint8_t flag) { return flag == Split; }) -
+        toSplit;
+      // Memory cap: split as many nodes as the budget allows, in order; implicit nodes beyond
+      // it become tuples in the next iteration instead, explicit ones leave their pixels
+      // unresolved.
+      uint64_t* childBytes = sized(this->Offsets, splitCount + 1);
+      forEach(splitCount,
+        [=] IGA_HD(size_t k)
+        {
+          childBytes[k] =
+            uint64_t(8) * shapes[nodes[toSplit[k]].patch].screenValues * sizeof(double) +
+            8 * sizeof(Node);
+        });
+      thrust::inclusive_scan(thrust::device, childBytes, childBytes + splitCount, childBytes);
+      const size_t base = this->Pool.size() * sizeof(double) + tupleCount * sizeof(Tuple);
+      const size_t budget = settings.memoryBudgetBytes;
+      const size_t allowed = base > budget
+                               ? 0
+                               : size_t(thrust::upper_bound(thrust::device, childBytes,
+                                          childBytes + splitCount, uint64_t(budget - base)) -
+                                        childBytes);
+      uint8_t* deferred = sized(this->Deferred, nodeCount);
+      thrust::fill(thrust::device, deferred, deferred + nodeCount, uint8_t(0));
+      forEach(splitCount - allowed,
+        [=] IGA_HD(size_t k)
+        {
+          const uint32_t n = toSplit[allowed + k];
+          if (nodes[n].implicit)
+          {
+            nodes[n].overBudget = true; // ready for tuples next time
+            deferred[n] = 1;
+            split[n] = Keep;
+          }
+          else
+          {
+            split[n] = OverBudget;
+          }
+        });
+      uint32_t* firstChild = sized(this->FirstChild, nodeCount);
+      uint64_t* poolOffset = sized(this->Offsets, allowed + 1);
+      forEach(allowed,
+        [=] IGA_HD(size_t k)
+        {
+          poolOffset[k] = uint64_t(8) * shapes[nodes[toSplit[k]].patch].screenValues;
+          firstChild[toSplit[k]] = uint32_t(8 * k);
+        });
+      thrust::exclusive_scan(thrust::device, poolOffset, poolOffset + allowed + 1, poolOffset);
+      double* childPool = sized(this->ChildPool, size_t(readBack(poolOffset + allowed)));
+      Node* children = sized(this->Children, 8 * allowed);
+      uint8_t* keep = sized(this->KeepFlags, 8 * allowed);
+      forEach(allowed,
+        [=] IGA_HD(size_t k)
+        {
+          const Node& parent = nodes[toSplit[k]];
+          const int count = shapes[parent.patch].screenValues;
+          splitMidpoint<double, 3>(viewOf(parent, pool, shapes), childPool + poolOffset[k]);
+          for (int c = 0; c < 8; ++c)
+          {
+            Node child = childOf(parent, c);
+            child.coeff = poolOffset[k] + size_t(c) * count;
+            const auto view = viewOf(child, childPool, shapes);
+            child.info = analyzeNodeBounds(view, frame.isovalues[child.iso], frame.clip);
+            keep[8 * k + c] = worthKeeping(child.info, frame) ? 1 : 0;
+            if (child.implicit && keep[8 * k + c])
+            {
+              analyzeNodeSolver(view, child.info);
+            }
+            children[8 * k + c] = child;
+          }
+        });
+      report.subdividedPatches += allowed;
+      this->trackMemory();
+      report.msSubdivision += ms(stage);
+
+      // Compaction: failed tuples move to the kept children covering their pixel; solved and
+      // dropped tuples and unsplit explicit nodes leave.
+      stage = Clock::now();
+      uint32_t* newCounts = sized(this->Counts, tupleCount + 1);
+      uint8_t* unresolved = raw(this->Unresolved);
+      forEach(tupleCount,
+        [=] IGA_HD(size_t t)
+        {
+          uint32_t count = 0;
+          const uint8_t state = split[tuples[t].node];
+          if (outcome[t] == Failed && state == Split)
+          {
+            const size_t first = firstChild[tuples[t].node];
+            for (size_t c = first; c < first + 8; ++c)
+            {
+              count +=
+                keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame)
+                  ? 1
+                  : 0;
+            }
+          }
+          else if (outcome[t] == Failed && state >= AtDepthCap)
+          {
+            unresolved[tuples[t].pixel] = 1;
+          }
+          newCounts[t] = count;
+        });
+      report.unresolvedAtDepthCap += countIf(tupleCount, [=] IGA_HD(size_t t)
+        { return outcome[t] == Failed && split[tuples[t].node] == AtDepthCap; });
+      report.unresolvedAtBudget += countIf(tupleCount, [=] IGA_HD(size_t t)
+        { return outcome[t] == Failed && split[tuples[t].node] == OverBudget; });
+      const size_t nextCount = scanCounts(this->Counts, tupleCount);
+      Tuple* next = sized(this->Next, nextCount);
+      uint8_t* used = sized(this->Used, 8 * allowed);
+      thrust::fill(thrust::device, used, used + 8 * allowed, uint8_t(0));
+      forEach(tupleCount,
+        [=] IGA_HD(size_t t)
+        {
+          uint32_t write = newCounts[t];
+          if (newCounts[t + 1] == write)
+          {
+            return;
+          }
+          const size_t first = firstChild[tuples[t].node];
+          for (size_t c = first; c < first + 8; ++c)
+          {
+            if (keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
+            {
+              next[write++] = { tuples[t].pixel, uint32_t(c) };
+              used[c] = 1;
+            }
+          }
+        });
+      // The next nodes: implicit children that were kept, explicit children that received
+      // pixels, and deferred implicit nodes; stored contiguously.
+      forEach(8 * allowed,
+        [=] IGA_HD(size_t c) { used[c] = keep[c] && (children[c].implicit || used[c]) ? 1 : 0; });
+      this->NodeCount = this->gatherNodes(
+        children, childPool, used, 8 * allowed, nodes, pool, deferred, nodeCount, false);
+      const uint32_t* newIndex = raw(this->Index);
+      forEach(nextCount, [=] IGA_HD(size_t t) { next[t].node = newIndex[next[t].node]; });
+      this->Tuples.swap(this->Next);
+      tupleCount = nextCount;
+      report.msCompaction += ms(stage);
+      if (settings.progress)
+      {
+        settings.progress(report.iterations, tupleCount);
+      }
+    }
+    this->Tuples.resize(0);
+  }
+
+  // ---- G-buffer ----------------------------------------------------------------------------
+
+  void fillGBuffer(const View& view, const Settings& settings, GBuffer& out)
+  {
+    const size_t pixels = this->PixelCount;
+    const size_t hitCount = this->HitCount;
+    RawHit* raws = raw(this->Hits);
+    thrust::stable_sort(thrust::device, raws, raws + hitCount, HitPixelOrder());
+    uint32_t* offsets = sized(this->PixelStart, pixels + 1);
+    pixelOffsets(raws, hitCount, pixels, offsets);
+    ShadingView viewer{};
+    for (int d = 0; d < 3; ++d)
+    {
+      viewer.eye[d] = view.eye[d];
+      viewer.forward[d] = view.forward[d];
+    }
+    viewer.parallel = view.parallel;
+    viewer.hasColor = settings.colorAttribute >= 0;
+    const PatchShape* shapes = raw(this->Shapes);
+    const double* shadingPool = raw(this->ShadingPool);
+    Hit* shaded = sized(this->Shaded, hitCount);
+    forEach(hitCount,
+      [=] IGA_HD(size_t h)
+      {
+        const PatchShape& shape = shapes[raws[h].patch];
+        const VolumeView<const double> shading(
+          shadingPool + shape.shading, shape.degree, kShadeChannels);
+        shaded[h] = shadeHit(shading, raws[h], viewer);
+      });
+    uint32_t* kept = sized(this->Counts, pixels + 1);
+    const double footprint = view.pixelFootprint;
+    const bool firstHit = settings.firstHitOnly;
+    forEach(pixels,
+      [=] IGA_HD(size_t p)
+      {
+        kept[p] = uint32_t(mergePixelHits(shaded + offsets[p], int(offsets[p + 1] - offsets[p]),
+          footprint, viewer.parallel, firstHit));
+      });
+    const size_t total = scanCounts(this->Counts, pixels);
+    Hit* compact = sized(this->Compact, total);
+    forEach(pixels,
+      [=] IGA_HD(size_t p)
+      {
+        for (uint32_t k = kept[p]; k < kept[p + 1]; ++k)
+        {
+          compact[k] = shaded[offsets[p] + (k - kept[p])];
+        }
+      });
+    out.width = settings.width;
+    out.height = settings.height;
+    out.offsets.resize(pixels + 1);
+    out.hits.resize(total);
+    download(kept, pixels + 1, out.offsets.data());
+    download(compact, total, out.hits.data());
+  }
+
+  FrameReport* Report = nullptr;
+  const Settings* Settings_ = nullptr;
+  FrameConstants Frame{};
+  size_t PixelCount = 0;
+  size_t NodeCount = 0;
+  size_t HitCount = 0;
+  size_t Peak = 0;
+  Array<PatchShape> Shapes;
+  Array<double> Isovalues;
+  Array<Node> InitialNodes;
+  Array<double> InitialPool;
+  Array<double> ShadingPool;
+  Array<Tuple> Items;          ///< SAG: (pixel, initial node) sorted by pixel and depth
+  Array<uint32_t> ItemNodes;   ///< their nodes
+  Array<uint32_t> ItemOffsets; ///< per pixel
+  Array<uint32_t> Cursor, Ends;
+  Array<double> BestDepth;
+  Array<uint8_t> Unresolved;
+  Array<Node> Nodes, NextNodes, Children;
+  Array<double> Pool, NextPool, ChildPool;
+  Array<Tuple> Tuples, Next;
+  Array<uint32_t> Counts, Index, PixelStart, ToSplit, FirstChild;
+  Array<uint64_t> Offsets;
+  Array<uint8_t> Present, Outcomes, Tried, SplitFlags, Deferred, KeepFlags, Used;
+  Array<double> Solution;
+  Array<RawHit> Hits;
+  Array<Hit> Shaded, Compact;
+};
+
+} // namespace device
+} // namespace sst
+} // namespace iga

@@ -1,0 +1,284 @@
+// The device driver of the shared-subdivision-tree engine against the CPU driver, scene by scene
+// (the CPU engine's test scenes: spheres of degrees 2..5, the teardrop in all-hits mode, the
+// tube with two isovalues and a colour attribute, the collapsed cylinder axis, a camera inside
+// the patch, clipping planes, a folded volume, the depth and memory caps).
+//
+// Built twice from this source:
+// - igaDeviceLogicTests (IGAVIEW_DEVICE_LOGIC): the driver compiled by g++ for Thrust's host
+//   system. Same functions on the same processor, so the G-buffers must be identical; this
+//   checks the driver's logic on machines without a GPU.
+// - igaCudaEngineTests: frames through iga::sst::render with the CUDA backend. Without a usable
+//   device every test reports SKIPPED. GPU arithmetic (fused multiply-adds) may move a root by
+//   rounding, so positions are compared to the CPU tests' tolerance and a few silhouette pixels
+//   may differ.
+#include "iga/Datasets.h"
+#include "iga/sst/Engine.h"
+
+#ifdef IGAVIEW_DEVICE_LOGIC
+#include "DeviceDriver.h"
+#else
+#include "CudaEngine.h"
+#endif
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+
+using iga::sst::FrameReport;
+using iga::sst::GBuffer;
+using iga::sst::Settings;
+
+struct Scene
+{
+  std::string name;
+  iga::VolumeSet<double> set;
+  iga::Camera camera;
+  Settings settings;
+};
+
+iga::Camera lookAt(
+  const iga::VolumeSet<double>& set, const double* position, const double* focal, double angle)
+{
+  iga::Camera camera;
+  for (int d = 0; d < 3; ++d)
+  {
+    camera.position[d] = position[d];
+    camera.focalPoint[d] = focal[d];
+    camera.viewUp[d] = d == 2 ? 1 : 0;
+  }
+  camera.viewAngle = angle;
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  iga::fitClippingRange(camera, bounds);
+  return camera;
+}
+
+Scene scene(const std::string& name, iga::VolumeSet<double> set, const double* position,
+  const double* focal, double angle, int width, int height, std::vector<double> isovalues)
+{
+  Scene s{ name, std::move(set), {}, {} };
+  s.camera = lookAt(s.set, position, focal, angle);
+  s.settings.width = width;
+  s.settings.height = height;
+  s.settings.isovalues = std::move(isovalues);
+  return s;
+}
+
+std::vector<Scene> scenes()
+{
+  std::vector<Scene> all;
+  const double origin[3] = { 0, 0, 0 };
+  for (int degree = 2; degree <= 5; ++degree)
+  {
+    const double position[3] = { 1.2, -3.5, 2.1 }, focal[3] = { 0.1, 0, 0 };
+    all.push_back(scene("sphere p" + std::to_string(degree), iga::makeMarsdenSphere<double>(degree),
+      position, focal, 40, 80, 64, { 0.0 }));
+  }
+  {
+    const double position[3] = { -0.2, -1.6, 0.9 }, focal[3] = { -0.5, 0, 0 };
+    all.push_back(scene(
+      "teardrop, all hits", iga::makeTeardrop<double>(1.2), position, focal, 40, 48, 40, { 0.0 }));
+    all.back().settings.firstHitOnly = false;
+  }
+  {
+    const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+    all.push_back(scene("twisted tube, two isovalues, colour", iga::makeTwistedTube<double>(0.7),
+      position, focal, 35, 64, 64, { 0.0, 0.3 }));
+    all.back().settings.colorAttribute = 1;
+  }
+  {
+    const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 };
+    all.push_back(scene("tube with a collapsed axis", iga::makeTube<double>(0.0, 0.0), position,
+      focal, 38, 64, 64, { 1.0 }));
+  }
+  {
+    const double position[3] = { 0.1, 0.2, -0.1 }, focal[3] = { 1, 0.3, 0 };
+    all.push_back(scene("camera inside the sphere", iga::makeMarsdenSphere<double>(3), position,
+      focal, 60, 40, 40, { 0.0 }));
+  }
+  {
+    const double position[3] = { 0.6, -4, 1.1 };
+    all.push_back(scene(
+      "clipping planes", iga::makeMarsdenSphere<double>(3), position, origin, 35, 64, 64, { 0.0 }));
+    all.back().settings.clipPlanes = { { 1, 0.2, 0, -0.1 }, { 0, 0, -2, 1 } };
+  }
+  {
+    auto set = iga::makeMarsdenSphere<double>(3);
+    const auto view = set.patches[0].view();
+    const double fold[4] = { -1.5, 3.0, -3.0, 1.5 };
+    for (int p = 0; p < view.pointCount(); ++p)
+    {
+      view.point(p)[0] = fold[p % 4];
+    }
+    const double position[3] = { 0.8, -4.2, 1.6 };
+    all.push_back(
+      scene("folded volume, all hits", std::move(set), position, origin, 40, 40, 40, { 0.0 }));
+    all.back().settings.firstHitOnly = false;
+  }
+  {
+    const double position[3] = { 0, -4, 0 };
+    all.push_back(
+      scene("depth cap", iga::makeMarsdenSphere<double>(4), position, origin, 35, 32, 32, { 0.0 }));
+    all.back().settings.maxSubdivisionDepth = 3;
+  }
+  return all;
+}
+
+bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string& skipped)
+{
+  const iga::sst::View view = iga::sst::makeView(s.camera, s.settings.width, s.settings.height);
+#ifdef IGAVIEW_DEVICE_LOGIC
+  (void)skipped;
+  static iga::sst::device::Driver driver; // persists across frames, as in the CUDA engine
+  driver.render(s.set.patches, view, s.settings, out, report);
+  return true;
+#else
+  if (!iga::sst::cuda::usable(skipped))
+  {
+    return false;
+  }
+  Settings settings = s.settings;
+  settings.backend = iga::sst::Backend::Cuda;
+  report =
+    iga::sst::render(s.set.patches, view, settings, iga::sst::Method::SharedSubdivisionTree, out);
+  EXPECT_EQ(report.backend, "cuda") << report.notice;
+  return true;
+#endif
+}
+
+#ifdef IGAVIEW_DEVICE_LOGIC
+constexpr int kCoverageSlack = 0;
+constexpr double kPositionTolerance = 1e-12;
+#else
+constexpr int kCoverageSlack = 3;
+constexpr double kPositionTolerance = 1e-6;
+#endif
+
+class DeviceEngine : public ::testing::TestWithParam<int>
+{
+};
+
+TEST_P(DeviceEngine, MatchesTheCpuDriver)
+{
+  static const std::vector<Scene> all = scenes();
+  const Scene& s = all[GetParam()];
+  SCOPED_TRACE(s.name);
+  GBuffer device;
+  FrameReport deviceReport;
+  std::string why;
+  if (!deviceRender(s, device, deviceReport, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  Settings settings = s.settings;
+  settings.backend = iga::sst::Backend::Cpu;
+  GBuffer cpu;
+  const FrameReport cpuReport = iga::sst::render(
+    s.set.patches, s.camera, settings, iga::sst::Method::SharedSubdivisionTree, cpu);
+
+  ASSERT_EQ(device.width, cpu.width);
+  ASSERT_EQ(device.height, cpu.height);
+  ASSERT_EQ(device.offsets.size(), cpu.offsets.size());
+  int coverageDifferences = 0, compared = 0;
+  double maxPosition = 0, maxNormal = 0, maxDepth = 0, maxColor = 0;
+  for (int j = 0; j < cpu.height; ++j)
+  {
+    for (int i = 0; i < cpu.width; ++i)
+    {
+      if (device.hitCount(i, j) != cpu.hitCount(i, j))
+      {
+        ++coverageDifferences;
+        continue;
+      }
+      for (int h = 0; h < cpu.hitCount(i, j); ++h)
+      {
+        const auto& a = device.firstHit(i, j)[h];
+        const auto& b = cpu.firstHit(i, j)[h];
+        ++compared;
+        EXPECT_EQ(a.patch, b.patch) << "pixel " << i << "," << j;
+        EXPECT_EQ(a.isovalue, b.isovalue) << "pixel " << i << "," << j;
+        for (int d = 0; d < 3; ++d)
+        {
+          maxPosition = std::max(maxPosition, std::abs(a.position[d] - b.position[d]));
+          maxNormal = std::max(maxNormal, std::abs(a.normal[d] - b.normal[d]));
+        }
+        maxDepth = std::max(maxDepth, std::abs(a.ndcDepth - b.ndcDepth));
+        if (s.settings.colorAttribute >= 0)
+        {
+          maxColor = std::max(maxColor, std::abs(a.color - b.color));
+        }
+        else
+        {
+          EXPECT_TRUE(std::isnan(a.color));
+        }
+      }
+    }
+  }
+  EXPECT_LE(coverageDifferences, kCoverageSlack);
+  EXPECT_GT(compared, 100);
+  EXPECT_LT(maxPosition, kPositionTolerance);
+  EXPECT_LT(maxNormal, 1e3 * kPositionTolerance);
+  EXPECT_LT(maxDepth, kPositionTolerance);
+  EXPECT_LT(maxColor, kPositionTolerance);
+  EXPECT_EQ(deviceReport.unresolvedPixels > 0, cpuReport.unresolvedPixels > 0);
+  EXPECT_EQ(cpuReport.unresolvedPixels > 0, s.name == "depth cap");
+#ifdef IGAVIEW_DEVICE_LOGIC
+  // The same work, step for step.
+  EXPECT_EQ(deviceReport.iterations, cpuReport.iterations);
+  EXPECT_EQ(deviceReport.newtonSolves, cpuReport.newtonSolves);
+  EXPECT_EQ(deviceReport.subdividedPatches, cpuReport.subdividedPatches);
+  EXPECT_EQ(deviceReport.maxTuples, cpuReport.maxTuples);
+  EXPECT_EQ(deviceReport.unresolvedPixels, cpuReport.unresolvedPixels);
+  EXPECT_EQ(deviceReport.unresolvedAtDepthCap, cpuReport.unresolvedAtDepthCap);
+#endif
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, DeviceEngine, ::testing::Range(0, 11));
+
+/// A budget far below the frame's needs leaves pixels unresolved and bounds the working set.
+TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
+{
+  const double position[3] = { 0, -4, 0 }, origin[3] = { 0, 0, 0 };
+  Scene s =
+    scene("budget", iga::makeMarsdenSphere<double>(4), position, origin, 35, 32, 32, { 0.0 });
+  s.settings.memoryBudgetBytes = 64 * 1024;
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  if (!deviceRender(s, out, report, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  EXPECT_GT(report.unresolvedAtBudget, 0u);
+  EXPECT_GT(report.unresolvedPixels, 0u);
+  EXPECT_LE(report.peakBytes, size_t(1) << 20);
+}
+
+/// Bad input is rejected before any device work, with the CPU path's message.
+TEST(DeviceEngineCaps, BadInputIsRejected)
+{
+  const double position[3] = { 0, -4, 0 }, origin[3] = { 0, 0, 0 };
+  Scene s = scene("bad", iga::makeMarsdenSphere<double>(2), position, origin, 35, 16, 16, { 0.0 });
+  s.set.patches[0].view().point(5)[iga::kWeightChannel] = -1;
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  try
+  {
+    if (!deviceRender(s, out, report, why))
+    {
+      GTEST_SKIP() << why;
+    }
+    FAIL() << "a negative weight was accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("patch 0"), std::string::npos) << e.what();
+  }
+}
+
+} // namespace
