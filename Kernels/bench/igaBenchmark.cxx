@@ -2,10 +2,16 @@
 // machines without VTK. Prints a table on stderr and one JSON document on stdout (or --json FILE).
 //
 //   igaBenchmark [--quick] [--json FILE]
+//   igaBenchmark --gpu [--quick] [--json FILE]
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
 // peak memory over resolutions 256^2..2048^2 (fig. 11); 1 vs 2 threads; the 512^2 tri-quadratic
 // sphere frame; the default dataset. Ratios compare runs of the same process.
+//
+// --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
+// with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
+// every frame) and the 800k-patch blade, with stage times and peak device memory, next to the
+// CPU engine at 1080p. Without a usable device it says why and measures nothing.
 #include "iga/Datasets.h"
 #include "iga/sst/Engine.h"
 
@@ -13,6 +19,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -23,7 +30,7 @@ namespace
 
 struct Measurement
 {
-  std::string study, dataset, method;
+  std::string study, dataset, method, backend;
   int degree = 0, width = 0, height = 0, threads = 0;
   double ms = 0; ///< median over the repetitions
   double peakMB = 0;
@@ -39,21 +46,28 @@ iga::Camera frame(const iga::VolumeSet<double>& set)
   return iga::frameBounds(bounds, direction, up, 30);
 }
 
+/// Frames of `set` (or of the sets `frames` returns for repetition r, for deforming data), the
+/// median time reported.
 Measurement measure(const std::string& study, const std::string& dataset,
   const iga::VolumeSet<double>& set, double isovalue, int degree, int width, int height,
-  int threads, iga::sst::Method method, int repetitions)
+  int threads, iga::sst::Method method, int repetitions,
+  iga::sst::Backend backend = iga::sst::Backend::Cpu,
+  const std::function<iga::VolumeSet<double>(int)>& frames = {})
 {
   iga::sst::Settings settings;
   settings.width = width;
   settings.height = height;
   settings.threads = threads;
   settings.isovalues = { isovalue };
+  settings.backend = backend;
   const iga::Camera camera = frame(set);
   std::vector<std::pair<double, iga::sst::FrameReport>> runs;
   iga::sst::GBuffer gbuffer;
   for (int r = 0; r < repetitions; ++r)
   {
-    const auto report = iga::sst::render(set.patches, camera, settings, method, gbuffer);
+    const auto report = frames
+                          ? iga::sst::render(frames(r).patches, camera, settings, method, gbuffer)
+                          : iga::sst::render(set.patches, camera, settings, method, gbuffer);
     runs.emplace_back(report.msTotal, report);
   }
   std::sort(
@@ -68,13 +82,15 @@ Measurement measure(const std::string& study, const std::string& dataset,
   m.threads = threads;
   m.report = runs[runs.size() / 2].second;
   m.ms = runs[runs.size() / 2].first;
+  m.backend = m.report.backend;
   m.peakMB = m.report.peakBytes / 1048576.0;
   m.covered = gbuffer.coveredPixels();
   m.newtonSolves = m.report.newtonSolves;
   m.subdivided = m.report.subdividedPatches;
   m.unresolved = m.report.unresolvedPixels;
-  std::fprintf(stderr, "%-11s %-16s %-6s p=%d %5dx%-5d %d thr %10.1f ms %8.1f MB  covered %zu\n",
-    study.c_str(), dataset.c_str(), m.method.c_str(), degree, width, height, threads, m.ms,
+  std::fprintf(stderr,
+    "%-11s %-16s %-6s %-4s p=%d %5dx%-5d %d thr %10.1f ms %8.1f MB  covered %zu\n", study.c_str(),
+    dataset.c_str(), m.method.c_str(), m.backend.c_str(), degree, width, height, threads, m.ms,
     m.peakMB, m.covered);
   return m;
 }
@@ -90,15 +106,16 @@ std::string json(
     const auto& m = all[k];
     const auto& r = m.report;
     out << "    {\"study\": \"" << m.study << "\", \"dataset\": \"" << m.dataset
-        << "\", \"method\": \"" << m.method << "\", \"degree\": " << m.degree
-        << ", \"width\": " << m.width << ", \"height\": " << m.height
-        << ", \"threads\": " << m.threads << ", \"ms\": " << m.ms << ", \"peakMB\": " << m.peakMB
-        << ", \"coveredPixels\": " << m.covered << ", \"newtonSolves\": " << m.newtonSolves
-        << ", \"subdividedPatches\": " << m.subdivided << ", \"unresolvedPixels\": " << m.unresolved
-        << ", \"stagesMs\": {\"setup\": " << r.msSetup
+        << "\", \"method\": \"" << m.method << "\", \"backend\": \"" << m.backend
+        << "\", \"degree\": " << m.degree << ", \"width\": " << m.width
+        << ", \"height\": " << m.height << ", \"threads\": " << m.threads << ", \"ms\": " << m.ms
+        << ", \"peakMB\": " << m.peakMB << ", \"coveredPixels\": " << m.covered
+        << ", \"newtonSolves\": " << m.newtonSolves << ", \"subdividedPatches\": " << m.subdivided
+        << ", \"unresolvedPixels\": " << m.unresolved << ", \"stagesMs\": {\"setup\": " << r.msSetup
         << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution
-        << ", \"subdivision\": " << r.msSubdivision << ", \"compaction\": " << r.msCompaction
-        << ", \"gbuffer\": " << r.msGBuffer << "}}" << (k + 1 < all.size() ? "," : "") << "\n";
+        << ", \"overlap\": " << r.msOverlap << ", \"subdivision\": " << r.msSubdivision
+        << ", \"compaction\": " << r.msCompaction << ", \"gbuffer\": " << r.msGBuffer << "}}"
+        << (k + 1 < all.size() ? "," : "") << "\n";
   }
   out << "  ],\n  \"ratios\": {\n";
   for (size_t k = 0; k < ratios.size(); ++k)
@@ -110,21 +127,90 @@ std::string json(
   return out.str();
 }
 
+/// The CUDA engine's study (see the header). Returns false, with the reason, without a GPU.
+bool gpuStudy(bool quick, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios, std::string& why)
+{
+  using iga::sst::Backend;
+  using iga::sst::Method;
+  const auto probe = iga::makeMarsdenSphere<double>(2);
+  const Measurement warmUp = measure("warm-up", "marsden-sphere", probe, 0.0, 2, 256, 256, 0,
+    Method::SharedSubdivisionTree, 1, Backend::Cuda);
+  if (warmUp.backend != "cuda")
+  {
+    why = warmUp.report.notice;
+    return false;
+  }
+  const int reps = quick ? 2 : 5;
+  struct Case
+  {
+    std::string name;
+    iga::VolumeSet<double> set;
+    double isovalue;
+    int degree;
+  };
+  std::vector<Case> cases;
+  cases.push_back({ "teardrop", iga::makeTeardrop<double>(1.2), 0.0, 2 });
+  cases.push_back({ "collapsed-tube", iga::makeTube<double>(0.0, 0.0), 1.0, 2 });
+  for (int degree = 2; degree <= 5; ++degree)
+  {
+    cases.push_back({ "marsden-sphere-p" + std::to_string(degree),
+      iga::makeMarsdenSphere<double>(degree), 0.0, degree });
+  }
+  const std::vector<std::pair<int, int>> sizes = { { 1920, 1080 }, { 3840, 2160 } };
+  for (const auto& c : cases)
+  {
+    for (const auto& size : sizes)
+    {
+      all.push_back(measure("gpu", c.name, c.set, c.isovalue, c.degree, size.first, size.second, 0,
+        Method::SharedSubdivisionTree, reps, Backend::Cuda));
+    }
+  }
+  // The deforming blade: every frame a new control net (the flap's time steps).
+  const iga::BladeLayout small = iga::bladeLayout(quick ? 1000 : 10000);
+  auto flapping = [&](int r) { return iga::makeBlade<double>(small, 0.1 * (r % 10)); };
+  const auto blade = flapping(0);
+  const std::string smallName = "blade-" + std::to_string(small.patchCount()) + "-deforming";
+  for (const auto& size : sizes)
+  {
+    all.push_back(measure("gpu", smallName, blade, 0.3, 2, size.first, size.second, 0,
+      Method::SharedSubdivisionTree, reps, Backend::Cuda, flapping));
+  }
+  const Measurement gpu1080 = all[all.size() - 2];
+  const Measurement cpu1080 = measure("gpu", smallName, blade, 0.3, 2, 1920, 1080, 0,
+    Method::SharedSubdivisionTree, 1, Backend::Cpu, flapping);
+  all.push_back(cpu1080);
+  ratios.emplace_back("cpuOverGpu_" + smallName + "_1080p", cpu1080.ms / gpu1080.ms);
+  if (!quick)
+  {
+    const iga::BladeLayout large = iga::bladeLayout(800000);
+    const auto big = iga::makeBlade<double>(large, 0.5);
+    for (const auto& size : sizes)
+    {
+      all.push_back(measure("gpu", "blade-" + std::to_string(large.patchCount()), big, 0.3, 2,
+        size.first, size.second, 0, Method::SharedSubdivisionTree, 3, Backend::Cuda));
+    }
+  }
+  return true;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
-  bool quick = false;
+  bool quick = false, gpu = false;
   std::string jsonFile;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--quick"))
       quick = true;
+    else if (!std::strcmp(argv[i], "--gpu"))
+      gpu = true;
     else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
       jsonFile = argv[++i];
     else
     {
-      std::fprintf(stderr, "usage: igaBenchmark [--quick] [--json FILE]\n");
+      std::fprintf(stderr, "usage: igaBenchmark [--gpu] [--quick] [--json FILE]\n");
       return 1;
     }
   }
@@ -134,6 +220,32 @@ int main(int argc, char** argv)
   std::vector<std::pair<std::string, double>> ratios;
   using iga::sst::Method;
 
+  auto emit = [&](const std::string& document)
+  {
+    if (jsonFile.empty())
+    {
+      std::fputs(document.c_str(), stdout);
+    }
+    else
+    {
+      std::ofstream(jsonFile) << document;
+    }
+    for (const auto& ratio : ratios)
+    {
+      std::fprintf(stderr, "%-28s %.2f\n", ratio.first.c_str(), ratio.second);
+    }
+    return 0;
+  };
+  if (gpu)
+  {
+    std::string why;
+    if (!gpuStudy(quick, all, ratios, why))
+    {
+      std::fprintf(stderr, "igaBenchmark --gpu: %s; nothing measured\n", why.c_str());
+      return emit("{\n  \"skipped\": \"" + why + "\"\n}\n");
+    }
+    return emit(json(all, ratios));
+  }
   // A warm-up frame: thread start-up, page faults and caches are not what the studies measure.
   measure("warm-up", "marsden-sphere", iga::makeMarsdenSphere<double>(2), 0.0, 2, 256, 256, threads,
     Method::SharedSubdivisionTree, 1);
@@ -189,18 +301,5 @@ int main(int argc, char** argv)
   all.push_back(measure("default", "twisted-tube", tube, 0.0, 2, 800, 600, threads,
     Method::SharedSubdivisionTree, reps));
 
-  const std::string document = json(all, ratios);
-  if (jsonFile.empty())
-  {
-    std::fputs(document.c_str(), stdout);
-  }
-  else
-  {
-    std::ofstream(jsonFile) << document;
-  }
-  for (const auto& ratio : ratios)
-  {
-    std::fprintf(stderr, "%-28s %.2f\n", ratio.first.c_str(), ratio.second);
-  }
-  return 0;
+  return emit(json(all, ratios));
 }
