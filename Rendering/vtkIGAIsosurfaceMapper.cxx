@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <set>
 
 vtkStandardNewMacro(vtkIGAIsosurfaceMapper);
 
@@ -61,6 +62,14 @@ struct vtkIGAIsosurfaceMapper::Internals
   vtkMTimeType ShaderTime = 0;
   vtkTimeStamp UploadTime;
   vtkTimeStamp FrameTime;
+  // Where the last frame ran, and why not where it was asked to.
+  std::string LastBackend;
+  std::string LastNotice;
+  // Messages reported since the settings or the input last changed (their keys), and the
+  // modification times they were reported for; engine notices reported (never repeated).
+  std::set<std::string> Reported;
+  vtkMTimeType ReportedFor[2] = { 0, 0 };
+  std::set<std::string> Notices;
 };
 
 vtkIGAIsosurfaceMapper::vtkIGAIsosurfaceMapper()
@@ -80,6 +89,11 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << "\n" << indent << "SurfaceArrayName: " << this->SurfaceArrayName << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "Backend: " << this->Backend << "\n";
+  os << indent << "MaximumSubdivisionDepth: " << this->MaximumSubdivisionDepth << "\n";
+  os << indent << "MemoryBudgetMB: " << this->MemoryBudgetMB << "\n";
+  os << indent << "LastBackend: " << this->Internal->LastBackend << "\n";
+  os << indent << "LastUnresolvedPixels: " << this->LastUnresolvedPixels << "\n";
 }
 
 void vtkIGAIsosurfaceMapper::SetInputData(vtkDataObject* input)
@@ -143,12 +157,50 @@ const std::vector<float>& vtkIGAIsosurfaceMapper::GetLastColours() const
   return this->Internal->Colour;
 }
 
+const char* vtkIGAIsosurfaceMapper::GetLastBackend() const
+{
+  return this->Internal->LastBackend.c_str();
+}
+
+const char* vtkIGAIsosurfaceMapper::GetLastNotice() const
+{
+  return this->Internal->LastNotice.c_str();
+}
+
+void vtkIGAIsosurfaceMapper::ReportOnce(
+  const std::string& key, const std::string& message, bool error)
+{
+  if (!this->Internal->Reported.insert(key).second)
+  {
+    return;
+  }
+  if (error)
+  {
+    vtkErrorMacro(<< message);
+  }
+  else
+  {
+    vtkWarningMacro(<< message);
+  }
+}
+
 int vtkIGAIsosurfaceMapper::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   return 1;
+}
+
+void vtkIGAIsosurfaceMapper::UpdateInput()
+{
+  // The producer, not this sink: the mapper's own pipeline pass would do nothing but fire
+  // progress 0 and 1, which would interleave with the engine's progress.
+  int port = 0;
+  if (vtkAlgorithm* producer = this->GetInputAlgorithm(0, 0, port))
+  {
+    producer->Update(port);
+  }
 }
 
 double* vtkIGAIsosurfaceMapper::GetBounds()
@@ -159,7 +211,7 @@ double* vtkIGAIsosurfaceMapper::GetBounds()
   {
     return this->Bounds;
   }
-  this->Update();
+  this->UpdateInput();
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   if (auto* grid = vtkDataSet::SafeDownCast(input))
   {
@@ -328,7 +380,7 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   {
     return;
   }
-  this->Update();
+  this->UpdateInput();
   vtkDataObject* input = this->GetInputDataObject(0, 0);
 
   // Patches, when the data changed.
@@ -351,6 +403,25 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   {
     return;
   }
+  // Messages are reported once until the settings (the mapper's own, not the lookup table's)
+  // or the input change.
+  const vtkMTimeType reportFor[2] = { this->vtkAbstractMapper::GetMTime(), input->GetMTime() };
+  if (reportFor[0] != in.ReportedFor[0] || reportFor[1] != in.ReportedFor[1])
+  {
+    in.Reported.clear();
+    std::copy(reportFor, reportFor + 2, in.ReportedFor);
+  }
+  const auto& names = in.Set.attributeNames;
+  auto indexOf = [&](const std::string& name)
+  { return int(std::find(names.begin(), names.end(), name) - names.begin()); };
+  const int surfaceAttribute = this->SurfaceArrayName.empty() ? 0 : indexOf(this->SurfaceArrayName);
+  if (names.empty() || surfaceAttribute >= int(names.size()))
+  {
+    this->ReportOnce("surface array",
+      "no point array named '" + this->SurfaceArrayName + "' to draw isosurfaces of", true);
+    in.FrameKey.clear();
+    return;
+  }
 
   int width, height, origin[2];
   renderer->GetTiledSizeAndOrigin(&width, &height, &origin[0], &origin[1]);
@@ -367,7 +438,9 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   vtkMatrix4x4* worldToClip =
     camera->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1, 1);
   std::vector<double> key = { double(this->GetMTime()), double(input->GetMTime()),
-    double(property->GetMTime()), double(lut->GetMTime()), double(width), double(height) };
+    double(property->GetMTime()), double(lut->GetMTime()), double(width), double(height),
+    double(this->Backend), double(this->MaximumSubdivisionDepth), double(this->MemoryBudgetMB),
+    double(this->NumberOfThreads) };
   key.insert(key.end(), worldToClip->GetData(), worldToClip->GetData() + 16);
   key.insert(key.end(), actor->GetMatrix()->GetData(), actor->GetMatrix()->GetData() + 16);
   double eye[3];
@@ -462,39 +535,90 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     settings.threads = this->NumberOfThreads;
     settings.isovalues = this->Isovalues;
     settings.clipPlanes = clipPlanes;
-    const auto& names = in.Set.attributeNames;
-    auto indexOf = [&](const std::string& name)
-    { return int(std::find(names.begin(), names.end(), name) - names.begin()); };
-    settings.surfaceAttribute =
-      this->SurfaceArrayName.empty() ? 0 : indexOf(this->SurfaceArrayName);
+    settings.surfaceAttribute = surfaceAttribute;
     const bool byScalars = this->ScalarVisibility && this->ArrayName && *this->ArrayName &&
                            indexOf(this->ArrayName) < int(names.size());
     settings.colorAttribute = byScalars ? indexOf(this->ArrayName) : -1;
-    if (names.empty() || settings.surfaceAttribute >= int(names.size()))
+    settings.maxSubdivisionDepth = this->MaximumSubdivisionDepth;
+    settings.memoryBudgetBytes = size_t(this->MemoryBudgetMB) << 20;
+    settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu
+                       : this->Backend == BACKEND_CUDA ? iga::sst::Backend::Cuda
+                                                       : iga::sst::Backend::Automatic;
+    // Progress after every subdivision round (on this thread): the share of the most (pixel,
+    // sub-patch) pairs seen in this frame that is done, never decreasing, below 1 until the
+    // frame is over.
+    double mostPairs = 0, progress = 0;
+    settings.progress = [this, &mostPairs, &progress](int, size_t pairsLeft)
     {
-      vtkErrorMacro(<< "no point array named '" << this->SurfaceArrayName
-                    << "' to draw isosurfaces of");
-      return;
-    }
+      mostPairs = std::max(mostPairs, double(pairsLeft));
+      const double done = mostPairs > 0 ? 1.0 - double(pairsLeft) / mostPairs : 0.0;
+      progress = std::max(progress, std::min(done, 0.99));
+      this->UpdateProgress(progress);
+    };
 
     iga::sst::GBuffer& gbuffer = in.GBuffer;
+    this->UpdateProgress(0.0);
     try
     {
       const auto report =
         iga::sst::render(world, view, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+      this->UpdateProgress(1.0);
       this->LastEngineTime = report.msTotal;
+      this->LastUnresolvedPixels = vtkIdType(report.unresolvedPixels);
+      in.LastBackend = report.backend;
+      in.LastNotice = report.notice;
+      if (!report.notice.empty() && in.Notices.insert(report.notice).second)
+      {
+        // A warning when CUDA was asked for (here or by IGAVIEW_BACKEND) or failed; the
+        // automatic choice of CPU threads is only worth a plain message.
+        const bool asked = this->Backend == BACKEND_CUDA ||
+                           report.notice.rfind("CUDA asked for", 0) == 0 ||
+                           report.notice.rfind("CUDA frame failed", 0) == 0;
+        if (asked)
+        {
+          vtkWarningMacro(<< report.notice);
+        }
+        else
+        {
+          vtkOutputWindowDisplayText(
+            (std::string(this->GetClassName()) + ": " + report.notice + "\n").c_str());
+        }
+      }
       if (report.unresolvedPixels > 0)
       {
-        vtkWarningMacro(<< report.unresolvedPixels << " pixels unresolved at the subdivision cap");
+        // Once per cap hit, whatever the count (it changes with every camera move). The
+        // report counts the (pixel, sub-patch) pairs each cap gave up.
+        const bool depth = report.unresolvedAtDepthCap > 0, budget = report.unresolvedAtBudget > 0;
+        std::string caps;
+        if (depth)
+        {
+          caps += " at the subdivision depth cap (MaximumSubdivisionDepth " +
+                  std::to_string(this->MaximumSubdivisionDepth) + ": " +
+                  std::to_string(report.unresolvedAtDepthCap) + " pixel/sub-patch pairs given up)";
+        }
+        if (budget)
+        {
+          caps += std::string(depth ? " and" : "") + " at the memory budget (MemoryBudgetMB " +
+                  std::to_string(this->MemoryBudgetMB) + ": " +
+                  std::to_string(report.unresolvedAtBudget) + " pairs given up)";
+        }
+        this->ReportOnce(
+          std::string("unresolved") + (depth ? " depth" : "") + (budget ? " budget" : ""),
+          std::to_string(report.unresolvedPixels) + " pixels left unresolved" + caps +
+            "; not reported again until the settings or the input change",
+          false);
       }
     }
     catch (const std::exception& e)
     {
-      vtkErrorMacro(<< e.what());
+      this->UpdateProgress(1.0);
+      this->ReportOnce(std::string("engine: ") + e.what(), e.what(), true);
+      in.FrameKey.clear();
       return;
     }
 
-    if (byScalars)
+    // vtkMapper's rule (vtkOpenGLPolyDataMapper's): the table's own range when asked to.
+    if (byScalars && !this->UseLookupTableScalarRange)
     {
       lut->SetRange(this->ScalarRange);
     }

@@ -26,6 +26,31 @@
  * into vtkOpenGLPolyDataMapper's (render passes' DepthPeeling markers); the surface's own
  * further layers are not drawn. Known limit: with depth peeling (vtkDualDepthPeelingPass,
  * ParaView's default for translucent geometry) a translucent isosurface is not drawn yet.
+ *
+ * Engine settings: Backend (automatic: CUDA where the library was built with it and a device
+ * is usable, else CPU threads; CPU; CUDA, which falls back to CPU threads when it cannot run),
+ * NumberOfThreads (CPU), MaximumSubdivisionDepth and MemoryBudgetMB (the caps at which a pixel
+ * with work left is given up and counted as unresolved). Changing any of them re-runs the
+ * engine. GetLastBackend() says where the last frame ran; when that is not where it was asked
+ * to run, the engine's one-line notice is printed once per mapper and notice: a warning when
+ * CUDA was asked for (Backend CUDA, or IGAVIEW_BACKEND=cuda) or a CUDA frame failed, a plain
+ * message (vtkOutputWindow text) when the automatic choice fell back to CPU threads.
+ *
+ * Progress: while the engine runs, the mapper fires vtkCommand::ProgressEvent (vtkAlgorithm's
+ * UpdateProgress) with a monotone estimate in [0, 1) after every subdivision round, from the
+ * (pixel, sub-patch) pairs left relative to the most seen in the frame, and 1 at the end of
+ * the frame. Frames reused from the last render report nothing. The mapper brings its input up
+ * to date through the producer's pipeline (not a pipeline pass of its own, which would fire
+ * progress 0 and 1 around the engine's).
+ *
+ * Messages: unresolved pixels (a warning naming the cap that was hit, once per cap), a missing
+ * surface array and engine errors are reported once until the mapper's own settings (not the
+ * lookup table) or the input change, not on every render or camera move;
+ * GetLastUnresolvedPixels() gives the count of the last frame computed.
+ *
+ * Lookup table: with UseLookupTableScalarRange off (vtkMapper's default) the table's range is
+ * set to ScalarRange when colouring by scalars; with it on the table's own range is left alone,
+ * as vtkOpenGLPolyDataMapper does.
  */
 #ifndef vtkIGAIsosurfaceMapper_h
 #define vtkIGAIsosurfaceMapper_h
@@ -74,8 +99,46 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  enum BackendType
+  {
+    BACKEND_AUTOMATIC = 0, ///< CUDA when built with it and a device is usable, else CPU threads
+    BACKEND_CPU = 1,
+    BACKEND_CUDA = 2, ///< falls back to CPU threads, with a warning, when CUDA cannot run
+  };
+
+  ///@{
+  /// Where the engine runs (BackendType); default automatic. The environment variable
+  /// IGAVIEW_BACKEND (auto, cpu, cuda) overrides the automatic choice.
+  vtkSetClampMacro(Backend, int, BACKEND_AUTOMATIC, BACKEND_CUDA);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAutomatic() { this->SetBackend(BACKEND_AUTOMATIC); }
+  void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
+  void SetBackendToCUDA() { this->SetBackend(BACKEND_CUDA); }
+  ///@}
+
+  ///@{
+  /// Subdivision levels below an input patch before a pixel is given up (default 22).
+  vtkSetClampMacro(MaximumSubdivisionDepth, int, 0, 40);
+  vtkGetMacro(MaximumSubdivisionDepth, int);
+  ///@}
+
+  ///@{
+  /// Cap on the engine's subdivision storage in MiB (default 2048).
+  vtkSetClampMacro(MemoryBudgetMB, int, 16, 1048576);
+  vtkGetMacro(MemoryBudgetMB, int);
+  ///@}
+
   /// Milliseconds the engine took for the last frame it computed.
   double GetLastEngineTime() const { return this->LastEngineTime; }
+
+  /// Where the last frame computed ran: "cpu" or "cuda" (empty before the first frame).
+  const char* GetLastBackend() const;
+
+  /// The engine's notice for the last frame computed (why it did not run where asked), or "".
+  const char* GetLastNotice() const;
+
+  /// Pixels of the last frame computed that still had work left at a cap.
+  vtkIdType GetLastUnresolvedPixels() const { return this->LastUnresolvedPixels; }
 
 #ifndef __VTK_WRAP__
   /// The last frame's G-buffer (all first hits) and its shaded colours (RGBA, premultiplied,
@@ -102,12 +165,23 @@ private:
   vtkIGAIsosurfaceMapper(const vtkIGAIsosurfaceMapper&) = delete;
   void operator=(const vtkIGAIsosurfaceMapper&) = delete;
 
+  /// Brings the input up to date (its producer's pipeline).
+  void UpdateInput();
+
+  /// Reports `message` (a warning, or an error) unless the same key was reported since the
+  /// settings or the input last changed.
+  void ReportOnce(const std::string& key, const std::string& message, bool error);
+
   struct Internals;
   std::unique_ptr<Internals> Internal;
   std::vector<double> Isovalues;
   std::string SurfaceArrayName;
   int NumberOfThreads = 0;
+  int Backend = BACKEND_AUTOMATIC;
+  int MaximumSubdivisionDepth = 22;
+  int MemoryBudgetMB = 2048;
   double LastEngineTime = 0;
+  vtkIdType LastUnresolvedPixels = 0;
 };
 
 #endif

@@ -1,0 +1,361 @@
+// vtkIGAIsosurfaceMapper's engine settings in a real render window: progress events, the
+// subdivision and memory caps with their once-only warnings, the backend choice and its CPU
+// fallback, and the lookup table's own range (UseLookupTableScalarRange).
+#include "vtkIGABezierHexahedra.h"
+#include "vtkIGAIsosurfaceMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkImageData.h"
+#include "vtkLookupTable.h"
+#include "vtkNew.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkWindowToImageFilter.h"
+
+#include "iga/Datasets.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+/// Records the mapper's progress values and the text of its warnings.
+class Recorder : public vtkCommand
+{
+public:
+  static Recorder* New() { return new Recorder; }
+  void Execute(vtkObject*, unsigned long event, void* data) override
+  {
+    if (event == vtkCommand::ProgressEvent)
+    {
+      progress.push_back(*static_cast<double*>(data));
+    }
+    else if (event == vtkCommand::WarningEvent)
+    {
+      warnings.emplace_back(static_cast<const char*>(data));
+    }
+    else if (event == vtkCommand::ErrorEvent)
+    {
+      errors.emplace_back(static_cast<const char*>(data));
+    }
+  }
+  int count(const std::string& part) const
+  {
+    int n = 0;
+    for (const auto& warning : warnings)
+    {
+      n += warning.find(part) != std::string::npos;
+    }
+    return n;
+  }
+  std::vector<double> progress;
+  std::vector<std::string> warnings;
+  std::vector<std::string> errors;
+};
+
+/// The default dataset (the twisted tube at time 0.5), its temperature = 0 sheet coloured by
+/// radius, seen from the plugin tests' camera.
+struct TubeScene
+{
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkIGAIsosurfaceMapper> mapper;
+  vtkNew<vtkActor> actor;
+  vtkNew<Recorder> recorder;
+  vtkSmartPointer<vtkImageData> image;
+
+  explicit TubeScene(int width = 240, int height = 200)
+  {
+    window->SetOffScreenRendering(1);
+    window->SetSize(width, height);
+    window->AddRenderer(renderer);
+    renderer->SetBackground(0, 0, 0);
+    mapper->SetInputData(
+      vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5)));
+    mapper->SetSurfaceArrayName("temperature");
+    mapper->SetIsovalue(0, 0.0);
+    mapper->AddObserver(vtkCommand::ProgressEvent, recorder);
+    mapper->AddObserver(vtkCommand::WarningEvent, recorder);
+    mapper->AddObserver(vtkCommand::ErrorEvent, recorder);
+    actor->SetMapper(mapper);
+    renderer->AddActor(actor);
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(2.4, -3.0, 2.6);
+    camera->SetFocalPoint(0.2, 0.0, 1.0);
+    camera->SetViewUp(0, 0, 1);
+    camera->SetViewAngle(30);
+    renderer->ResetCameraClippingRange();
+  }
+
+  void render()
+  {
+    window->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    image = grab->GetOutput();
+  }
+
+  /// Turns the camera a little: the engine must run again, with different counts.
+  void turn(double degrees)
+  {
+    renderer->GetActiveCamera()->Azimuth(degrees);
+    renderer->ResetCameraClippingRange();
+  }
+
+  const unsigned char* pixel(int i, int j) const
+  {
+    return static_cast<unsigned char*>(image->GetScalarPointer(i, j, 0));
+  }
+
+  size_t coveredPixels() const { return mapper->GetLastGBuffer().coveredPixels(); }
+};
+
+TEST(IsosurfaceMapperSettings, ProgressIsMonotoneAndEndsAtOne)
+{
+  TubeScene scene;
+  scene.render();
+  const std::vector<double>& values = scene.recorder->progress;
+  ASSERT_GE(values.size(), 3u) << "the start, some subdivision rounds and the end";
+  EXPECT_EQ(values.front(), 0.0);
+  EXPECT_EQ(values.back(), 1.0);
+  int between = 0;
+  for (size_t k = 0; k < values.size(); ++k)
+  {
+    EXPECT_GE(values[k], 0.0);
+    EXPECT_LE(values[k], 1.0);
+    if (k > 0)
+    {
+      EXPECT_GE(values[k], values[k - 1]) << "progress went back at event " << k;
+    }
+    if (k + 1 < values.size())
+    {
+      EXPECT_LT(values[k], 1.0) << "1 before the end of the frame, at event " << k;
+    }
+    between += values[k] > 0.0 && values[k] < 1.0;
+  }
+  EXPECT_GT(between, 0) << "no progress reported between the start and the end";
+  EXPECT_EQ(scene.mapper->GetProgress(), 1.0);
+  EXPECT_GT(scene.coveredPixels(), 1000u);
+  // A frame reused from the last render reports no progress (the engine does not run).
+  scene.recorder->progress.clear();
+  scene.render();
+  EXPECT_TRUE(scene.recorder->progress.empty());
+}
+
+TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns)
+{
+  TubeScene scene;
+  scene.mapper->SetMaximumSubdivisionDepth(2);
+  EXPECT_EQ(scene.mapper->GetMaximumSubdivisionDepth(), 2);
+  scene.render();
+  const vtkIdType shallow = scene.mapper->GetLastUnresolvedPixels();
+  EXPECT_GT(shallow, 100) << "two levels below the input patches resolve no silhouette";
+  EXPECT_EQ(scene.recorder->count("pixels left unresolved"), 1);
+  EXPECT_EQ(scene.recorder->count("subdivision depth cap (MaximumSubdivisionDepth 2:"), 1);
+
+  // Another camera: the engine runs again, still with unresolved pixels, and stays quiet.
+  scene.recorder->progress.clear();
+  scene.turn(4);
+  scene.render();
+  EXPECT_FALSE(scene.recorder->progress.empty()) << "the engine did not run again";
+  EXPECT_GT(scene.mapper->GetLastUnresolvedPixels(), 100);
+  EXPECT_EQ(scene.recorder->count("pixels left unresolved"), 1) << "warned on every frame";
+
+  // The default depth: the engine runs again (the depth is part of the frame's key) and
+  // resolves every pixel, covering more of them.
+  const size_t shallowCovered = scene.coveredPixels();
+  const double shallowTime = scene.mapper->GetLastEngineTime();
+  scene.recorder->progress.clear();
+  scene.mapper->SetMaximumSubdivisionDepth(22);
+  scene.render();
+  EXPECT_FALSE(scene.recorder->progress.empty()) << "a new depth did not re-run the engine";
+  EXPECT_NE(scene.mapper->GetLastEngineTime(), shallowTime);
+  EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
+  EXPECT_GT(scene.coveredPixels(), shallowCovered);
+  EXPECT_EQ(scene.recorder->count("pixels left unresolved"), 1);
+
+  // The clamp, and a changed setting reports again.
+  scene.mapper->SetMaximumSubdivisionDepth(99);
+  EXPECT_EQ(scene.mapper->GetMaximumSubdivisionDepth(), 40);
+  scene.mapper->SetMaximumSubdivisionDepth(2);
+  scene.render();
+  EXPECT_EQ(scene.recorder->count("pixels left unresolved"), 2);
+}
+
+TEST(IsosurfaceMapperSettings, TinyMemoryBudgetLeavesUnresolvedPixelsWarnedOnce)
+{
+  TubeScene scene(400, 320);
+  scene.mapper->SetMemoryBudgetMB(1);
+  EXPECT_EQ(scene.mapper->GetMemoryBudgetMB(), 16) << "clamped to 16 MiB";
+  scene.render();
+  EXPECT_GT(scene.mapper->GetLastUnresolvedPixels(), 0);
+  EXPECT_EQ(scene.recorder->count("at the memory budget (MemoryBudgetMB 16:"), 1);
+  scene.turn(4);
+  scene.render();
+  EXPECT_GT(scene.mapper->GetLastUnresolvedPixels(), 0);
+  EXPECT_EQ(scene.recorder->count("pixels left unresolved"), 1);
+  // The default budget resolves them.
+  scene.mapper->SetMemoryBudgetMB(2048);
+  scene.render();
+  EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
+}
+
+TEST(IsosurfaceMapperSettings, MissingSurfaceArrayIsReportedOnce)
+{
+  TubeScene scene;
+  scene.mapper->SetSurfaceArrayName("bogus");
+  scene.render();
+  scene.turn(4);
+  scene.render();
+  ASSERT_EQ(scene.recorder->errors.size(), 1u);
+  EXPECT_NE(scene.recorder->errors[0].find("no point array named 'bogus'"), std::string::npos);
+  EXPECT_EQ(scene.window->GetZbufferDataAtPoint(120, 100), 1.0f) << "nothing drawn";
+  // Another bad name is a changed setting: reported too; a good one draws.
+  scene.mapper->SetSurfaceArrayName("bogus2");
+  scene.render();
+  EXPECT_EQ(scene.recorder->errors.size(), 2u);
+  scene.mapper->SetSurfaceArrayName("temperature");
+  scene.render();
+  EXPECT_EQ(scene.recorder->errors.size(), 2u);
+  EXPECT_GT(scene.coveredPixels(), 1000u);
+}
+
+TEST(IsosurfaceMapperSettings, CUDABackendFallsBackToTheSameCPUImage)
+{
+  TubeScene cpu, cuda;
+  cpu.mapper->SetBackendToCPU();
+  EXPECT_EQ(cpu.mapper->GetBackend(), vtkIGAIsosurfaceMapper::BACKEND_CPU);
+  cuda.mapper->SetBackendToCUDA();
+  EXPECT_EQ(cuda.mapper->GetBackend(), vtkIGAIsosurfaceMapper::BACKEND_CUDA);
+  cpu.render();
+  cuda.render();
+  if (std::string(cuda.mapper->GetLastBackend()) == "cuda")
+  {
+    GTEST_SKIP() << "a CUDA device drew the frame: there is no fallback to test here";
+  }
+  EXPECT_STREQ(cpu.mapper->GetLastBackend(), "cpu");
+  EXPECT_STREQ(cpu.mapper->GetLastNotice(), "");
+  EXPECT_STREQ(cuda.mapper->GetLastBackend(), "cpu");
+  const std::string notice = cuda.mapper->GetLastNotice();
+  EXPECT_EQ(notice.rfind("CUDA asked for, but ", 0), 0u) << notice;
+  EXPECT_NE(notice.find("drawing on CPU threads"), std::string::npos) << notice;
+  EXPECT_EQ(cuda.recorder->count(notice), 1);
+  EXPECT_EQ(cpu.recorder->warnings.size(), 0u);
+  // The same image, bit for bit.
+  ASSERT_EQ(cpu.mapper->GetLastColours().size(), cuda.mapper->GetLastColours().size());
+  EXPECT_TRUE(cpu.mapper->GetLastColours() == cuda.mapper->GetLastColours());
+  int differ = 0;
+  for (int j = 0; j < 200; ++j)
+  {
+    for (int i = 0; i < 240; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        differ += cpu.pixel(i, j)[c] != cuda.pixel(i, j)[c];
+      }
+    }
+  }
+  EXPECT_EQ(differ, 0);
+  EXPECT_GT(cuda.coveredPixels(), 1000u);
+
+  // A second frame computed (another camera) does not repeat the notice.
+  cuda.recorder->progress.clear();
+  cuda.turn(4);
+  cuda.render();
+  EXPECT_FALSE(cuda.recorder->progress.empty());
+  EXPECT_EQ(cuda.recorder->count(notice), 1);
+  EXPECT_EQ(cuda.recorder->warnings.size(), 1u);
+
+  // A new backend re-runs the engine; automatic is not warned about (a plain message).
+  cpu.recorder->progress.clear();
+  cpu.mapper->SetBackendToAutomatic();
+  cpu.render();
+  EXPECT_FALSE(cpu.recorder->progress.empty()) << "a new backend did not re-run the engine";
+  EXPECT_STREQ(cpu.mapper->GetLastBackend(), "cpu");
+  EXPECT_STRNE(cpu.mapper->GetLastNotice(), "");
+  EXPECT_EQ(cpu.recorder->warnings.size(), 0u);
+}
+
+TEST(IsosurfaceMapperSettings, LookupTableKeepsItsRangeWhenAskedTo)
+{
+  TubeScene scene;
+  vtkProperty* property = scene.actor->GetProperty();
+  property->SetAmbient(1); // the pixel is the table's colour
+  property->SetDiffuse(0);
+  property->SetSpecular(0);
+  vtkNew<vtkLookupTable> lut;
+  lut->SetHueRange(0.667, 0.0);
+  lut->SetRange(0.7, 0.9); // radius spans 0.5..1: both ends are clamped
+  lut->Build();
+  scene.mapper->SetLookupTable(lut);
+  scene.mapper->SetScalarModeToUsePointFieldData();
+  scene.mapper->SelectColorArray("radius");
+  scene.mapper->ScalarVisibilityOn();
+  scene.mapper->SetScalarRange(0.0, 2.0);
+  scene.mapper->UseLookupTableScalarRangeOn();
+  scene.render();
+  EXPECT_EQ(lut->GetRange()[0], 0.7);
+  EXPECT_EQ(lut->GetRange()[1], 0.9);
+
+  // Every covered pixel shows the table's colour of the radius at its hit.
+  const auto& gbuffer = scene.mapper->GetLastGBuffer();
+  auto compare = [&](int& checked, int& wrong)
+  {
+    checked = wrong = 0;
+    for (int j = 0; j < gbuffer.height; j += 3)
+    {
+      for (int i = 0; i < gbuffer.width; i += 3)
+      {
+        const auto* hit = gbuffer.firstHit(i, j);
+        if (!hit)
+        {
+          continue;
+        }
+        const unsigned char* expected = lut->MapValue(hit->color);
+        for (int c = 0; c < 3; ++c)
+        {
+          wrong += std::abs(int(scene.pixel(i, j)[c]) - int(expected[c])) > 1;
+        }
+        ++checked;
+      }
+    }
+  };
+  int checked, wrong;
+  compare(checked, wrong);
+  EXPECT_GT(checked, 100);
+  EXPECT_EQ(wrong, 0);
+  // The low end of the table (blue) and its high end (red) are both on screen.
+  int blue = 0, red = 0;
+  for (int j = 0; j < gbuffer.height; ++j)
+  {
+    for (int i = 0; i < gbuffer.width; ++i)
+    {
+      const unsigned char* p = scene.pixel(i, j);
+      blue += p[2] > 200 && p[0] < 30;
+      red += p[0] > 200 && p[2] < 30;
+    }
+  }
+  EXPECT_GT(blue, 50);
+  EXPECT_GT(red, 50);
+
+  // Off (vtkMapper's default): the mapper's ScalarRange replaces the table's range.
+  scene.mapper->UseLookupTableScalarRangeOff();
+  scene.render();
+  EXPECT_EQ(lut->GetRange()[0], 0.0);
+  EXPECT_EQ(lut->GetRange()[1], 2.0);
+  compare(checked, wrong);
+  EXPECT_EQ(wrong, 0);
+}
+
+} // namespace
