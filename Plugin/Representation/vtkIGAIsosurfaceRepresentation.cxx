@@ -2,6 +2,7 @@
 
 #include "vtkIGAIsosurfaceMapper.h"
 
+#include "vtkCommand.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
@@ -28,8 +29,15 @@ vtkIGAIsosurfaceRepresentation::vtkIGAIsosurfaceRepresentation()
   this->Actor->SetLODMapper(this->OutlineMapper);
   this->Mapper->SetScalarVisibility(0);
   this->Mapper->SetScalarModeToUsePointFieldData();
+  // ParaView owns the lookup table's range (as vtkGeometryRepresentation's mapper does).
+  this->Mapper->SetUseLookupTableScalarRange(1);
   this->OutlineMapper->SetScalarVisibility(0);
   vtkMath::UninitializeBounds(this->DataBounds);
+  // The engine's progress as this representation's, which ParaView's progress handler
+  // observes (see the class documentation).
+  this->SetProgressText("IGA Isosurface");
+  this->Mapper->AddObserver(
+    vtkCommand::ProgressEvent, this, &vtkIGAIsosurfaceRepresentation::OnMapperProgress);
 }
 
 vtkIGAIsosurfaceRepresentation::~vtkIGAIsosurfaceRepresentation() = default;
@@ -185,6 +193,26 @@ void vtkIGAIsosurfaceRepresentation::SetSurfaceArray(
 void vtkIGAIsosurfaceRepresentation::SetNumberOfThreads(int threads)
 {
   this->Mapper->SetNumberOfThreads(threads);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetBackend(int backend)
+{
+  this->Mapper->SetBackend(backend);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetMaximumSubdivisionDepth(int depth)
+{
+  this->Mapper->SetMaximumSubdivisionDepth(depth);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetMemoryBudget(int megabytes)
+{
+  this->Mapper->SetMemoryBudgetMB(megabytes);
+}
+
+void vtkIGAIsosurfaceRepresentation::OnMapperProgress(vtkObject*, unsigned long, void* data)
+{
+  this->UpdateProgress(*static_cast<double*>(data));
 }
 
 void vtkIGAIsosurfaceRepresentation::SetInputArrayToProcess(

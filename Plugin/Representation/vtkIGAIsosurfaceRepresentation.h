@@ -11,7 +11,23 @@
  * as they are. While interacting, the view may ask for a LOD: the piece's outline.
  *
  * Property setters follow the surface representation's names so the XML can share them with it
- * (colouring through ColorArrayName/LookupTable, Opacity, Specular, transforms).
+ * (colouring through ColorArrayName/LookupTable, Opacity, Specular, transforms). The lookup
+ * table's range is ParaView's (the mapper's UseLookupTableScalarRange is on, as in
+ * vtkGeometryRepresentation).
+ *
+ * Engine settings go to the mapper: Backend (0 automatic, 1 CPU, 2 CUDA), CPU threads, and the
+ * caps MaximumSubdivisionDepth and MemoryBudget (MiB) at which pixels are left unresolved.
+ *
+ * Progress: the mapper's progress events while the engine runs (vtkCommand::ProgressEvent,
+ * see vtkIGAIsosurfaceMapper) are re-fired as this representation's own progress
+ * (UpdateProgress, with the progress text "IGA Isosurface"). ParaView registers every proxy's
+ * VTK algorithm with the session's vtkPVProgressHandler (vtkSIProxy::CreateVTKObjects), not
+ * the helper objects such as this mapper, and enables progress around StillRender and
+ * InteractiveRender (vtkSMViewProxy), so the engine's progress reaches the session's progress
+ * handler, which feeds the GUI's progress bar. Limits: the handler forwards at most one event per
+ * 0.1 s (GUI) or 1 s (server), only rank 0's progress is shown in parallel, progress is off in
+ * symmetric pvbatch runs (ParaView's rules). The handler's events are tested from pvpython; the
+ * GUI's progress bar (pqProgressManager, fed by the same handler) was not checked.
  */
 #ifndef vtkIGAIsosurfaceRepresentation_h
 #define vtkIGAIsosurfaceRepresentation_h
@@ -47,6 +63,11 @@ public:
   /// The point array defining the surface (ParaView's 5-element array selection).
   void SetSurfaceArray(int idx, int port, int connection, int fieldAssociation, const char* name);
   void SetNumberOfThreads(int threads);
+  /// 0 automatic, 1 CPU, 2 CUDA (vtkIGAIsosurfaceMapper::BackendType).
+  void SetBackend(int backend);
+  void SetMaximumSubdivisionDepth(int depth);
+  /// The engine's memory budget in MiB.
+  void SetMemoryBudget(int megabytes);
   ///@}
 
   ///@{
@@ -93,6 +114,9 @@ protected:
 private:
   vtkIGAIsosurfaceRepresentation(const vtkIGAIsosurfaceRepresentation&) = delete;
   void operator=(const vtkIGAIsosurfaceRepresentation&) = delete;
+
+  /// The mapper's progress, fired again as this representation's.
+  void OnMapperProgress(vtkObject* caller, unsigned long event, void* data);
 
   vtkNew<vtkIGAIsosurfaceMapper> Mapper;
   vtkNew<vtkPolyDataMapper> OutlineMapper;

@@ -1,6 +1,9 @@
 """pvpython: the "IGA Isosurface" representation of the IGAView plugin draws the bundled tube's
 temperature = 0 sheet coloured by radius; the image matches the baseline and its pixels show
-the surface where the sheet is and the background elsewhere.
+the surface where the sheet is and the background elsewhere. The engine's properties (backend,
+subdivision depth cap, memory budget) reach the mapper: CUDA falls back to the same CPU image
+with one warning, the caps leave unresolved pixels reported once, and the engine's progress
+reaches ParaView's progress handler as the representation's.
 
 Usage: pvpython test_isosurface_representation.py PLUGIN DATA_DIR BASELINE_DIR WORK_DIR"""
 import os
@@ -12,8 +15,29 @@ import builtins
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from paraview import simple  # noqa: E402
+from vtkmodules.util.misc import calldata_type  # noqa: E402
+from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkOutputWindow  # noqa: E402
 
 import iga_scene  # noqa: E402
+
+# The mapper's warnings and plain messages, as ParaView's output messages receive them.
+mapper_messages = []
+
+
+@calldata_type(VTK_STRING)
+def on_message(obj, event, text):
+    if "vtkIGAIsosurfaceMapper" in text:
+        mapper_messages.append((event, text))
+
+
+for event in ("WarningEvent", "ErrorEvent", "TextEvent"):
+    vtkOutputWindow.GetInstance().AddObserver(event, on_message)
+
+
+def count_messages(part, event="WarningEvent"):
+    return builtins.sum(1 for e, text in mapper_messages if e == event and part in text)
+
 
 plugin, data_dir, baseline_dir, work_dir = sys.argv[1:5]
 os.makedirs(work_dir, exist_ok=True)
@@ -93,3 +117,90 @@ interactive = covered_now()
 assert view.GetClientSideObject().GetUsedLODForLastRender()
 assert 0 < interactive < 0.5 * still, (interactive, still)
 print(f"LOD while interacting: outline covers {interactive} pixels, the surfaces {still}")
+
+# The engine's properties (advanced, group "IGA Isosurface") and their defaults.
+display.IGAIsovalues = [0.0]
+assert display.IGABackend == "Automatic", display.IGABackend
+assert display.GetProperty("IGABackend").Available == ["Automatic", "CPU", "CUDA"]
+assert display.IGAMaximumSubdivisionDepth == 22, display.IGAMaximumSubdivisionDepth
+assert display.IGAMemoryBudget == 2048, display.IGAMemoryBudget
+# Without CUDA the automatic choice says so once, as a plain message (no warning).
+without_cuda = count_messages("built without CUDA", "TextEvent") == 1
+assert count_messages("CUDA") == 0, mapper_messages
+
+# ParaView's progress handler sees the representation's progress while the engine runs.
+handler = simple.servermanager.ActiveConnection.Session.GetProgressHandler()
+handler.SetProgressInterval(0.01)
+progress = []
+
+
+def on_progress(obj, event):
+    progress.append((obj.GetLastProgressText(), obj.GetLastProgress()))
+
+
+handler.AddObserver("ProgressEvent", on_progress)
+
+
+def screenshot(name):
+    path = os.path.join(work_dir, name + ".png")
+    simple.SaveScreenshot(path, view, ImageResolution=iga_scene.SIZE, TransparentBackground=0)
+    return path
+
+
+def same_pixels(a, b):
+    (size_a, pixel_a), (size_b, pixel_b) = iga_scene.read_rgb(a), iga_scene.read_rgb(b)
+    return size_a == size_b and builtins.all(
+        pixel_a(i, j) == pixel_b(i, j) for j in range(size_a[1]) for i in range(size_a[0]))
+
+
+def covered_in(path):
+    (w, h), pixel = iga_scene.read_rgb(path)
+    return builtins.sum(1 for j in range(h) for i in range(w) if pixel(i, j) != background)
+
+
+def turn_and_back():
+    """Renders from a slightly different camera (the engine runs again), then the test's."""
+    view.CameraPosition = [2.5, -2.9, 2.6]
+    simple.Render(view)
+    iga_scene.place_camera(view)
+
+
+# CUDA asked for: without a GPU build the same image as the CPU's, and one warning over two
+# frames computed.
+display.IGABackend = "CUDA"
+cuda_shot = screenshot("backend_cuda")
+engine_progress = [p for text, p in progress if text == "IGA Isosurface" and 0 < p < 100]
+assert engine_progress, progress
+turn_and_back()
+if without_cuda:
+    assert same_pixels(cuda_shot, shot), "CUDA fallback differs from the CPU image"
+    assert count_messages("CUDA asked for, but") == 1, mapper_messages
+else:
+    iga_scene.compare_images(cuda_shot, shot, work_dir)
+print(f"Backend CUDA: {'CPU fallback, same image' if without_cuda else 'GPU'}; progress seen "
+      f"by ParaView's handler: {engine_progress}")
+
+# Two subdivision levels leave pixels unresolved (not drawn), warned about once.
+display.IGABackend = "Automatic"
+display.IGAMaximumSubdivisionDepth = 2
+shallow = screenshot("depth_2")
+turn_and_back()
+assert count_messages("pixels left unresolved at the subdivision depth cap "
+                      "(MaximumSubdivisionDepth 2:") == 1, mapper_messages
+shallow_covered, full_covered = covered_in(shallow), covered_in(shot)
+assert shallow_covered < full_covered, (shallow_covered, full_covered)
+
+# 16 MiB of subdivision storage is not enough at this size either.
+display.IGAMaximumSubdivisionDepth = 22
+display.IGAMemoryBudget = 16
+budget_shot = screenshot("budget_16")
+turn_and_back()
+assert count_messages("at the memory budget (MemoryBudgetMB 16:") == 1, mapper_messages
+assert covered_in(budget_shot) < full_covered
+
+# The defaults again: the baseline image.
+display.IGAMemoryBudget = 2048
+assert same_pixels(screenshot("defaults_again"), shot)
+assert count_messages("pixels left unresolved") == 2, mapper_messages
+print(f"MaximumSubdivisionDepth 2: {shallow_covered} pixels covered, MemoryBudget 16 MB: "
+      f"{covered_in(budget_shot)}, defaults: {full_covered}; each cap warned about once")
