@@ -69,6 +69,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --view-up x,y,z
   --view-angle DEG       a camera that is not given is chosen to frame the data
   --threads N            CPU threads (default: all)
+  --backend B            auto, cpu or cuda (default auto: CUDA where built with it and a GPU is
+                         present; the environment variable IGAVIEW_BACKEND sets auto's choice)
   -o FILE                output PNG (default igaview.png)
   --exr FILE             also write the G-buffer as OpenEXR: R G B A, Z (eye depth), P.X P.Y P.Z,
                          N.X N.Y N.Z, u v w, patch, and the colour attribute by name (render)
@@ -87,6 +89,7 @@ struct Options
   std::string surfaceBy, colorBy, output = "igaview.png", exr;
   int size[2] = { 800, 600 };
   int threads = 0;
+  iga::sst::Backend backend = iga::sst::Backend::Automatic;
   double time = 0.5;
   bool hasPosition = false, hasFocal = false, hasViewUp = false;
   double position[3], focal[3], viewUp[3], viewAngle = 30;
@@ -191,6 +194,17 @@ Options parseArguments(int argc, char** argv)
       options.threads = int(parseNumber(value(), arg));
       if (options.threads < 1 || options.threads > 1024)
         fail("--threads expects 1..1024");
+    }
+    else if (arg == "--backend")
+    {
+      try
+      {
+        options.backend = iga::sst::parseBackend(value());
+      }
+      catch (const std::invalid_argument& e)
+      {
+        fail(std::string("--backend: ") + e.what());
+      }
     }
     else if (arg == "--size")
     {
@@ -484,6 +498,8 @@ int main(int argc, char** argv)
   mapper->SetInputConnection(producer->GetOutputPort());
   mapper->SetSurfaceArrayName(set.attributeNames[surface].c_str());
   mapper->SetNumberOfThreads(options.threads);
+  // The mapper's BackendType follows the engine's Backend order (auto, CPU, CUDA).
+  mapper->SetBackend(int(options.backend));
   for (size_t k = 0; k < isovalues.size(); ++k)
     mapper->SetIsovalue(int(k), isovalues[k]);
   vtkNew<vtkColorTransferFunction> coolToWarm; // ParaView's default map
@@ -553,8 +569,8 @@ int main(int argc, char** argv)
   {
     fail("the isosurface could not be rendered (see the message above)");
   }
-  std::printf("igaview: %zu pixels covered in %.1f ms (SST engine, CPU)\n", gbuffer.coveredPixels(),
-    mapper->GetLastEngineTime());
+  std::printf("igaview: %zu pixels covered in %.1f ms (SST engine, %s)\n", gbuffer.coveredPixels(),
+    mapper->GetLastEngineTime(), mapper->GetLastBackend());
 
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
