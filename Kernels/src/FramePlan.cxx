@@ -22,11 +22,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// Sub-patches per level kept while splitting a patch at the eye plane.
 constexpr size_t kMaxEyePlaneNodes = size_t(1) << 16;
 
-/// Adds a root to the initial nodes if it may show surface. A root straddling the eye plane
-/// has no finite window box: it is split breadth first until its parts lie in front of the
-/// eye, behind it, or in front of the near plane (all invisible but the first). Parts still
-/// straddling at the depth cap or beyond the node budget are counted, not drawn.
-void addInitialNode(FramePlan& plan, const int* degree, Node root, const double* coeffs,
+} // namespace
+
+void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs,
   const Settings& settings, FrameReport& report)
 {
   const int count = (degree[0] + 1) * (degree[1] + 1) * (degree[2] + 1) * kScreenChannels;
@@ -72,35 +70,8 @@ void addInitialNode(FramePlan& plan, const int* degree, Node root, const double*
   }
 }
 
-} // namespace
-
-FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& s, FrameReport& report)
+double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& s)
 {
-  const Settings& settings = s;
-  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
-  {
-    throw std::invalid_argument("image size " + std::to_string(s.width) + "x" +
-                                std::to_string(s.height) + " is outside 1..16384 per side");
-  }
-  if (s.isovalues.empty())
-  {
-    throw std::invalid_argument("no isovalue given");
-  }
-  for (double iso : s.isovalues)
-  {
-    if (!std::isfinite(iso))
-    {
-      throw std::invalid_argument("isovalue is not finite");
-    }
-  }
-  if (s.maxSubdivisionDepth < 0 || s.maxSubdivisionDepth > 40)
-  {
-    throw std::invalid_argument("maximum subdivision depth must lie in 0..40");
-  }
-  FramePlan plan;
-  plan.threads = s.threads > 0 ? s.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  report.threads = plan.threads;
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
   double attributeLo = kInfinity, attributeHi = -kInfinity;
   for (size_t p = 0; p < patches.size(); ++p)
@@ -124,15 +95,42 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
     attributeLo = std::min(attributeLo, lo);
     attributeHi = std::max(attributeHi, hi);
   }
-  const double range = attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
+  return attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
+}
+
+FramePlan planView(const View& view, const Settings& s, double attributeRange, FrameReport& report)
+{
+  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
+  {
+    throw std::invalid_argument("image size " + std::to_string(s.width) + "x" +
+                                std::to_string(s.height) + " is outside 1..16384 per side");
+  }
+  if (s.isovalues.empty())
+  {
+    throw std::invalid_argument("no isovalue given");
+  }
+  for (double iso : s.isovalues)
+  {
+    if (!std::isfinite(iso))
+    {
+      throw std::invalid_argument("isovalue is not finite");
+    }
+  }
+  if (s.maxSubdivisionDepth < 0 || s.maxSubdivisionDepth > 40)
+  {
+    throw std::invalid_argument("maximum subdivision depth must lie in 0..40");
+  }
   if (s.clipPlanes.size() > size_t(kMaxClipPlanes))
   {
     throw std::invalid_argument("at most " + std::to_string(kMaxClipPlanes) +
                                 " clipping planes are supported, got " +
                                 std::to_string(s.clipPlanes.size()));
   }
+  FramePlan plan;
+  plan.threads = s.threads > 0 ? s.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  report.threads = plan.threads;
   plan.frame.tolerance[0] = plan.frame.tolerance[1] = s.pixelTolerance;
-  plan.frame.tolerance[2] = s.isoTolerance * range;
+  plan.frame.tolerance[2] = s.isoTolerance * attributeRange;
 
   // Window coordinates: x, y in pixels (pixel i covers [i, i+1]), z the NDC depth.
   const double W = s.width, H = s.height;
@@ -160,12 +158,15 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
   plan.frame.height = s.height;
   plan.frame.firstHitOnly = s.firstHitOnly;
   plan.frame.maxSubdivisionDepth = s.maxSubdivisionDepth;
-  for (int d = 0; d < 3; ++d)
-  {
-    plan.frame.tolerance[d] = plan.frame.tolerance[d];
-  }
-  plan.frame.clip = plan.frame.clip;
   plan.frame.isovalues = s.isovalues.data();
+  return plan;
+}
+
+FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
+  const Settings& s, FrameReport& report)
+{
+  FramePlan plan = planView(view, s, checkPatches(patches, s), report);
+  const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
   // Screen patches of every input patch, then the subdivision-tree roots: one per (patch,
   // isovalue) with a possible sign change. Roots straddling the eye plane are split until
   // their parts lie in front of or behind it.
@@ -182,7 +183,7 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
     for (int iso = 0; iso < int(s.isovalues.size()); ++iso)
     {
       Node root = rootNode(int(p), iso);
-      addInitialNode(plan, patches[p].view().degree, root, screen.data(), settings, report);
+      addRoot(plan, patches[p].view().degree, root, screen.data(), s, report);
     }
   }
   return plan;

@@ -26,8 +26,25 @@ struct FramePlan
   std::vector<size_t> shadingOffsets;
 };
 
-/// Throws std::invalid_argument naming the patch and the problem for bad input or settings.
-/// Counts roots it cannot place in front of the eye in report.droppedAtEyePlane.
+/// Checks every patch against the settings (degrees, values, weights, attribute indices) and
+/// returns the surface attribute's range over all patches. Throws std::invalid_argument naming
+/// the patch and the problem.
+double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& settings);
+
+/// The plan's view part (frame constants, window matrix, clipping planes), without roots.
+/// Throws std::invalid_argument for bad settings.
+FramePlan planView(
+  const View& view, const Settings& settings, double attributeRange, FrameReport& report);
+
+/// Appends a root (`coeffs`: its screen patch) to the plan's initial nodes if it may show
+/// surface. A root straddling the eye plane has no finite window box: it is split breadth first
+/// until its parts lie in front of the eye, behind it, or in front of the near plane. Parts
+/// still straddling at the depth cap or beyond a node budget are counted in
+/// report.droppedAtEyePlane, not drawn.
+void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs,
+  const Settings& settings, FrameReport& report);
+
+/// All of the above for every patch and isovalue, plus the shading patches.
 FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, FrameReport& report);
 
