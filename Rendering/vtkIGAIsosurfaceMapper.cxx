@@ -738,9 +738,10 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       in.UploadTime = vtkTimeStamp(); // the colours go back up next time
     }
   }
-  // Render passes (order-independent translucency, depth peeling, ...) hook into the shader as
-  // into vtkOpenGLPolyDataMapper's, through the DepthPeeling markers; their depth tests read
-  // gl_FragCoord.z, which for this quad is the surface's depth igaDepth.
+  // Render passes (order-independent translucency, dual and classic depth peeling) hook into
+  // the shader as into vtkOpenGLPolyDataMapper's, through the DepthPeeling markers, at every
+  // peel; their depth tests read gl_FragDepth, set before the PreColor hook, and gl_FragCoord.z
+  // would be the quad's: it is replaced by the surface's depth igaDepth.
   std::vector<vtkOpenGLRenderPass*> passes;
   vtkMTimeType passTime = 0;
   vtkInformation* keys = actor->GetPropertyKeys();
@@ -752,6 +753,23 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
         static_cast<vtkOpenGLRenderPass*>(keys->Get(vtkOpenGLRenderPass::RenderPasses(), k)));
       passTime = std::max(passTime, passes.back()->GetShaderStageMTime());
     }
+  }
+  // VTK 9.2's depth peeling passes copy the opaque depth through a multisample resolve into a
+  // 24-bit depth buffer (vtkTextureObject::CopyFromFrameBuffer) that the window's 32-bit one
+  // cannot be blitted to; where the driver holds to that (Mesa: GL_INVALID_OPERATION), the copy
+  // fails and every translucent fragment, this surface's and polydata's alike, is culled.
+  // vtkRenderer asks for SetMultiSamples(0) with depth peeling (ParaView does it): say so.
+  if (window->GetMultiSamples() > 0 &&
+      std::any_of(passes.begin(), passes.end(),
+        [](vtkOpenGLRenderPass* pass)
+        { return pass->IsA("vtkDualDepthPeelingPass") || pass->IsA("vtkDepthPeelingPass"); }))
+  {
+    this->ReportOnce("multisampled depth peeling",
+      "depth peeling on a window with " + std::to_string(window->GetMultiSamples()) +
+        " multisamples: VTK 9.2 may draw no translucent geometry at all there (this surface "
+        "included); call SetMultiSamples(0) on the render window, as vtkRenderer's "
+        "UseDepthPeeling requires",
+      false);
   }
   if (!in.Quad || passes != in.ShaderPasses || passTime > in.ShaderTime)
   {

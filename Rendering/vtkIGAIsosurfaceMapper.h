@@ -21,11 +21,17 @@
  * selection (vtkHardwareSelector, vtkPropPicker) draws VTK's ids: the prop, the composite block,
  * the process and the cell (the patch the hit lies in); point ids are not drawn.
  *
- * A property opacity below 1 blends the first hit over what lies behind it in VTK's default
- * translucent pass, whose order-independent translucency hooks into this mapper's shader like
- * into vtkOpenGLPolyDataMapper's (render passes' DepthPeeling markers); the surface's own
- * further layers are not drawn. Known limit: with depth peeling (vtkDualDepthPeelingPass,
- * ParaView's default for translucent geometry) a translucent isosurface is not drawn yet.
+ * A property opacity below 1 blends the first hit over what lies behind it. VTK's translucency
+ * techniques hook into this mapper's shader like into vtkOpenGLPolyDataMapper's (render passes'
+ * DepthPeeling markers) and it draws at every peel: the default translucent pass
+ * (order-independent: an alpha-weighted average of the layers), dual depth peeling
+ * (vtkRenderer::UseDepthPeeling on OpenGL >= 3.2, ParaView's default for translucent geometry)
+ * and the classic vtkDepthPeelingPass; under depth peeling the surface blends in exact depth
+ * order with other translucent props. The surface's own further layers are not drawn. Depth
+ * peeling needs a render window without multisampling (SetMultiSamples(0), as vtkRenderer
+ * documents and ParaView does): with VTK 9.2 on a multisampled window the peeling passes' copy
+ * of the opaque depth fails on strict drivers (Mesa) and no translucent prop at all is drawn;
+ * the mapper warns about it (once until its settings or the input change).
  *
  * Engine settings: Backend (automatic: CUDA where the library was built with it and a device
  * is usable, else CPU threads; CPU; CUDA, which falls back to CPU threads when it cannot run),

@@ -1,0 +1,340 @@
+// Translucent vtkIGAIsosurfaceMapper surfaces under each of VTK's translucency techniques:
+// the default translucent pass (order-independent blending), dual depth peeling
+// (vtkRenderer::UseDepthPeeling, VTK's pick on desktop OpenGL, as in ParaView) and the
+// classic vtkDepthPeelingPass (VTK's pick without dual depth peeling).
+#include "vtkIGABezierHexahedra.h"
+#include "vtkIGAIsosurfaceMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkDepthPeelingPass.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+#include "vtkTranslucentPass.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkWindowToImageFilter.h"
+
+#include "iga/Datasets.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace
+{
+
+enum class Technique
+{
+  Blending,         ///< VTK's default translucent pass (order-independent translucency)
+  DualDepthPeeling, ///< vtkRenderer::UseDepthPeeling: vtkDualDepthPeelingPass
+  DepthPeeling,     ///< vtkDepthPeelingPass in a vtkRenderStepsPass
+};
+
+std::string techniqueName(const testing::TestParamInfo<Technique>& info)
+{
+  switch (info.param)
+  {
+    case Technique::Blending:
+      return "Blending";
+    case Technique::DualDepthPeeling:
+      return "DualDepthPeeling";
+    default:
+      return "DepthPeeling";
+  }
+}
+
+struct Scene
+{
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  vtkSmartPointer<vtkImageData> image;
+
+  explicit Scene(Technique technique)
+  {
+    window->SetOffScreenRendering(1);
+    window->SetSize(200, 160);
+    // Depth peeling needs a window without multisampling and with alpha (vtkRenderer's rule).
+    window->SetMultiSamples(0);
+    window->SetAlphaBitPlanes(1);
+    window->AddRenderer(renderer);
+    renderer->SetBackground(0, 0, 0);
+    if (technique == Technique::DualDepthPeeling)
+    {
+      renderer->SetUseDepthPeeling(1);
+      renderer->SetMaximumNumberOfPeels(4);
+      renderer->SetOcclusionRatio(0);
+    }
+    else if (technique == Technique::DepthPeeling)
+    {
+      vtkNew<vtkTranslucentPass> translucent;
+      vtkNew<vtkDepthPeelingPass> peeling;
+      peeling->SetTranslucentPass(translucent);
+      peeling->SetMaximumNumberOfPeels(4);
+      peeling->SetOcclusionRatio(0);
+      vtkNew<vtkRenderStepsPass> steps;
+      steps->SetTranslucentPass(peeling);
+      renderer->SetPass(steps);
+    }
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(0, -4, 0);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 0, 1);
+    camera->SetViewAngle(40);
+    camera->SetClippingRange(1, 10);
+  }
+
+  /// A unit-sphere isosurface in the given colour, lit by ambient light only (the colour as is).
+  vtkActor* addIsosurface(double r, double g, double b, double opacity)
+  {
+    vtkNew<vtkIGAIsosurfaceMapper> mapper;
+    mapper->SetInputData(
+      vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeMarsdenSphere<double>(2)));
+    mapper->SetIsovalue(0, 0.0);
+    return this->add(mapper, r, g, b, opacity);
+  }
+
+  vtkActor* addSphere(double x, double y, double z, double radius)
+  {
+    vtkNew<vtkSphereSource> source;
+    source->SetCenter(x, y, z);
+    source->SetRadius(radius);
+    source->SetThetaResolution(64);
+    source->SetPhiResolution(64);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(source->GetOutputPort());
+    return this->add(mapper, 0, 1, 0, 1);
+  }
+
+  /// A square facing the camera at depth y, 3 wide: one translucent layer.
+  vtkActor* addSquare(double y, double r, double g, double b, double opacity)
+  {
+    vtkNew<vtkPlaneSource> source;
+    source->SetOrigin(-1.5, y, -1.5);
+    source->SetPoint1(1.5, y, -1.5);
+    source->SetPoint2(-1.5, y, 1.5);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(source->GetOutputPort());
+    return this->add(mapper, r, g, b, opacity);
+  }
+
+  vtkActor* add(vtkMapper* mapper, double r, double g, double b, double opacity)
+  {
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(r, g, b);
+    actor->GetProperty()->SetOpacity(opacity);
+    actor->GetProperty()->SetAmbient(1);
+    actor->GetProperty()->SetDiffuse(0);
+    actor->GetProperty()->SetSpecular(0);
+    renderer->AddActor(actor);
+    return actor;
+  }
+
+  void render()
+  {
+    window->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    image = grab->GetOutput();
+  }
+
+  /// The pixel a world point projects to.
+  const unsigned char* pixelAt(double x, double y, double z)
+  {
+    renderer->SetWorldPoint(x, y, z, 1);
+    renderer->WorldToDisplay();
+    double d[3];
+    renderer->GetDisplayPoint(d);
+    const int i = int(std::floor(d[0])), j = int(std::floor(d[1]));
+    int size[3];
+    image->GetDimensions(size);
+    if (i < 0 || j < 0 || i >= size[0] || j >= size[1])
+    {
+      ADD_FAILURE() << "(" << x << ", " << y << ", " << z << ") is not in the image";
+      static const unsigned char none[3] = { 255, 255, 255 };
+      return none;
+    }
+    return static_cast<unsigned char*>(image->GetScalarPointer(i, j, 0));
+  }
+};
+
+#define EXPECT_RGB(pixel, r, g, b, what)                                                           \
+  do                                                                                               \
+  {                                                                                                \
+    const unsigned char* p_ = (pixel);                                                             \
+    EXPECT_NEAR(p_[0], r, 6) << what;                                                              \
+    EXPECT_NEAR(p_[1], g, 6) << what;                                                              \
+    EXPECT_NEAR(p_[2], b, 6) << what;                                                              \
+  } while (false)
+
+class Translucency : public testing::TestWithParam<Technique>
+{
+};
+
+/// A half-opaque red isosurface over an opaque green sphere inside it and over the background.
+TEST_P(Translucency, SurfaceBlendsOverWhatIsBehind)
+{
+  Scene scene(GetParam());
+  scene.addSphere(0.55, 0, 0.2, 0.3);
+  scene.addIsosurface(1, 0, 0, 0.5);
+  scene.render();
+  EXPECT_RGB(scene.pixelAt(0.55, -0.3, 0.2), 128, 128, 0, "half red over the green sphere");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 128, 0, 0, "half red over the black background");
+  EXPECT_RGB(scene.pixelAt(1.2, 0, 1.2), 0, 0, 0, "nothing drawn outside the surface");
+  // Again, with the same frame (nothing changed: the mapper reuses it, every peel still draws).
+  scene.render();
+  EXPECT_RGB(scene.pixelAt(0.55, -0.3, 0.2), 128, 128, 0, "second render");
+}
+
+/// A half-opaque blue square in front of the isosurface, then behind the surface's near side:
+/// each layer blends over the one behind it (front colour 1/2, back colour 1/4).
+TEST_P(Translucency, SurfaceAndPolygonBlendInDepthOrder)
+{
+  if (GetParam() == Technique::Blending)
+  {
+    GTEST_SKIP() << "order-independent blending averages the layers, whatever their order";
+  }
+  Scene scene(GetParam());
+  scene.addIsosurface(1, 0, 0, 0.5);
+  vtkActor* square = scene.addSquare(-1.5, 0, 0, 1, 0.5);
+  scene.render();
+  EXPECT_RGB(scene.pixelAt(0, -1, 0), 64, 0, 128, "blue square in front of the red surface");
+  EXPECT_RGB(scene.pixelAt(1.2, 0, 1.2), 0, 0, 128, "the square alone");
+  square->SetPosition(0, 2, 0); // y = 0.5: behind the surface's near side
+  scene.render();
+  EXPECT_RGB(scene.pixelAt(0, -1, 0), 128, 0, 64, "red surface in front of the blue square");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 128, 0, 64, "elsewhere on the surface");
+  EXPECT_RGB(scene.pixelAt(1.2, 0, 1.2), 0, 0, 128, "the square alone");
+}
+
+/// Two half-opaque isosurfaces, one partly behind the other; then swapped (the same drawing
+/// order, the other depth order).
+TEST_P(Translucency, TwoSurfacesBlendInDepthOrder)
+{
+  if (GetParam() == Technique::Blending)
+  {
+    GTEST_SKIP() << "order-independent blending averages the layers, whatever their order";
+  }
+  Scene scene(GetParam());
+  vtkActor* red = scene.addIsosurface(1, 0, 0, 0.5);
+  vtkActor* blue = scene.addIsosurface(0, 0, 1, 0.5);
+  blue->SetPosition(0.8, 2, 0);
+  scene.render();
+  // On the red sphere's near side, in front of the blue sphere.
+  EXPECT_RGB(scene.pixelAt(0.5, -0.85, 0), 128, 0, 64, "red in front of blue");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.85, 0), 128, 0, 0, "red alone");
+  red->SetPosition(0.8, 2, 0);
+  blue->SetPosition(0, 0, 0);
+  scene.render();
+  EXPECT_RGB(scene.pixelAt(0.5, -0.85, 0), 64, 0, 128, "blue in front of red");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.85, 0), 0, 0, 128, "blue alone");
+}
+
+/// In a viewport away from the window's corner (the peeling passes draw into their own
+/// framebuffer, from its corner): the same pixels.
+TEST_P(Translucency, SurfaceInAnOffsetViewport)
+{
+  Scene scene(GetParam());
+  scene.renderer->SetViewport(0.3, 0.2, 1, 1);
+  scene.addSphere(0.55, 0, 0.2, 0.3);
+  scene.addIsosurface(1, 0, 0, 0.5);
+  scene.render();
+  EXPECT_RGB(scene.pixelAt(0.55, -0.3, 0.2), 128, 128, 0, "half red over the green sphere");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 128, 0, 0, "half red over the black background");
+}
+
+/// Dual depth peeling with one peel: the front and back layers are peeled, the surface between
+/// them is blended in the final alpha-blending stage.
+TEST(TranslucencyPeeling, SurfaceLeftToTheLastStageOfDualDepthPeeling)
+{
+  Scene scene(Technique::DualDepthPeeling);
+  scene.renderer->SetMaximumNumberOfPeels(1);
+  scene.addSquare(-1.5, 0, 0, 1, 0.5);
+  scene.addIsosurface(1, 0, 0, 0.5);
+  scene.addSquare(0.5, 0, 1, 0, 0.5);
+  scene.render();
+  EXPECT_RGB(scene.pixelAt(0, -1, 0), 64, 32, 128, "blue over red over green");
+}
+
+/// Depth peeling on a multisampled window draws no translucent geometry with VTK 9.2 (Mesa):
+/// the mapper says so, once, and not without depth peeling or multisampling.
+TEST(TranslucencyPeeling, DepthPeelingOnAMultisampledWindowIsReported)
+{
+  for (const auto& [technique, samples, expected] :
+    { std::make_tuple(Technique::DualDepthPeeling, 8, 1),
+      std::make_tuple(Technique::DepthPeeling, 4, 1), std::make_tuple(Technique::Blending, 8, 0),
+      std::make_tuple(Technique::DualDepthPeeling, 0, 0) })
+  {
+    Scene scene(technique);
+    scene.window->SetMultiSamples(samples);
+    vtkActor* actor = scene.addIsosurface(1, 0, 0, 0.5);
+    std::vector<std::string> warnings;
+    vtkNew<vtkCallbackCommand> recorder;
+    recorder->SetClientData(&warnings);
+    recorder->SetCallback(
+      [](vtkObject*, unsigned long, void* clientData, void* callData)
+      {
+        static_cast<std::vector<std::string>*>(clientData)
+          ->push_back(static_cast<const char*>(callData));
+      });
+    actor->GetMapper()->AddObserver(vtkCommand::WarningEvent, recorder);
+    scene.render();
+    scene.render();
+    const std::string what = "technique " + std::to_string(int(technique)) + ", " +
+                             std::to_string(samples) + " multisamples";
+    ASSERT_EQ(int(warnings.size()), expected) << what;
+    if (expected)
+    {
+      EXPECT_NE(warnings[0].find("SetMultiSamples(0)"), std::string::npos) << warnings[0];
+    }
+  }
+}
+
+/// Opaque surfaces are drawn by the opaque pass whatever the technique: the same image.
+TEST_P(Translucency, OpaqueSceneIsTheSameImage)
+{
+  auto renderOpaque = [](Technique technique)
+  {
+    Scene scene(technique);
+    scene.addIsosurface(1, 0, 0, 1)->GetProperty()->SetDiffuse(0.7);
+    scene.addSphere(0, -1.0, 0, 0.25);
+    scene.render();
+    vtkSmartPointer<vtkImageData> image = scene.image;
+    return image;
+  };
+  vtkSmartPointer<vtkImageData> reference = renderOpaque(Technique::Blending);
+  vtkSmartPointer<vtkImageData> image = renderOpaque(GetParam());
+  auto* a = vtkUnsignedCharArray::SafeDownCast(reference->GetPointData()->GetScalars());
+  auto* b = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(a->GetNumberOfValues(), b->GetNumberOfValues());
+  vtkIdType differing = 0, covered = 0;
+  for (vtkIdType k = 0; k < a->GetNumberOfValues(); ++k)
+  {
+    differing += a->GetValue(k) != b->GetValue(k);
+    covered += a->GetValue(k) != 0;
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(covered, 1000);
+}
+
+INSTANTIATE_TEST_SUITE_P(Techniques, Translucency,
+  testing::Values(Technique::Blending, Technique::DualDepthPeeling, Technique::DepthPeeling),
+  techniqueName);
+
+} // namespace
