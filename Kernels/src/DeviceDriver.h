@@ -91,13 +91,17 @@ size_t countIf(size_t n, Pred pred)
     thrust::counting_iterator<size_t>(n), pred));
 }
 
-/// What a driver knows of an input patch's shape.
+/// What the driver knows of an input patch: its shape and where its data lie on the device.
 struct PatchShape
 {
   int degree[3];
-  int screenValues; ///< control points times kScreenChannels
-  size_t shading;   ///< offset of its shading patch
+  int channels;     ///< of the world patch
+  int screenValues; ///< control points times kScreenChannels (= kShadeChannels)
+  size_t world;     ///< offset of its world coefficients
+  size_t screen;    ///< offset of its screen patch in the initial pool and of its shading patch
 };
+
+static_assert(kScreenChannels == kShadeChannels, "screen and shading patches share offsets");
 
 IGA_HD inline VolumeView<const double> viewOf(
   const Node& node, const double* pool, const PatchShape* shapes)
@@ -179,9 +183,9 @@ struct Driver
     auto ms = [](Clock::time_point t)
     { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     const Clock::time_point start = Clock::now();
-    FramePlan plan = planFrame(patches, view, settings, report);
-    report.threads = 0;
-    this->upload(patches, settings, plan);
+    report.uploadedBytes = 0;
+    this->uploadPatches(patches, settings, report);
+    this->prepareFrame(patches, view, settings, report);
     this->Report = &report;
     this->Settings_ = &settings;
     this->Peak = 0;
@@ -200,10 +204,23 @@ struct Driver
     report.msTotal = ms(start);
   }
 
-  void upload(const std::vector<BezierVolume<double>>& patches, const Settings& settings,
-    const FramePlan& plan)
+  /// Checks and copies the world patches to the device, unless the settings' data version
+  /// says the copy already there is current.
+  void uploadPatches(
+    const std::vector<BezierVolume<double>>& patches, const Settings& settings, FrameReport& report)
   {
+    const bool current = settings.dataVersion != 0 && settings.dataVersion == this->DataVersion &&
+                         patches.size() == this->Shapes.size() &&
+                         settings.surfaceAttribute == this->SurfaceAttribute &&
+                         settings.colorAttribute == this->ColorAttribute;
+    if (current)
+    {
+      return;
+    }
+    this->DataVersion = 0; // until the copy below is complete
+    this->AttributeRange = checkPatches(patches, settings);
     std::vector<PatchShape> shapes(patches.size());
+    size_t world = 0, screen = 0;
     for (size_t p = 0; p < patches.size(); ++p)
     {
       const auto v = patches[p].view();
@@ -211,20 +228,143 @@ struct Driver
       {
         shapes[p].degree[d] = v.degree[d];
       }
+      shapes[p].channels = v.channels;
       shapes[p].screenValues = v.pointCount() * kScreenChannels;
-      shapes[p].shading = plan.shadingOffsets[p];
+      shapes[p].world = world;
+      shapes[p].screen = screen;
+      world += size_t(v.valueCount());
+      screen += size_t(shapes[p].screenValues);
+    }
+    std::vector<double> coefficients(world);
+    for (size_t p = 0; p < patches.size(); ++p)
+    {
+      const auto v = patches[p].view();
+      std::copy(v.coeffs, v.coeffs + v.valueCount(), coefficients.begin() + shapes[p].world);
     }
     this->Shapes = shapes;
+    this->World = coefficients;
+    this->ScreenValues = screen;
+    report.uploadedBytes +=
+      shapes.size() * sizeof(PatchShape) + coefficients.size() * sizeof(double);
+    this->SurfaceAttribute = settings.surfaceAttribute;
+    this->ColorAttribute = settings.colorAttribute;
+    this->DataVersion = settings.dataVersion;
+  }
+
+  /// The frame's preparation on the device: screen and shading patches of every patch, and the
+  /// subdivision-tree roots, in the CPU driver's order. The rare roots straddling the eye plane
+  /// are split on the host (addRoot) and their parts sent up.
+  void prepareFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
+    const Settings& settings, FrameReport& report)
+  {
+    FramePlan plan = planView(view, settings, this->AttributeRange, report);
+    report.threads = 0;
     this->Isovalues = settings.isovalues;
-    this->InitialNodes = plan.initialNodes;
-    this->InitialPool = plan.initialPool;
-    this->ShadingPool = plan.shadingPool;
+    report.uploadedBytes += settings.isovalues.size() * sizeof(double);
     this->Frame = plan.frame;
     this->Frame.isovalues = raw(this->Isovalues);
     this->PixelCount = size_t(settings.width) * settings.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, std::numeric_limits<double>::infinity());
     this->HitCount = 0;
+
+    const size_t patchCount = this->Shapes.size();
+    const PatchShape* shapes = raw(this->Shapes);
+    const double* world = raw(this->World);
+    double* screen = sized(this->InitialPool, this->ScreenValues);
+    double* shading = sized(this->ShadingPool, this->ScreenValues);
+    const Matrix4<double> windowFromWorld = plan.windowFromWorld;
+    const int surface = kFirstAttributeChannel + settings.surfaceAttribute;
+    const int colour =
+      settings.colorAttribute >= 0 ? kFirstAttributeChannel + settings.colorAttribute : -1;
+    forEach(patchCount,
+      [=] IGA_HD(size_t p)
+      {
+        const PatchShape& shape = shapes[p];
+        const VolumeView<const double> patch(world + shape.world, shape.degree, shape.channels);
+        makeScreenPatch<double>(patch, windowFromWorld, surface, screen + shape.screen);
+        makeShadingPatch(patch, surface, colour, shading + shape.screen);
+      });
+
+    // Roots: per (patch, isovalue), dropped (0), in front of the eye (1) or straddling it (2).
+    const size_t isoCount = settings.isovalues.size();
+    const size_t rootCount = patchCount * isoCount;
+    Node* roots = sized(this->Roots, rootCount);
+    uint8_t* state = sized(this->RootStates, rootCount);
+    const FrameConstants frame = this->Frame;
+    forEach(rootCount,
+      [=] IGA_HD(size_t r)
+      {
+        Node root = rootNode(int(r / isoCount), int(r % isoCount));
+        const PatchShape& shape = shapes[root.patch];
+        const VolumeView<const double> view(screen + shape.screen, shape.degree, kScreenChannels);
+        root.info = analyzeNode(view, frame.isovalues[root.iso], frame.clip);
+        root.coeff = shape.screen;
+        roots[r] = root;
+        state[r] = !worthKeeping(root.info, frame)                 ? 0
+                   : root.info.status == ProjectionStatus::InFront ? 1
+                                                                   : 2;
+      });
+    uint32_t* straddling = sized(this->ToSplit, rootCount);
+    const size_t straddlingCount =
+      thrust::copy_if(thrust::device, thrust::counting_iterator<uint32_t>(0),
+        thrust::counting_iterator<uint32_t>(uint32_t(rootCount)), state, straddling,
+        [] IGA_HD(uint8_t s) { return s == 2; }) -
+      straddling;
+    // Host side of the straddling roots: their parts, and how many each gives.
+    std::vector<uint32_t> straddlers(straddlingCount), partCounts(straddlingCount);
+    download(straddling, straddlingCount, straddlers.data());
+    FramePlan parts = plan;
+    for (size_t k = 0; k < straddlingCount; ++k)
+    {
+      const int p = int(straddlers[k] / isoCount), iso = int(straddlers[k] % isoCount);
+      const auto patch = patches[p].view();
+      std::vector<double> coefficients(size_t(patch.pointCount()) * kScreenChannels);
+      makeScreenPatch<double>(patch, plan.windowFromWorld, surface, coefficients.data());
+      const size_t before = parts.initialNodes.size();
+      addRoot(parts, patch.degree, rootNode(p, iso), coefficients.data(), settings, report);
+      partCounts[k] = uint32_t(parts.initialNodes.size() - before);
+    }
+    for (Node& node : parts.initialNodes)
+    {
+      node.coeff += this->ScreenValues; // their coefficients follow the screen patches
+    }
+    uint32_t* counts = sized(this->Counts, rootCount + 1);
+    forEach(rootCount, [=] IGA_HD(size_t r) { counts[r] = state[r] == 1 ? 1 : 0; });
+    partCounts.push_back(0); // the scan below reads one past the last
+    this->Index = partCounts;
+    const uint32_t* partCount = raw(this->Index);
+    forEach(straddlingCount, [=] IGA_HD(size_t k) { counts[straddling[k]] = partCount[k]; });
+    const size_t total = scanCounts(this->Counts, rootCount);
+    Node* initial = sized(this->InitialNodes, total);
+    forEach(rootCount,
+      [=] IGA_HD(size_t r)
+      {
+        if (state[r] == 1)
+        {
+          initial[counts[r]] = roots[r];
+        }
+      });
+    this->NextNodes = parts.initialNodes;
+    const Node* partNodes = raw(this->NextNodes);
+    this->Offsets.resize(straddlingCount + 1);
+    thrust::exclusive_scan(thrust::device, partCount, partCount + straddlingCount + 1,
+      this->Offsets.begin(), uint64_t(0));
+    const uint64_t* partStart = raw(this->Offsets);
+    forEach(straddlingCount,
+      [=] IGA_HD(size_t k)
+      {
+        for (uint32_t n = 0; n < partCount[k]; ++n)
+        {
+          initial[counts[straddling[k]] + n] = partNodes[partStart[k] + n];
+        }
+      });
+    this->InitialPool.resize(this->ScreenValues + parts.initialPool.size());
+    thrust::copy(parts.initialPool.begin(), parts.initialPool.end(),
+      this->InitialPool.begin() + this->ScreenValues);
+    report.uploadedBytes += straddlingCount * sizeof(uint32_t) +
+                            parts.initialNodes.size() * sizeof(Node) +
+                            parts.initialPool.size() * sizeof(double);
   }
 
   size_t arrayBytes() const
@@ -234,7 +374,8 @@ struct Driver
            this->Tuples.size() * sizeof(Tuple) + this->Next.size() * sizeof(Tuple) +
            this->Solution.size() * sizeof(double) + this->Hits.size() * sizeof(RawHit) +
            this->Items.size() * sizeof(Tuple) + this->InitialPool.size() * sizeof(double) +
-           this->ShadingPool.size() * sizeof(double) + this->InitialNodes.size() * sizeof(Node);
+           this->ShadingPool.size() * sizeof(double) + this->InitialNodes.size() * sizeof(Node) +
+           this->World.size() * sizeof(double) + this->Roots.size() * sizeof(Node);
   }
 
   void trackMemory() { this->Peak = std::max(this->Peak, this->arrayBytes()); }
@@ -765,7 +906,7 @@ struct Driver
       {
         const PatchShape& shape = shapes[raws[h].patch];
         const VolumeView<const double> shading(
-          shadingPool + shape.shading, shape.degree, kShadeChannels);
+          shadingPool + shape.screen, shape.degree, kShadeChannels);
         shaded[h] = shadeHit(shading, raws[h], viewer);
       });
     uint32_t* kept = sized(this->Counts, pixels + 1);
@@ -802,7 +943,14 @@ struct Driver
   size_t NodeCount = 0;
   size_t HitCount = 0;
   size_t Peak = 0;
+  uint64_t DataVersion = 0; ///< of the world patches on the device (0: none)
+  int SurfaceAttribute = -1, ColorAttribute = -1;
+  double AttributeRange = 1;
+  size_t ScreenValues = 0;
   Array<PatchShape> Shapes;
+  Array<double> World; ///< the input patches' coefficients
+  Array<Node> Roots;
+  Array<uint8_t> RootStates;
   Array<double> Isovalues;
   Array<Node> InitialNodes;
   Array<double> InitialPool;

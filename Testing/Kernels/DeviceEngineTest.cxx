@@ -134,6 +134,7 @@ bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string
 #ifdef IGAVIEW_DEVICE_LOGIC
   (void)skipped;
   static iga::sst::device::Driver driver; // persists across frames, as in the CUDA engine
+  report = FrameReport();
   driver.render(s.set.patches, view, s.settings, out, report);
   return true;
 #else
@@ -162,24 +163,15 @@ class DeviceEngine : public ::testing::TestWithParam<int>
 {
 };
 
-TEST_P(DeviceEngine, MatchesTheCpuDriver)
+/// Compares a device frame with the CPU driver's frame of the same scene.
+void expectMatchesTheCpuDriver(
+  const Scene& s, const GBuffer& device, const FrameReport& deviceReport)
 {
-  static const std::vector<Scene> all = scenes();
-  const Scene& s = all[GetParam()];
-  SCOPED_TRACE(s.name);
-  GBuffer device;
-  FrameReport deviceReport;
-  std::string why;
-  if (!deviceRender(s, device, deviceReport, why))
-  {
-    GTEST_SKIP() << why;
-  }
   Settings settings = s.settings;
   settings.backend = iga::sst::Backend::Cpu;
   GBuffer cpu;
   const FrameReport cpuReport = iga::sst::render(
     s.set.patches, s.camera, settings, iga::sst::Method::SharedSubdivisionTree, cpu);
-
   ASSERT_EQ(device.width, cpu.width);
   ASSERT_EQ(device.height, cpu.height);
   ASSERT_EQ(device.offsets.size(), cpu.offsets.size());
@@ -226,6 +218,7 @@ TEST_P(DeviceEngine, MatchesTheCpuDriver)
   EXPECT_LT(maxColor, kPositionTolerance);
   EXPECT_EQ(deviceReport.unresolvedPixels > 0, cpuReport.unresolvedPixels > 0);
   EXPECT_EQ(cpuReport.unresolvedPixels > 0, s.name == "depth cap");
+  EXPECT_GT(deviceReport.uploadedBytes, 0u);
 #ifdef IGAVIEW_DEVICE_LOGIC
   // The same work, step for step.
   EXPECT_EQ(deviceReport.iterations, cpuReport.iterations);
@@ -235,6 +228,21 @@ TEST_P(DeviceEngine, MatchesTheCpuDriver)
   EXPECT_EQ(deviceReport.unresolvedPixels, cpuReport.unresolvedPixels);
   EXPECT_EQ(deviceReport.unresolvedAtDepthCap, cpuReport.unresolvedAtDepthCap);
 #endif
+}
+
+TEST_P(DeviceEngine, MatchesTheCpuDriver)
+{
+  static const std::vector<Scene> all = scenes();
+  const Scene& s = all[GetParam()];
+  SCOPED_TRACE(s.name);
+  GBuffer device;
+  FrameReport deviceReport;
+  std::string why;
+  if (!deviceRender(s, device, deviceReport, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  expectMatchesTheCpuDriver(s, device, deviceReport);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, DeviceEngine, ::testing::Range(0, 11));
@@ -256,6 +264,43 @@ TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
   EXPECT_GT(report.unresolvedAtBudget, 0u);
   EXPECT_GT(report.unresolvedPixels, 0u);
   EXPECT_LE(report.peakBytes, size_t(1) << 20);
+}
+
+/// With a data version the device keeps its copy of the patches: a camera move uploads only
+/// the isovalues, a new version (the tube twisted further) uploads the patches again, and every
+/// frame matches the CPU driver.
+TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
+{
+  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  Scene s = scene(
+    "tube, version 1", iga::makeTwistedTube<double>(0.7), position, focal, 35, 64, 64, { 0.0 });
+  s.settings.dataVersion = 1;
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  if (!deviceRender(s, out, report, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  size_t patchBytes = 0;
+  for (const auto& patch : s.set.patches)
+  {
+    patchBytes += patch.view().valueCount() * sizeof(double);
+  }
+  EXPECT_GE(report.uploadedBytes, patchBytes);
+  expectMatchesTheCpuDriver(s, out, report);
+
+  const double moved[3] = { -2.5, -3.8, 2.2 };
+  s.camera = lookAt(s.set, moved, focal, 35);
+  ASSERT_TRUE(deviceRender(s, out, report, why));
+  EXPECT_EQ(report.uploadedBytes, sizeof(double)); // the one isovalue
+  expectMatchesTheCpuDriver(s, out, report);
+
+  s.set = iga::makeTwistedTube<double>(0.9);
+  s.settings.dataVersion = 2;
+  ASSERT_TRUE(deviceRender(s, out, report, why));
+  EXPECT_GE(report.uploadedBytes, patchBytes);
+  expectMatchesTheCpuDriver(s, out, report);
 }
 
 /// Bad input is rejected before any device work, with the CPU path's message.

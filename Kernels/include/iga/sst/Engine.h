@@ -50,6 +50,10 @@ struct Settings
   size_t memoryBudgetBytes = size_t(2) << 30; ///< cap on subdivision storage
   int threads = 0;                            ///< 0: all hardware threads (CPU backend)
   Backend backend = Backend::Automatic;
+  /// Names the patches' content for drivers that keep a copy of it (CUDA): a frame with the
+  /// same non-zero version as the previous one reuses that copy (no checks, no upload), so a
+  /// camera move costs no transfer. 0: unknown, always checked and copied.
+  uint64_t dataVersion = 0;
   /// Newton's acceptance window: a fraction of a pixel, and of the attribute's range.
   double pixelTolerance = 1e-3;
   double isoTolerance = 1e-7;
@@ -111,7 +115,8 @@ struct FrameReport
   size_t subdividedPatches = 0;
   size_t maxTuples = 0;
   size_t maxPatches = 0;
-  size_t peakBytes = 0; ///< largest engine-owned working set
+  size_t peakBytes = 0;     ///< largest engine-owned working set
+  size_t uploadedBytes = 0; ///< CUDA: bytes copied to the device for this frame
   double msSetup = 0, msSweepAndGroup = 0, msOverlap = 0, msSolution = 0, msSubdivision = 0,
          msCompaction = 0, msGBuffer = 0, msTotal = 0;
 };
