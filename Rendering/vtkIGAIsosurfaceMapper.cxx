@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <set>
 
@@ -70,6 +71,11 @@ struct vtkIGAIsosurfaceMapper::Internals
   std::set<std::string> Reported;
   vtkMTimeType ReportedFor[2] = { 0, 0 };
   std::set<std::string> Notices;
+  // Names the world patches the engine sees (data and actor matrix) for engines that keep a
+  // copy (CUDA): this mapper's number in the process, then a count of changes.
+  uint64_t DataVersion = 0;
+  vtkMTimeType VersionSetTime = 0;
+  double VersionMatrix[16] = {};
 };
 
 vtkIGAIsosurfaceMapper::vtkIGAIsosurfaceMapper()
@@ -160,6 +166,11 @@ const std::vector<float>& vtkIGAIsosurfaceMapper::GetLastColours() const
 const char* vtkIGAIsosurfaceMapper::GetLastBackend() const
 {
   return this->Internal->LastBackend.c_str();
+}
+
+vtkTypeUInt64 vtkIGAIsosurfaceMapper::GetLastDataVersion() const
+{
+  return this->Internal->DataVersion;
 }
 
 const char* vtkIGAIsosurfaceMapper::GetLastNotice() const
@@ -501,6 +512,16 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     // exactly, whatever the matrix.
     std::vector<iga::BezierVolume<double>> world = in.Set.patches;
     vtkMatrix4x4* matrix = actor->GetMatrix();
+    if (!in.DataVersion || in.VersionSetTime != in.SetTime ||
+        !std::equal(in.VersionMatrix, in.VersionMatrix + 16, matrix->GetData()))
+    {
+      static std::atomic<uint64_t> mappers{ 0 };
+      const uint64_t mapper = in.DataVersion ? in.DataVersion >> 40 : ++mappers;
+      const uint64_t changes = in.DataVersion ? (in.DataVersion & ((uint64_t(1) << 40) - 1)) : 0;
+      in.DataVersion = (mapper << 40) | (changes + 1);
+      in.VersionSetTime = in.SetTime;
+      std::copy(matrix->GetData(), matrix->GetData() + 16, in.VersionMatrix);
+    }
     for (auto& patch : world)
     {
       const auto view = patch.view();
@@ -539,6 +560,7 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     const bool byScalars = this->ScalarVisibility && this->ArrayName && *this->ArrayName &&
                            indexOf(this->ArrayName) < int(names.size());
     settings.colorAttribute = byScalars ? indexOf(this->ArrayName) : -1;
+    settings.dataVersion = in.DataVersion;
     settings.maxSubdivisionDepth = this->MaximumSubdivisionDepth;
     settings.memoryBudgetBytes = size_t(this->MemoryBudgetMB) << 20;
     settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu

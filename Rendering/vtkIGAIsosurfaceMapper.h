@@ -143,6 +143,11 @@ public:
   /// The engine's notice for the last frame computed (why it did not run where asked), or "".
   const char* GetLastNotice() const;
 
+  /// Names the world patches of the last frame computed (input data and actor matrix) for
+  /// engines that keep a copy of them on a GPU: unchanged by camera moves and property edits,
+  /// new when the input or the actor's matrix changes, never shared by two mappers.
+  vtkTypeUInt64 GetLastDataVersion() const;
+
   /// Pixels of the last frame computed that still had work left at a cap.
   vtkIdType GetLastUnresolvedPixels() const { return this->LastUnresolvedPixels; }
 

@@ -153,6 +153,32 @@ TEST(IsosurfaceMapperSettings, ProgressIsMonotoneAndEndsAtOne)
   EXPECT_TRUE(scene.recorder->progress.empty());
 }
 
+/// The version that lets a GPU engine keep its copy of the patches: the same across camera moves
+/// and property edits, new for a moved actor or new data, different between mappers.
+TEST(IsosurfaceMapperSettings, DataVersionFollowsTheDataAndTheActorMatrixOnly)
+{
+  TubeScene scene;
+  scene.render();
+  const uint64_t first = scene.mapper->GetLastDataVersion();
+  EXPECT_NE(first, 0u);
+  scene.turn(20);
+  scene.mapper->SetIsovalue(0, 0.2);
+  scene.render();
+  EXPECT_EQ(scene.mapper->GetLastDataVersion(), first);
+  scene.actor->SetPosition(0.1, 0, 0);
+  scene.render();
+  const uint64_t moved = scene.mapper->GetLastDataVersion();
+  EXPECT_NE(moved, first);
+  scene.mapper->SetInputData(
+    vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.8)));
+  scene.render();
+  EXPECT_NE(scene.mapper->GetLastDataVersion(), moved);
+  EXPECT_NE(scene.mapper->GetLastDataVersion(), first);
+  TubeScene other;
+  other.render();
+  EXPECT_NE(other.mapper->GetLastDataVersion() >> 40, first >> 40) << "two mappers, one version";
+}
+
 TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns)
 {
   TubeScene scene;
