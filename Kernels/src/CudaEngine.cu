@@ -54,8 +54,12 @@ bool usable(std::string& why)
   return problem.empty();
 }
 
-void render(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& settings, GBuffer& out, FrameReport& report)
+namespace
+{
+
+/// Runs `frame` on the process's engine; CUDA errors become Failure.
+template<class Frame>
+void guarded(Frame frame)
 {
   std::lock_guard<std::mutex> lock(engineMutex());
   try
@@ -64,7 +68,7 @@ void render(const std::vector<BezierVolume<double>>& patches, const View& view,
     {
       engine().reset(new device::Driver());
     }
-    engine()->render(patches, view, settings, out, report);
+    frame(*engine());
     const cudaError_t status = cudaDeviceSynchronize();
     if (status != cudaSuccess)
     {
@@ -85,6 +89,21 @@ void render(const std::vector<BezierVolume<double>>& patches, const View& view,
     cudaGetLastError();
     throw Failure("out of device memory");
   }
+}
+
+} // namespace
+
+void render(const std::vector<BezierVolume<double>>& patches, const View& view,
+  const Settings& settings, GBuffer& out, FrameReport& report)
+{
+  guarded([&](device::Driver& driver) { driver.render(patches, view, settings, out, report); });
+}
+
+void renderNurbs(const NurbsVolumes& volumes, const View& view, const Settings& settings,
+  GBuffer& out, FrameReport& report)
+{
+  guarded(
+    [&](device::Driver& driver) { driver.renderNurbs(volumes, view, settings, out, report); });
 }
 
 } // namespace cuda

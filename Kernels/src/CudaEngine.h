@@ -28,6 +28,10 @@ bool usable(std::string& why);
 void render(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, GBuffer& out, FrameReport& report);
 
+/// The same for NURBS volumes, whose Bézier elements are extracted on the device.
+void renderNurbs(const NurbsVolumes& volumes, const View& view, const Settings& settings,
+  GBuffer& out, FrameReport& report);
+
 } // namespace cuda
 } // namespace sst
 } // namespace iga

@@ -20,6 +20,11 @@ void render(
   throw Failure("IGAView was built without CUDA");
 }
 
+void renderNurbs(const NurbsVolumes&, const View&, const Settings&, GBuffer&, FrameReport&)
+{
+  throw Failure("IGAView was built without CUDA");
+}
+
 } // namespace cuda
 } // namespace sst
 } // namespace iga

@@ -103,6 +103,23 @@ struct PatchShape
 
 static_assert(kScreenChannels == kShadeChannels, "screen and shading patches share offsets");
 
+/// A NURBS volume on the device: its net and its extraction operators, as offsets.
+struct VolumeTable
+{
+  int degree[3];
+  int netSize[3];
+  size_t net;           ///< offset of its control net
+  size_t matrices[3];   ///< offsets of its per-direction element matrices
+  size_t firstBasis[3]; ///< offsets of its per-direction first control point indices
+};
+
+/// A Bézier element of a NURBS volume.
+struct ElementRef
+{
+  int volume;
+  int element[3];
+};
+
 IGA_HD inline VolumeView<const double> viewOf(
   const Node& node, const double* pool, const PatchShape* shapes)
 {
@@ -179,13 +196,29 @@ struct Driver
   void render(const std::vector<BezierVolume<double>>& patches, const View& view,
     const Settings& settings, GBuffer& out, FrameReport& report)
   {
+    const auto start = std::chrono::steady_clock::now();
+    report.uploadedBytes = 0;
+    this->uploadPatches(patches, settings, report);
+    this->draw(view, settings, out, report, start);
+  }
+
+  void renderNurbs(const NurbsVolumes& volumes, const View& view, const Settings& settings,
+    GBuffer& out, FrameReport& report)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    report.uploadedBytes = 0;
+    this->uploadNurbs(volumes, settings, report);
+    this->draw(view, settings, out, report, start);
+  }
+
+  /// The frame proper, once the world patches are on the device.
+  void draw(const View& view, const Settings& settings, GBuffer& out, FrameReport& report,
+    std::chrono::steady_clock::time_point start)
+  {
     using Clock = std::chrono::steady_clock;
     auto ms = [](Clock::time_point t)
     { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
-    const Clock::time_point start = Clock::now();
-    report.uploadedBytes = 0;
-    this->uploadPatches(patches, settings, report);
-    this->prepareFrame(patches, view, settings, report);
+    this->prepareFrame(view, settings, report);
     this->Report = &report;
     this->Settings_ = &settings;
     this->Peak = 0;
@@ -209,7 +242,8 @@ struct Driver
   void uploadPatches(
     const std::vector<BezierVolume<double>>& patches, const Settings& settings, FrameReport& report)
   {
-    const bool current = settings.dataVersion != 0 && settings.dataVersion == this->DataVersion &&
+    const bool current = !this->FromNurbs && settings.dataVersion != 0 &&
+                         settings.dataVersion == this->DataVersion &&
                          patches.size() == this->Shapes.size() &&
                          settings.surfaceAttribute == this->SurfaceAttribute &&
                          settings.colorAttribute == this->ColorAttribute;
@@ -241,11 +275,164 @@ struct Driver
       const auto v = patches[p].view();
       std::copy(v.coeffs, v.coeffs + v.valueCount(), coefficients.begin() + shapes[p].world);
     }
-    this->Shapes = shapes;
+    this->setShapes(shapes, report);
     this->World = coefficients;
-    this->ScreenValues = screen;
-    report.uploadedBytes +=
-      shapes.size() * sizeof(PatchShape) + coefficients.size() * sizeof(double);
+    report.uploadedBytes += coefficients.size() * sizeof(double);
+    this->ExtractionVersion = 0; // the device holds patches now, not extractions
+    this->FromNurbs = false;
+    this->SurfaceAttribute = settings.surfaceAttribute;
+    this->ColorAttribute = settings.colorAttribute;
+    this->DataVersion = settings.dataVersion;
+  }
+
+  void setShapes(const std::vector<PatchShape>& shapes, FrameReport& report)
+  {
+    this->HostShapes = shapes;
+    this->Shapes = shapes;
+    this->ScreenValues = 0;
+    for (const PatchShape& shape : shapes)
+    {
+      this->ScreenValues += size_t(shape.screenValues);
+    }
+    report.uploadedBytes += shapes.size() * sizeof(PatchShape);
+  }
+
+  /// Copies NURBS volumes to the device and extracts their Bézier elements there: the
+  /// extraction operators when the extraction version changes, the control nets when the data
+  /// version does (a deforming volume sends only its net).
+  void uploadNurbs(const NurbsVolumes& volumes, const Settings& settings, FrameReport& report)
+  {
+    const bool extractionsCurrent = this->FromNurbs && volumes.extractionVersion != 0 &&
+                                    volumes.extractionVersion == this->ExtractionVersion &&
+                                    volumes.extractions.size() == this->Volumes.size() &&
+                                    volumes.channels == this->Channels;
+    if (!extractionsCurrent)
+    {
+      this->ExtractionVersion = 0; // until the copy below is complete
+      this->DataVersion = 0;
+      std::vector<VolumeTable> tables(volumes.extractions.size());
+      std::vector<ElementRef> elements;
+      std::vector<PatchShape> shapes;
+      std::vector<double> matrices;
+      std::vector<int> firstBasis;
+      size_t net = 0, world = 0, screen = 0;
+      for (size_t v = 0; v < tables.size(); ++v)
+      {
+        const BezierExtraction<double, 3>& extraction = *volumes.extractions[v];
+        VolumeTable& table = tables[v];
+        table.net = net;
+        size_t points = 1;
+        for (int d = 0; d < 3; ++d)
+        {
+          const ExtractionOperator1D<double>& op = extraction.direction(d);
+          table.degree[d] = op.degree;
+          table.netSize[d] = extraction.netSize(d);
+          table.matrices[d] = matrices.size();
+          table.firstBasis[d] = firstBasis.size();
+          matrices.insert(matrices.end(), op.matrices.begin(), op.matrices.end());
+          firstBasis.insert(firstBasis.end(), op.firstBasis.begin(), op.firstBasis.end());
+          points *= size_t(table.netSize[d]);
+        }
+        net += points * size_t(volumes.channels);
+        const int order = (table.degree[0] + 1) * (table.degree[1] + 1) * (table.degree[2] + 1);
+        for (int e = 0; e < extraction.elementCount(); ++e)
+        {
+          ElementRef ref;
+          ref.volume = int(v);
+          extraction.elementIndex(e, ref.element);
+          elements.push_back(ref);
+          PatchShape shape;
+          for (int d = 0; d < 3; ++d)
+          {
+            shape.degree[d] = table.degree[d];
+          }
+          shape.channels = volumes.channels;
+          shape.screenValues = order * kScreenChannels;
+          shape.world = world;
+          shape.screen = screen;
+          world += size_t(order) * volumes.channels;
+          screen += size_t(shape.screenValues);
+          shapes.push_back(shape);
+        }
+      }
+      this->setShapes(shapes, report);
+      this->Volumes = tables;
+      this->Elements = elements;
+      this->Matrices = matrices;
+      this->FirstBasis = firstBasis;
+      this->NetValues = net;
+      this->WorldValues = world;
+      report.uploadedBytes += tables.size() * sizeof(VolumeTable) +
+                              elements.size() * sizeof(ElementRef) +
+                              matrices.size() * sizeof(double) + firstBasis.size() * sizeof(int);
+      this->Channels = volumes.channels;
+      this->ExtractionVersion = volumes.extractionVersion;
+      this->FromNurbs = true;
+    }
+    const bool netsCurrent = extractionsCurrent && settings.dataVersion != 0 &&
+                             settings.dataVersion == this->DataVersion &&
+                             settings.surfaceAttribute == this->SurfaceAttribute &&
+                             settings.colorAttribute == this->ColorAttribute;
+    if (netsCurrent)
+    {
+      return;
+    }
+    this->DataVersion = 0;
+    checkAttributes(volumes.channels, settings, "volume 0");
+    std::vector<double> nets(this->NetValues);
+    size_t at = 0;
+    for (const std::vector<double>* net : volumes.nets)
+    {
+      std::copy(net->begin(), net->end(), nets.begin() + at);
+      at += net->size();
+    }
+    this->Nets = nets;
+    report.uploadedBytes += nets.size() * sizeof(double);
+
+    // Extraction, one element per thread; a scratch block of twice its size each.
+    const size_t elementCount = this->Elements.size();
+    const ElementRef* elements = raw(this->Elements);
+    const VolumeTable* tables = raw(this->Volumes);
+    const PatchShape* shapes = raw(this->Shapes);
+    const double* matrices = raw(this->Matrices);
+    const int* firstBasis = raw(this->FirstBasis);
+    const double* net = raw(this->Nets);
+    double* world = sized(this->World, this->WorldValues);
+    double* scratch = sized(this->Scratch, 2 * this->WorldValues);
+    const int channels = volumes.channels;
+    forEach(elementCount,
+      [=] IGA_HD(size_t e)
+      {
+        const ElementRef& ref = elements[e];
+        const VolumeTable& table = tables[ref.volume];
+        const double* operators[3];
+        int first[3];
+        for (int d = 0; d < 3; ++d)
+        {
+          const int order = table.degree[d] + 1;
+          operators[d] = matrices + table.matrices[d] + size_t(ref.element[d]) * order * order;
+          first[d] = firstBasis[table.firstBasis[d] + ref.element[d]];
+        }
+        extractElement<double, 3>(net + table.net, table.netSize, channels, table.degree, operators,
+          first, world + shapes[e].world, scratch + 2 * shapes[e].world);
+      });
+    // The surface attribute's range over the elements, as checkPatches computes it.
+    double* lo = sized(this->Solution, 2 * elementCount);
+    double* hi = lo + elementCount;
+    const int attribute = kFirstAttributeChannel + settings.surfaceAttribute;
+    forEach(elementCount,
+      [=] IGA_HD(size_t e)
+      {
+        const VolumeView<const double> element(
+          world + shapes[e].world, shapes[e].degree, shapes[e].channels);
+        rationalRange(element, attribute, kWeightChannel, lo[e], hi[e]);
+      });
+    const double infinity = std::numeric_limits<double>::infinity();
+    const double rangeLo =
+      thrust::reduce(thrust::device, lo, lo + elementCount, infinity, thrust::minimum<double>());
+    const double rangeHi =
+      thrust::reduce(thrust::device, hi, hi + elementCount, -infinity, thrust::maximum<double>());
+    this->AttributeRange = rangeHi > rangeLo ? rangeHi - rangeLo : 1.0;
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
     this->DataVersion = settings.dataVersion;
@@ -254,8 +441,7 @@ struct Driver
   /// The frame's preparation on the device: screen and shading patches of every patch, and the
   /// subdivision-tree roots, in the CPU driver's order. The rare roots straddling the eye plane
   /// are split on the host (addRoot) and their parts sent up.
-  void prepareFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
-    const Settings& settings, FrameReport& report)
+  void prepareFrame(const View& view, const Settings& settings, FrameReport& report)
   {
     FramePlan plan = planView(view, settings, this->AttributeRange, report);
     report.threads = 0;
@@ -318,11 +504,15 @@ struct Driver
     for (size_t k = 0; k < straddlingCount; ++k)
     {
       const int p = int(straddlers[k] / isoCount), iso = int(straddlers[k] % isoCount);
-      const auto patch = patches[p].view();
-      std::vector<double> coefficients(size_t(patch.pointCount()) * kScreenChannels);
+      const PatchShape& shape = this->HostShapes[p];
+      std::vector<double> worldValues(
+        size_t(shape.screenValues / kScreenChannels) * shape.channels);
+      download(world + shape.world, worldValues.size(), worldValues.data());
+      const VolumeView<const double> patch(worldValues.data(), shape.degree, shape.channels);
+      std::vector<double> coefficients(size_t(shape.screenValues));
       makeScreenPatch<double>(patch, plan.windowFromWorld, surface, coefficients.data());
       const size_t before = parts.initialNodes.size();
-      addRoot(parts, patch.degree, rootNode(p, iso), coefficients.data(), settings, report);
+      addRoot(parts, shape.degree, rootNode(p, iso), coefficients.data(), settings, report);
       partCounts[k] = uint32_t(parts.initialNodes.size() - before);
     }
     for (Node& node : parts.initialNodes)
@@ -943,7 +1133,16 @@ struct Driver
   size_t NodeCount = 0;
   size_t HitCount = 0;
   size_t Peak = 0;
-  uint64_t DataVersion = 0; ///< of the world patches on the device (0: none)
+  uint64_t DataVersion = 0;       ///< of the world patches or nets on the device (0: none)
+  uint64_t ExtractionVersion = 0; ///< of the extractions on the device (0: none)
+  int Channels = 0;
+  bool FromNurbs = false; ///< the world patches were extracted from NURBS volumes
+  size_t NetValues = 0, WorldValues = 0;
+  std::vector<PatchShape> HostShapes;
+  Array<VolumeTable> Volumes;
+  Array<ElementRef> Elements;
+  Array<double> Matrices, Nets, Scratch;
+  Array<int> FirstBasis;
   int SurfaceAttribute = -1, ColorAttribute = -1;
   double AttributeRange = 1;
   size_t ScreenValues = 0;

@@ -14,6 +14,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
+#include <iterator>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -1046,8 +1048,13 @@ Backend parseBackend(const std::string& name)
   throw std::invalid_argument("backend '" + name + "' is not auto, cpu or cuda");
 }
 
-FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& settings, Method method, GBuffer& out)
+namespace
+{
+
+/// Runs a frame where the settings and IGAVIEW_BACKEND say: `onCuda` when CUDA is wanted and
+/// usable (a cuda::Failure redoes the frame with `onCpu`), else `onCpu`.
+FrameReport dispatch(const Settings& settings, Method method,
+  const std::function<void(FrameReport&)>& onCuda, const std::function<void(FrameReport&)>& onCpu)
 {
   FrameReport report;
   report.method = methodName(method);
@@ -1074,7 +1081,7 @@ FrameReport render(const std::vector<BezierVolume<double>>& patches, const View&
     {
       try
       {
-        cuda::render(patches, view, settings, out, report);
+        onCuda(report);
         report.backend = backendName(Backend::Cuda);
         return report;
       }
@@ -1091,9 +1098,46 @@ FrameReport render(const std::vector<BezierVolume<double>>& patches, const View&
         (wanted == Backend::Cuda ? "CUDA asked for, but " : "") + why + ": drawing on CPU threads";
     }
   }
-  Renderer(patches, view, settings, report).run(method, out);
+  onCpu(report);
   report.backend = backendName(Backend::Cpu);
   return report;
+}
+
+} // namespace
+
+FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
+  const Settings& settings, Method method, GBuffer& out)
+{
+  return dispatch(
+    settings, method,
+    [&](FrameReport& report) { cuda::render(patches, view, settings, out, report); },
+    [&](FrameReport& report) { Renderer(patches, view, settings, report).run(method, out); });
+}
+
+std::vector<BezierVolume<double>> extractElements(const NurbsVolumes& volumes)
+{
+  checkNurbsVolumes(volumes);
+  std::vector<BezierVolume<double>> patches;
+  for (size_t v = 0; v < volumes.extractions.size(); ++v)
+  {
+    auto elements = volumes.extractions[v]->apply(*volumes.nets[v], volumes.channels);
+    std::move(elements.begin(), elements.end(), std::back_inserter(patches));
+  }
+  return patches;
+}
+
+FrameReport render(const NurbsVolumes& volumes, const View& view, const Settings& settings,
+  Method method, GBuffer& out)
+{
+  checkNurbsVolumes(volumes);
+  return dispatch(
+    settings, method,
+    [&](FrameReport& report) { cuda::renderNurbs(volumes, view, settings, out, report); },
+    [&](FrameReport& report)
+    {
+      const auto patches = extractElements(volumes);
+      Renderer(patches, view, settings, report).run(method, out);
+    });
 }
 
 FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,

@@ -70,6 +70,18 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
   }
 }
 
+void checkAttributes(int channels, const Settings& s, const std::string& name)
+{
+  if (s.surfaceAttribute < 0 || kFirstAttributeChannel + s.surfaceAttribute >= channels ||
+      (s.colorAttribute >= 0 && kFirstAttributeChannel + s.colorAttribute >= channels))
+  {
+    throw std::invalid_argument(name + " has " + std::to_string(channels - kFirstAttributeChannel) +
+                                " attributes; the surface uses " +
+                                std::to_string(s.surfaceAttribute) + ", the colour " +
+                                std::to_string(s.colorAttribute));
+  }
+}
+
 double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& s)
 {
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
@@ -82,20 +94,72 @@ double checkPatches(const std::vector<BezierVolume<double>>& patches, const Sett
     {
       throw std::invalid_argument("patch " + std::to_string(p) + ": " + problem);
     }
-    if (s.surfaceAttribute < 0 || attribute >= patch.channels ||
-        (s.colorAttribute >= 0 && kFirstAttributeChannel + s.colorAttribute >= patch.channels))
-    {
-      throw std::invalid_argument(
-        "patch " + std::to_string(p) + " has " +
-        std::to_string(patch.channels - kFirstAttributeChannel) + " attributes; the surface uses " +
-        std::to_string(s.surfaceAttribute) + ", the colour " + std::to_string(s.colorAttribute));
-    }
+    checkAttributes(patch.channels, s, "patch " + std::to_string(p));
     double lo, hi;
     rationalRange(patch, attribute, kWeightChannel, lo, hi);
     attributeLo = std::min(attributeLo, lo);
     attributeHi = std::max(attributeHi, hi);
   }
   return attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
+}
+
+void checkNurbsVolumes(const NurbsVolumes& volumes)
+{
+  if (volumes.nets.size() != volumes.extractions.size())
+  {
+    throw std::invalid_argument(std::to_string(volumes.extractions.size()) + " extractions but " +
+                                std::to_string(volumes.nets.size()) + " control nets");
+  }
+  if (volumes.channels < kFirstAttributeChannel + 1)
+  {
+    throw std::invalid_argument("control points have " + std::to_string(volumes.channels) +
+                                " channels; position, weight and an attribute need " +
+                                std::to_string(kFirstAttributeChannel + 1));
+  }
+  for (size_t v = 0; v < volumes.nets.size(); ++v)
+  {
+    const std::string name = "volume " + std::to_string(v) + ": ";
+    if (!volumes.extractions[v] || !volumes.nets[v])
+    {
+      throw std::invalid_argument(name + "no extraction or no control net");
+    }
+    const auto& extraction = *volumes.extractions[v];
+    size_t points = 1;
+    for (int d = 0; d < 3; ++d)
+    {
+      const auto& op = extraction.direction(d);
+      if (op.degree < 1 || op.degree > kMaxDegree)
+      {
+        throw std::invalid_argument(name + "degree " + std::to_string(op.degree) +
+                                    " is outside 1.." + std::to_string(kMaxDegree));
+      }
+      points *= size_t(extraction.netSize(d));
+    }
+    const std::vector<double>& net = *volumes.nets[v];
+    if (net.size() != points * size_t(volumes.channels))
+    {
+      throw std::invalid_argument(name + "control net has " + std::to_string(net.size()) +
+                                  " values, expected " +
+                                  std::to_string(points * size_t(volumes.channels)));
+    }
+    for (size_t p = 0; p < points; ++p)
+    {
+      const double* cp = net.data() + p * volumes.channels;
+      for (int c = 0; c < volumes.channels; ++c)
+      {
+        if (!std::isfinite(cp[c]))
+        {
+          throw std::invalid_argument(name + "control point " + std::to_string(p) +
+                                      " has a non-finite value in channel " + std::to_string(c));
+        }
+      }
+      if (!(cp[kWeightChannel] > 0))
+      {
+        throw std::invalid_argument(name + "control point " + std::to_string(p) + " has weight " +
+                                    std::to_string(cp[kWeightChannel]) + ", not positive");
+      }
+    }
+  }
 }
 
 FramePlan planView(const View& view, const Settings& s, double attributeRange, FrameReport& report)

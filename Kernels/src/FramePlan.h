@@ -5,6 +5,7 @@
 #include "iga/sst/Engine.h"
 #include "iga/sst/Tree.h"
 
+#include <string>
 #include <vector>
 
 namespace iga
@@ -26,10 +27,19 @@ struct FramePlan
   std::vector<size_t> shadingOffsets;
 };
 
+/// Checks that control points of `channels` values hold the settings' surface and colour
+/// attributes; throws std::invalid_argument starting with `name` otherwise.
+void checkAttributes(int channels, const Settings& settings, const std::string& name);
+
 /// Checks every patch against the settings (degrees, values, weights, attribute indices) and
 /// returns the surface attribute's range over all patches. Throws std::invalid_argument naming
 /// the patch and the problem.
 double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& settings);
+
+/// Checks NURBS volumes: one net per extraction, of the extraction's size, finite values and
+/// positive weights. Their Bézier elements are then valid too: extraction takes convex
+/// combinations of control points. Throws std::invalid_argument naming the volume and point.
+void checkNurbsVolumes(const NurbsVolumes& volumes);
 
 /// The plan's view part (frame constants, window matrix, clipping planes), without roots.
 /// Throws std::invalid_argument for bad settings.

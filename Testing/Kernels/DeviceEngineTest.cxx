@@ -151,6 +151,72 @@ bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string
 #endif
 }
 
+/// A rational B-spline ball: degree 2 in each direction on 3 x 3 x 3 elements (knots 0, 0, 0,
+/// 1/3, 2/3, 1, 1, 1), control points on [-1.2, 1.2]^3 stretched along x, varying weights, and
+/// the attribute |x|^2 - 1 sampled at the control points.
+struct NurbsBall
+{
+  std::vector<double> knots[3];
+  int degree[3] = { 2, 2, 2 };
+  int netSize[3] = { 5, 5, 5 };
+  iga::BezierExtraction<double, 3> extraction;
+  std::vector<double> net;
+
+  explicit NurbsBall(double stretch)
+  {
+    for (auto& k : knots)
+    {
+      k = { 0, 0, 0, 1.0 / 3, 2.0 / 3, 1, 1, 1 };
+    }
+    extraction = iga::BezierExtraction<double, 3>(knots, degree, netSize);
+    const double greville[5] = { 0, 1.0 / 6, 0.5, 5.0 / 6, 1 };
+    for (int k = 0; k < 5; ++k)
+      for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 5; ++i)
+        {
+          const double x = stretch * (2.4 * greville[i] - 1.2), y = 2.4 * greville[j] - 1.2,
+                       z = 2.4 * greville[k] - 1.2;
+          const double w = 1 + 0.15 * std::sin(3 * x + 2 * y - z);
+          const double a = x * x + y * y + z * z - 1;
+          for (double v : { w * x, w * y, w * z, w, w * a })
+            net.push_back(v);
+        }
+  }
+
+  iga::sst::NurbsVolumes volumes(uint64_t version) const
+  {
+    iga::sst::NurbsVolumes v;
+    v.extractions = { &extraction };
+    v.nets = { &net };
+    v.channels = iga::kFirstAttributeChannel + 1;
+    v.extractionVersion = version;
+    return v;
+  }
+};
+
+bool deviceRenderNurbs(const iga::sst::NurbsVolumes& volumes, const iga::Camera& camera,
+  const Settings& settings, GBuffer& out, FrameReport& report, std::string& skipped)
+{
+  const iga::sst::View view = iga::sst::makeView(camera, settings.width, settings.height);
+#ifdef IGAVIEW_DEVICE_LOGIC
+  (void)skipped;
+  static iga::sst::device::Driver driver;
+  report = FrameReport();
+  driver.renderNurbs(volumes, view, settings, out, report);
+  return true;
+#else
+  if (!iga::sst::cuda::usable(skipped))
+  {
+    return false;
+  }
+  Settings cuda = settings;
+  cuda.backend = iga::sst::Backend::Cuda;
+  report = iga::sst::render(volumes, view, cuda, iga::sst::Method::SharedSubdivisionTree, out);
+  EXPECT_EQ(report.backend, "cuda") << report.notice;
+  return true;
+#endif
+}
+
 #ifdef IGAVIEW_DEVICE_LOGIC
 constexpr int kCoverageSlack = 0;
 constexpr double kPositionTolerance = 1e-12;
@@ -301,6 +367,82 @@ TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
   ASSERT_TRUE(deviceRender(s, out, report, why));
   EXPECT_GE(report.uploadedBytes, patchBytes);
   expectMatchesTheCpuDriver(s, out, report);
+}
+
+/// NURBS volumes extracted on the device draw what their host-extracted elements draw; a moved
+/// net (new data version, same extraction version) is all a deforming frame sends, and a camera
+/// move sends only the isovalues.
+TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
+{
+  const NurbsBall ball(1.0), stretched(1.15);
+  Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {} };
+  ASSERT_EQ(s.set.patches.size(), 27u);
+  const double position[3] = { 2.8, -3.6, 2.2 }, origin[3] = { 0, 0, 0 };
+  s.camera = lookAt(s.set, position, origin, 35);
+  s.settings.width = 72;
+  s.settings.height = 64;
+  s.settings.isovalues = { 0.0 };
+  s.settings.dataVersion = 7;
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  if (!deviceRenderNurbs(ball.volumes(3), s.camera, s.settings, out, report, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  expectMatchesTheCpuDriver(s, out, report);
+  const size_t netBytes = ball.net.size() * sizeof(double);
+  EXPECT_GT(report.uploadedBytes, netBytes); // extraction operators too
+
+  // The volume deforms: only the net moves.
+  s.set.patches = iga::sst::extractElements(stretched.volumes(0));
+  s.settings.dataVersion = 8;
+  ASSERT_TRUE(deviceRenderNurbs(stretched.volumes(3), s.camera, s.settings, out, report, why));
+  EXPECT_EQ(report.uploadedBytes, netBytes + sizeof(double));
+  expectMatchesTheCpuDriver(s, out, report);
+
+  // The camera moves: nothing but the isovalue.
+  const double moved[3] = { -3.0, -2.9, 1.4 };
+  s.camera = lookAt(s.set, moved, origin, 35);
+  ASSERT_TRUE(deviceRenderNurbs(stretched.volumes(3), s.camera, s.settings, out, report, why));
+  EXPECT_EQ(report.uploadedBytes, sizeof(double));
+  expectMatchesTheCpuDriver(s, out, report);
+}
+
+/// A malformed NURBS net is reported with its volume and point, whatever the backend.
+TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
+{
+  NurbsBall ball(1.0);
+  ball.net[5 * 7 + iga::kWeightChannel] = -1;
+  iga::Camera camera;
+  Settings settings;
+  settings.width = settings.height = 16;
+  settings.isovalues = { 0.0 };
+  GBuffer out;
+  for (auto backend : { iga::sst::Backend::Cpu, iga::sst::Backend::Cuda })
+  {
+    settings.backend = backend;
+    try
+    {
+      iga::sst::render(ball.volumes(0), iga::sst::makeView(camera, 16, 16), settings,
+        iga::sst::Method::SharedSubdivisionTree, out);
+      ADD_FAILURE() << "a negative weight was accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_STREQ(e.what(), "volume 0: control point 7 has weight -1.000000, not positive");
+    }
+  }
+  ball.net.pop_back();
+  try
+  {
+    iga::sst::extractElements(ball.volumes(0));
+    ADD_FAILURE() << "a short net was accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_STREQ(e.what(), "volume 0: control net has 624 values, expected 625");
+  }
 }
 
 /// Bad input is rejected before any device work, with the CPU path's message.

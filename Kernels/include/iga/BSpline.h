@@ -260,6 +260,8 @@ public:
   }
 
   const ExtractionOperator1D<T>& direction(int d) const { return this->Operators[d]; }
+  /// Control points along direction d of the nets it applies to.
+  int netSize(int d) const { return this->NetSize[d]; }
   int elementCount() const
   {
     int n = 1;

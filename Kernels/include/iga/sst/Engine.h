@@ -2,6 +2,7 @@
 // in, a G-buffer of sorted hits per pixel and a frame report out.
 #pragma once
 
+#include "iga/BSpline.h"
 #include "iga/BezierPatch.h"
 #include "iga/Camera.h"
 
@@ -108,6 +109,7 @@ struct FrameReport
   int threads = 0;
   int iterations = 0;          ///< solution/subdivision rounds
   size_t unresolvedPixels = 0; ///< pixels with work left when a cap was hit
+  /// (pixel, sub-patch) pairs given up at each cap (a pixel may count more than once).
   size_t unresolvedAtDepthCap = 0;
   size_t unresolvedAtBudget = 0;
   size_t droppedAtEyePlane = 0; ///< sub-patches at the depth cap still straddling the eye plane
@@ -140,6 +142,31 @@ View makeView(const Camera& camera, int width, int height);
 /// values, non-positive weights, missing attributes) or bad settings.
 FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, Method method, GBuffer& out);
+
+/// NURBS / B-spline volumes as they deform: per volume its Bézier extraction (built once from
+/// the knots) and its current control net (homogeneous, standard layout, first direction
+/// fastest, `channels` values per point). The engine draws their Bézier elements, numbered
+/// volume by volume in each extraction's element order (first direction fastest): Hit::patch
+/// is that number. The CUDA driver extracts the elements on the device, so a deforming volume
+/// sends only its moved net each frame.
+struct NurbsVolumes
+{
+  std::vector<const BezierExtraction<double, 3>*> extractions;
+  std::vector<const std::vector<double>*> nets;
+  int channels = 0;
+  /// Names the extractions (knots, degrees, net sizes) for drivers that keep them on a GPU;
+  /// equal non-zero versions reuse the copy there. Settings::dataVersion names the nets.
+  uint64_t extractionVersion = 0;
+};
+
+/// The Bézier elements of NURBS volumes, in the engine's numbering (host extraction). Throws
+/// std::invalid_argument naming the volume and the problem for a malformed net.
+std::vector<BezierVolume<double>> extractElements(const NurbsVolumes& volumes);
+
+/// Renders the isosurfaces of NURBS volumes (see NurbsVolumes), with the errors of the
+/// patch overload, the volume named for a bad net.
+FrameReport render(const NurbsVolumes& volumes, const View& view, const Settings& settings,
+  Method method, GBuffer& out);
 
 /// The same for a camera.
 FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
