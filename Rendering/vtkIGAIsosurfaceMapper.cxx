@@ -692,9 +692,9 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     selector->BeginRenderProp();
     const int pass = selector->GetCurrentPass();
     const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
-    for (vtkIdType cell : in.PatchCell)
+    if (!in.PatchCell.empty())
     {
-      selector->UpdateMaximumCellId(cell);
+      selector->UpdateMaximumCellId(*std::max_element(in.PatchCell.begin(), in.PatchCell.end()));
     }
     ids.assign(in.Colour.size(), 0.0f);
     for (int j = 0; j < in.Size[1]; ++j)

@@ -89,9 +89,17 @@ split_png, to_baseline = iga_scene.check_image(view, baseline_dir, iga_scene.BAS
 to_whole = iga_scene.compare_images(split_png, render_alone(reader, "whole"), work_dir)
 
 # Translucent (ordered compositing by the pieces' bounds): the same image as on one rank.
+split_translucent = render_alone(redistributed, "split_translucent", opacity=0.5)
 to_whole_translucent = iga_scene.compare_images(
-    render_alone(redistributed, "split_translucent", opacity=0.5),
-    render_alone(reader, "whole_translucent", opacity=0.5), work_dir)
+    split_translucent, render_alone(reader, "whole_translucent", opacity=0.5), work_dir)
+# ... and it is translucent: where the sheet is seen once, half its opaque colour over the
+# background (the sheet folds, so some pixels see two layers).
+opaque, translucent = coverage(split_png), coverage(split_translucent)
+background = [round(255 * c) for c in iga_scene.BACKGROUND]
+blended = [p for p, c in opaque.items() if p in translucent and builtins.all(
+    abs(t - (o + b) / 2) <= 3 for t, o, b in zip(translucent[p], c, background))]
+assert abs(len(translucent) - len(opaque)) <= 0.01 * len(opaque), (len(translucent), len(opaque))
+assert len(blended) >= 0.5 * len(opaque), (len(blended), len(opaque))
 
 # Looking (down) along the line between the two ranks' pieces, one hides the other: the composite is
 # right only where IceT keeps, per pixel, the rank with the nearer depth.
@@ -128,8 +136,8 @@ assert len(union - covered.keys()) <= 0.005 * len(covered), sorted(union - cover
 assert len(covered.keys() - union) <= 0.005 * len(covered), sorted(covered.keys() - union)[:20]
 print(f"{ranks} ranks, serial test's camera: split image vs all on rank 0 {to_whole:.3f}, vs the "
       f"serial baseline {to_baseline:.3f}, at opacity 0.5 vs all on rank 0 "
-      f"{to_whole_translucent:.3f} "
-      f"(threshold 10)")
+      f"{to_whole_translucent:.3f}, {len(blended)} of {len(opaque)} pixels half over the "
+      f"background (threshold 10)")
 print(f"camera along the pieces' centres {centres[0]} -> {centres[1]}: split vs all on rank 0 "
       f"{to_whole_along:.3f}; {len(covered)} pixels covered, by each rank's piece alone "
       f"{[len(p) for p in parts]}, by both {len(overlap)} ({len(contested)} in different "
