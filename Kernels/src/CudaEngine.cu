@@ -86,6 +86,7 @@ void guarded(Frame frame)
   catch (const std::bad_alloc&)
   {
     engine().reset(); // the context is intact: give the memory back
+    device::temporaryPool().trim();
     cudaGetLastError();
     throw Failure("out of device memory");
   }

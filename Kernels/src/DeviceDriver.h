@@ -19,10 +19,15 @@
 #include <thrust/reduce.h>
 #include <thrust/scan.h>
 #include <thrust/sort.h>
+#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
+#include <thrust/system/cuda/execution_policy.h>
+#include <thrust/system/cuda/memory.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <map>
 
 namespace iga
 {
@@ -33,6 +38,70 @@ namespace device
 
 template<class T>
 using Array = thrust::device_vector<T>;
+
+#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
+/// Thrust's temporary storage (sort, scan, copy_if, reduce) from device blocks kept across calls
+/// and frames, so that steady-state frames do not call cudaMalloc. Frames are serialised (one
+/// engine per process behind a mutex), and so are its uses.
+class TemporaryPool
+{
+public:
+  using value_type = char;
+
+  char* allocate(std::ptrdiff_t bytes)
+  {
+    const auto free = this->Free.lower_bound(bytes);
+    if (free != this->Free.end())
+    {
+      char* block = free->second;
+      this->Used.emplace(block, free->first);
+      this->Free.erase(free);
+      return block;
+    }
+    char* block = thrust::cuda::malloc<char>(size_t(bytes)).get(); // throws bad_alloc
+    this->Used.emplace(block, bytes);
+    return block;
+  }
+
+  void deallocate(char* block, size_t)
+  {
+    const auto used = this->Used.find(block);
+    this->Free.emplace(used->second, block);
+    this->Used.erase(used);
+  }
+
+  /// Gives the free blocks back to the device (after an out-of-memory error).
+  void trim()
+  {
+    for (const auto& free : this->Free)
+    {
+      thrust::cuda::free(thrust::cuda::pointer<char>(free.second));
+    }
+    this->Free.clear();
+  }
+
+private:
+  std::multimap<std::ptrdiff_t, char*> Free;
+  std::map<char*, std::ptrdiff_t> Used;
+};
+
+inline TemporaryPool& temporaryPool()
+{
+  static TemporaryPool pool;
+  return pool;
+}
+
+/// The execution policy of every device algorithm: the device, with pooled temporaries.
+inline auto exec()
+{
+  return thrust::cuda::par(temporaryPool());
+}
+#else
+inline auto exec()
+{
+  return thrust::device;
+}
+#endif
 
 template<class T>
 T* raw(Array<T>& v)
@@ -55,7 +124,7 @@ void forEach(size_t n, Fn fn)
 {
   if (n > 0)
   {
-    thrust::for_each_n(thrust::device, thrust::counting_iterator<size_t>(0), n, fn);
+    thrust::for_each_n(exec(), thrust::counting_iterator<size_t>(0), n, fn);
   }
 }
 
@@ -79,7 +148,7 @@ T readBack(const T* where)
 inline size_t scanCounts(Array<uint32_t>& counts, size_t n)
 {
   uint32_t* c = raw(counts);
-  thrust::exclusive_scan(thrust::device, c, c + n + 1, c);
+  thrust::exclusive_scan(exec(), c, c + n + 1, c);
   return readBack(c + n);
 }
 
@@ -87,8 +156,8 @@ inline size_t scanCounts(Array<uint32_t>& counts, size_t n)
 template<class Pred>
 size_t countIf(size_t n, Pred pred)
 {
-  return size_t(thrust::count_if(thrust::device, thrust::counting_iterator<size_t>(0),
-    thrust::counting_iterator<size_t>(n), pred));
+  return size_t(thrust::count_if(
+    exec(), thrust::counting_iterator<size_t>(0), thrust::counting_iterator<size_t>(n), pred));
 }
 
 /// What the driver knows of an input patch: its shape and where its data lie on the device.
@@ -232,7 +301,7 @@ struct Driver
     this->fillGBuffer(view, settings, out);
     report.msGBuffer = ms(stage);
     report.unresolvedPixels =
-      thrust::count(thrust::device, this->Unresolved.begin(), this->Unresolved.end(), 1);
+      thrust::count(exec(), this->Unresolved.begin(), this->Unresolved.end(), 1);
     report.peakBytes = this->Peak;
     report.msTotal = ms(start);
   }
@@ -429,9 +498,9 @@ struct Driver
       });
     const double infinity = std::numeric_limits<double>::infinity();
     const double rangeLo =
-      thrust::reduce(thrust::device, lo, lo + elementCount, infinity, thrust::minimum<double>());
+      thrust::reduce(exec(), lo, lo + elementCount, infinity, thrust::minimum<double>());
     const double rangeHi =
-      thrust::reduce(thrust::device, hi, hi + elementCount, -infinity, thrust::maximum<double>());
+      thrust::reduce(exec(), hi, hi + elementCount, -infinity, thrust::maximum<double>());
     this->AttributeRange = rangeHi > rangeLo ? rangeHi - rangeLo : 1.0;
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
@@ -492,11 +561,10 @@ struct Driver
                                                                    : 2;
       });
     uint32_t* straddling = sized(this->ToSplit, rootCount);
-    const size_t straddlingCount =
-      thrust::copy_if(thrust::device, thrust::counting_iterator<uint32_t>(0),
-        thrust::counting_iterator<uint32_t>(uint32_t(rootCount)), state, straddling,
-        [] IGA_HD(uint8_t s) { return s == 2; }) -
-      straddling;
+    const size_t straddlingCount = thrust::copy_if(exec(), thrust::counting_iterator<uint32_t>(0),
+                                     thrust::counting_iterator<uint32_t>(uint32_t(rootCount)),
+                                     state, straddling, [] IGA_HD(uint8_t s) { return s == 2; }) -
+                                   straddling;
     // Host side of the straddling roots: their parts, and how many each gives.
     std::vector<uint32_t> straddlers(straddlingCount), partCounts(straddlingCount);
     download(straddling, straddlingCount, straddlers.data());
@@ -538,8 +606,8 @@ struct Driver
     this->NextNodes = parts.initialNodes;
     const Node* partNodes = raw(this->NextNodes);
     this->Offsets.resize(straddlingCount + 1);
-    thrust::exclusive_scan(thrust::device, partCount, partCount + straddlingCount + 1,
-      this->Offsets.begin(), uint64_t(0));
+    thrust::exclusive_scan(
+      exec(), partCount, partCount + straddlingCount + 1, this->Offsets.begin(), uint64_t(0));
     const uint64_t* partStart = raw(this->Offsets);
     forEach(straddlingCount,
       [=] IGA_HD(size_t k)
@@ -613,7 +681,7 @@ struct Driver
           }
         }
       });
-    thrust::sort(thrust::device, items, items + total, TupleOrder{ nodes });
+    thrust::sort(exec(), items, items + total, TupleOrder{ nodes });
     pixelOffsets(items, total, this->PixelCount, sized(this->ItemOffsets, this->PixelCount + 1));
     uint32_t* itemNodes = sized(this->ItemNodes, total);
     forEach(total, [=] IGA_HD(size_t k) { itemNodes[k] = items[k].node; });
@@ -626,8 +694,8 @@ struct Driver
   {
     using Clock = std::chrono::steady_clock;
     const size_t pixels = this->PixelCount;
-    thrust::copy(thrust::device, this->ItemOffsets.begin(), this->ItemOffsets.end() - 1,
-      sized(this->Cursor, pixels));
+    thrust::copy(
+      exec(), this->ItemOffsets.begin(), this->ItemOffsets.end() - 1, sized(this->Cursor, pixels));
     sized(this->Ends, pixels);
     for (;;)
     {
@@ -642,8 +710,7 @@ struct Driver
       forEach(pixels, [=] IGA_HD(size_t p)
         { ends[p] = groupEnd(initial, items, cursor[p], offsets[p + 1], best[p], firstHit); });
       const size_t total = thrust::transform_reduce(
-        thrust::device, thrust::counting_iterator<size_t>(0),
-        thrust::counting_iterator<size_t>(pixels),
+        exec(), thrust::counting_iterator<size_t>(0), thrust::counting_iterator<size_t>(pixels),
         [=] IGA_HD(size_t p) { return size_t(ends[p] - cursor[p]); }, size_t(0),
         thrust::plus<size_t>());
       this->Report->msSweepAndGroup +=
@@ -683,7 +750,7 @@ struct Driver
           offsets[index[n]] = uint64_t(shapes[node.patch].screenValues);
         }
       });
-    thrust::exclusive_scan(thrust::device, offsets, offsets + kept + 1, offsets);
+    thrust::exclusive_scan(exec(), offsets, offsets + kept + 1, offsets);
     const size_t values = size_t(readBack(offsets + kept));
     double* pool = sized(this->NextPool, values);
     forEach(count,
@@ -739,7 +806,7 @@ struct Driver
     {
       const size_t initialCount = this->InitialNodes.size();
       uint8_t* present = sized(this->Present, initialCount);
-      thrust::fill(thrust::device, present, present + initialCount, uint8_t(0));
+      thrust::fill(exec(), present, present + initialCount, uint8_t(0));
       const uint32_t* items = raw(this->ItemNodes);
       const uint32_t* cursor = raw(this->Cursor);
       const uint32_t* ends = raw(this->Ends);
@@ -830,7 +897,7 @@ struct Driver
       uint8_t* tried = sized(this->Tried, tupleCount);
       double* solution = sized(this->Solution, 4 * tupleCount);
       {
-        thrust::sort(thrust::device, tuples, tuples + tupleCount, TupleOrder{ nodes });
+        thrust::sort(exec(), tuples, tuples + tupleCount, TupleOrder{ nodes });
         uint32_t* start = sized(this->PixelStart, pixels + 1);
         pixelOffsets(tuples, tupleCount, pixels, start);
         double* bestDepth = raw(this->BestDepth);
@@ -867,7 +934,7 @@ struct Driver
             }
             bestDepth[pixel] = best;
           });
-        report.newtonSolves += thrust::count(thrust::device, tried, tried + tupleCount, 1);
+        report.newtonSolves += thrust::count(exec(), tried, tried + tupleCount, 1);
         // Append the roots.
         uint32_t* hitIndex = sized(this->Counts, tupleCount + 1);
         forEach(tupleCount, [=] IGA_HD(size_t t) { hitIndex[t] = outcome[t] == Solved ? 1 : 0; });
@@ -892,7 +959,7 @@ struct Driver
       stage = Clock::now();
       const double* best = raw(this->BestDepth);
       uint8_t* split = sized(this->SplitFlags, nodeCount);
-      thrust::fill(thrust::device, split, split + nodeCount, uint8_t(Keep));
+      thrust::fill(exec(), split, split + nodeCount, uint8_t(Keep));
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
         {
@@ -921,11 +988,10 @@ struct Driver
           }
         });
       uint32_t* toSplit = sized(this->ToSplit, nodeCount);
-      const size_t splitCount =
-        thrust::copy_if(thrust::device, thrust::counting_iterator<uint32_t>(0),
-          thrust::counting_iterator<uint32_t>(uint32_t(nodeCount)), split, toSplit,
-          [] IGA_HD(uint8_t flag) { return flag == Split; }) -
-        toSplit;
+      const size_t splitCount = thrust::copy_if(exec(), thrust::counting_iterator<uint32_t>(0),
+                                  thrust::counting_iterator<uint32_t>(uint32_t(nodeCount)), split,
+                                  toSplit, [] IGA_HD(uint8_t flag) { return flag == Split; }) -
+                                toSplit;
       // Memory cap: split as many nodes as the budget allows, in order; implicit nodes beyond
       // it become tuples in the next iteration instead, explicit ones leave their pixels
       // unresolved.
@@ -937,16 +1003,16 @@ struct Driver
             uint64_t(8) * shapes[nodes[toSplit[k]].patch].screenValues * sizeof(double) +
             8 * sizeof(Node);
         });
-      thrust::inclusive_scan(thrust::device, childBytes, childBytes + splitCount, childBytes);
+      thrust::inclusive_scan(exec(), childBytes, childBytes + splitCount, childBytes);
       const size_t base = this->Pool.size() * sizeof(double) + tupleCount * sizeof(Tuple);
       const size_t budget = settings.memoryBudgetBytes;
       const size_t allowed = base > budget
                                ? 0
-                               : size_t(thrust::upper_bound(thrust::device, childBytes,
+                               : size_t(thrust::upper_bound(exec(), childBytes,
                                           childBytes + splitCount, uint64_t(budget - base)) -
                                         childBytes);
       uint8_t* deferred = sized(this->Deferred, nodeCount);
-      thrust::fill(thrust::device, deferred, deferred + nodeCount, uint8_t(0));
+      thrust::fill(exec(), deferred, deferred + nodeCount, uint8_t(0));
       forEach(splitCount - allowed,
         [=] IGA_HD(size_t k)
         {
@@ -970,7 +1036,7 @@ struct Driver
           poolOffset[k] = uint64_t(8) * shapes[nodes[toSplit[k]].patch].screenValues;
           firstChild[toSplit[k]] = uint32_t(8 * k);
         });
-      thrust::exclusive_scan(thrust::device, poolOffset, poolOffset + allowed + 1, poolOffset);
+      thrust::exclusive_scan(exec(), poolOffset, poolOffset + allowed + 1, poolOffset);
       double* childPool = sized(this->ChildPool, size_t(readBack(poolOffset + allowed)));
       Node* children = sized(this->Children, 8 * allowed);
       uint8_t* keep = sized(this->KeepFlags, 8 * allowed);
@@ -1032,7 +1098,7 @@ struct Driver
       const size_t nextCount = scanCounts(this->Counts, tupleCount);
       Tuple* next = sized(this->Next, nextCount);
       uint8_t* used = sized(this->Used, 8 * allowed);
-      thrust::fill(thrust::device, used, used + 8 * allowed, uint8_t(0));
+      thrust::fill(exec(), used, used + 8 * allowed, uint8_t(0));
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
         {
@@ -1077,7 +1143,7 @@ struct Driver
     const size_t pixels = this->PixelCount;
     const size_t hitCount = this->HitCount;
     RawHit* raws = raw(this->Hits);
-    thrust::stable_sort(thrust::device, raws, raws + hitCount, HitPixelOrder());
+    thrust::stable_sort(exec(), raws, raws + hitCount, HitPixelOrder());
     uint32_t* offsets = sized(this->PixelStart, pixels + 1);
     pixelOffsets(raws, hitCount, pixels, offsets);
     ShadingView viewer{};
