@@ -42,10 +42,12 @@ struct NewtonSettings
 /// residual is 1000 times smaller than the tolerance, so the root is accurate well beyond the
 /// acceptance window. A converged u lies in [0,1]^Dim widened by the domain slack: a root on a
 /// face shared by two patches is found in both, and callers that keep every hit merge them.
+/// On convergence `valuesAtRoot`, if given, receives the patch's homogeneous values at u (the
+/// last evaluation, so callers need not evaluate again).
 template<class T, int Dim>
 IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
   const RationalRow* rows, const T* target, const T* tolerance, const T* u0,
-  const NewtonSettings<T>& settings = {})
+  const NewtonSettings<T>& settings = {}, T* valuesAtRoot = nullptr)
 {
   NewtonResult<T, Dim> result;
   constexpr int kMaxChannels = 16;
@@ -89,6 +91,10 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
     if (tiny || (small && lastStep <= settings.stepTolerance))
     {
       result.status = NewtonStatus::Converged;
+      for (int c = 0; valuesAtRoot && c < channels; ++c)
+      {
+        valuesAtRoot[c] = values[c];
+      }
       return result;
     }
     if (iteration == settings.maxIterations)

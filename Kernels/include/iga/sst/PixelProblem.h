@@ -260,14 +260,13 @@ IGA_HD TupleOutcome solvePixel(const VolumeView<const T>& node, int i, int j, T 
   const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
 {
   const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
+  T values[kScreenChannels];
   const NewtonResult<T, 3> result =
-    solveNewton<T, 3>(node, pixelRows().rows, target, tolerance, start);
+    solveNewton<T, 3>(node, pixelRows().rows, target, tolerance, start, {}, values);
   if (result.status != NewtonStatus::Converged)
   {
     return TupleOutcome::Undecided;
   }
-  T values[kScreenChannels];
-  evaluateHomogeneous<T, 3>(node, result.u, values, nullptr);
   if (!(values[kScreenW] > T(0)))
   {
     return TupleOutcome::Undecided;
