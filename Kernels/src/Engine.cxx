@@ -122,6 +122,35 @@ void parallelFor(size_t n, int threads, Fn&& fn)
   }
 }
 
+/// Leaves new elements uninitialised (they are written before they are read): a vector of it
+/// grows without zero-filling megabytes of node records and coefficients.
+template<class T>
+struct DefaultInitAllocator : std::allocator<T>
+{
+  template<class U>
+  struct rebind
+  {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template<class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
+  {
+  }
+  template<class U>
+  void construct(U* p) noexcept
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template<class U, class... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template<class T>
+using Buffer = std::vector<T, DefaultInitAllocator<T>>;
+
 /// Exclusive prefix sum in place; returns the total.
 size_t exclusiveScan(std::vector<uint32_t>& counts)
 {
@@ -207,7 +236,8 @@ private:
     return this->Patches[patch].view().pointCount() * kScreenChannels;
   }
 
-  VolumeView<const double> nodeView(const Node& node, const std::vector<double>& pool) const
+  template<class Pool>
+  VolumeView<const double> nodeView(const Node& node, const Pool& pool) const
   {
     return VolumeView<const double>(
       pool.data() + node.coeff, this->Patches[node.patch].view().degree, kScreenChannels);
@@ -319,8 +349,8 @@ private:
     this->GroupEnd = groupEnd;
     const bool firstHit = this->Config.firstHitOnly;
     // This round's initial nodes, all implicit.
-    std::vector<Node> nodes;
-    std::vector<double> pool;
+    Buffer<Node> nodes;
+    Buffer<double> pool;
     {
       std::vector<uint8_t> present(this->Plan.initialNodes.size(), 0);
       for (size_t p = 0; p < this->PixelCount; ++p)
@@ -490,14 +520,21 @@ private:
       // Subdivision stage: split the nodes some pixel failed on, and the implicit ones whose
       // boxes still cover pixels.
       stage = Clock::now();
+      parallelFor(tuples.size(), this->Plan.threads,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t t = begin; t < end; ++t)
+          {
+            if (outcome[t] == Failed && firstHit &&
+                nodes[tuples[t].node].info.box.lo[2] > this->BestDepth[tuples[t].pixel])
+            {
+              outcome[t] = Dropped; // a nearer hit was found this iteration
+            }
+          }
+        });
       std::vector<uint8_t> split(nodes.size(), 0);
       for (size_t t = 0; t < tuples.size(); ++t)
       {
-        if (outcome[t] == Failed && firstHit &&
-            nodes[tuples[t].node].info.box.lo[2] > this->BestDepth[tuples[t].pixel])
-        {
-          outcome[t] = Dropped; // a nearer hit was found this iteration
-        }
         if (outcome[t] == Failed)
         {
           split[tuples[t].node] = 1;
@@ -562,8 +599,8 @@ private:
       {
         this->ChildPool.resize(poolOffset.back()); // grows only: no zeroing every iteration
       }
-      std::vector<double>& childPool = this->ChildPool;
-      std::vector<Node> children(toSplit.size() * 8);
+      Buffer<double>& childPool = this->ChildPool;
+      Buffer<Node> children(toSplit.size() * 8);
       std::vector<uint8_t> keep(children.size(), 0);
       parallelFor(toSplit.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
@@ -661,32 +698,35 @@ private:
       {
         used[t.node] = 1;
       }
-      std::vector<uint32_t> newIndex(children.size(), 0);
-      std::vector<Node> kept;
+      // Which nodes and where their coefficients go, in order; the records are copied below.
+      std::vector<uint32_t> newIndex(children.size(), 0), keptFrom;
+      keptFrom.reserve(children.size() + deferred.size());
       std::vector<size_t> keptOffset(1, 0);
       for (size_t c = 0; c < children.size(); ++c)
       {
         if (keep[c] && (children[c].implicit || used[c]))
         {
-          newIndex[c] = uint32_t(kept.size());
-          kept.push_back(children[c]);
+          newIndex[c] = uint32_t(keptFrom.size());
+          keptFrom.push_back(uint32_t(c));
           keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(children[c].patch)));
         }
       }
-      const size_t fromChildren = kept.size();
-      for (const Node& node : deferred)
+      const size_t fromChildren = keptFrom.size();
+      for (size_t d = 0; d < deferred.size(); ++d)
       {
-        kept.push_back(node);
-        keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(node.patch)));
+        keptFrom.push_back(uint32_t(d));
+        keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(deferred[d].patch)));
       }
-      std::vector<double> keptPool(keptOffset.back());
+      Buffer<Node> kept(keptFrom.size());
+      Buffer<double> keptPool(keptOffset.back());
       parallelFor(kept.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t n = begin; n < end; ++n)
           {
+            kept[n] = n < fromChildren ? children[keptFrom[n]] : deferred[keptFrom[n]];
             const size_t count = keptOffset[n + 1] - keptOffset[n];
-            const std::vector<double>& source = n < fromChildren ? childPool : pool;
+            const Buffer<double>& source = n < fromChildren ? childPool : pool;
             std::copy(source.begin() + kept[n].coeff, source.begin() + kept[n].coeff + count,
               keptPool.begin() + keptOffset[n]);
             kept[n].coeff = keptOffset[n];
@@ -1000,7 +1040,7 @@ private:
   std::vector<RawHit> Hits;
   std::vector<uint32_t> GroupBegin, GroupEnd; ///< this round's work items per pixel
   std::vector<uint32_t> PixelStart;           ///< SST: each pixel's first tuple
-  std::vector<double> ChildPool;              ///< SST: children's coefficients, reused
+  Buffer<double> ChildPool;                   ///< SST: children's coefficients, reused
 };
 
 } // namespace
