@@ -1,5 +1,6 @@
 // vtkIGAIsosurfaceMapper in a real render window: its depth equals VTK's projection of the
 // analytic hit, and it occludes and is occluded by ordinary actors exactly where each is in front.
+#include "RenderingTestUtilities.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGAIsosurfaceMapper.h"
 
@@ -55,12 +56,7 @@ struct Scene
     isosurface->SetMapper(mapper);
     isosurface->GetProperty()->SetColor(1, 0, 0);
     renderer->AddActor(isosurface);
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(0, -4, 0);
-    camera->SetFocalPoint(0, 0, 0);
-    camera->SetViewUp(0, 0, 1);
-    camera->SetViewAngle(40);
-    camera->SetClippingRange(1, 10);
+    igatest::lookAtTheOriginFromMinusY(renderer->GetActiveCamera());
   }
 
   void addSphere(double x, double y, double z, double radius)
@@ -80,15 +76,7 @@ struct Scene
     renderer->AddActor(actor);
   }
 
-  void render()
-  {
-    window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    image = grab->GetOutput();
-  }
+  void render() { image = igatest::renderAndGrab(window); }
 
   /// Display coordinates (pixel centre) and VTK's window depth of a world point.
   void display(const double* world, int& i, int& j, double& depth)

@@ -1,6 +1,7 @@
 // vtkIGAIsosurfaceMapper's engine settings in a real render window: progress events, the
 // subdivision and memory caps with their once-only warnings, the backend choice and its CPU
 // fallback, and the lookup table's own range (UseLookupTableScalarRange).
+#include "RenderingTestUtilities.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGAIsosurfaceMapper.h"
 
@@ -96,15 +97,7 @@ struct TubeScene
     renderer->ResetCameraClippingRange();
   }
 
-  void render()
-  {
-    window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    image = grab->GetOutput();
-  }
+  void render() { image = igatest::renderAndGrab(window); }
 
   /// Turns the camera a little: the engine must run again, with different counts.
   void turn(double degrees)

@@ -2,6 +2,7 @@
 // the default translucent pass (order-independent blending), dual depth peeling
 // (vtkRenderer::UseDepthPeeling, VTK's pick on desktop OpenGL, as in ParaView) and the
 // classic vtkDepthPeelingPass (VTK's pick without dual depth peeling).
+#include "RenderingTestUtilities.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGAIsosurfaceMapper.h"
 
@@ -88,12 +89,7 @@ struct Scene
       steps->SetTranslucentPass(peeling);
       renderer->SetPass(steps);
     }
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(0, -4, 0);
-    camera->SetFocalPoint(0, 0, 0);
-    camera->SetViewUp(0, 0, 1);
-    camera->SetViewAngle(40);
-    camera->SetClippingRange(1, 10);
+    igatest::lookAtTheOriginFromMinusY(renderer->GetActiveCamera());
   }
 
   /// A unit-sphere isosurface in the given colour, lit by ambient light only (the colour as is).
@@ -143,15 +139,7 @@ struct Scene
     return actor;
   }
 
-  void render()
-  {
-    window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    image = grab->GetOutput();
-  }
+  void render() { image = igatest::renderAndGrab(window); }
 
   /// The pixel a world point projects to.
   const unsigned char* pixelAt(double x, double y, double z)
