@@ -242,13 +242,6 @@ IGA_HD inline bool roundCovers(const Node& node, int i, int j, const double* bes
          inGroup(items, cursor[p], ends[p], node.initial);
 }
 
-enum Outcome : uint8_t
-{
-  Solved,
-  Failed,
-  Dropped
-};
-
 enum SplitState : uint8_t
 {
   Keep = 0,
@@ -894,47 +887,24 @@ struct Driver
       stage = Clock::now();
       Tuple* tuples = raw(this->Tuples);
       uint8_t* outcome = sized(this->Outcomes, tupleCount);
-      uint8_t* tried = sized(this->Tried, tupleCount);
       double* solution = sized(this->Solution, 4 * tupleCount);
       {
         thrust::sort(exec(), tuples, tuples + tupleCount, TupleOrder{ nodes });
         uint32_t* start = sized(this->PixelStart, pixels + 1);
         pixelOffsets(tuples, tupleCount, pixels, start);
         double* bestDepth = raw(this->BestDepth);
+        uint32_t* certified = sized(this->PixelSolves, pixels);
         forEach(pixels,
           [=] IGA_HD(size_t pixel)
           {
-            double best = bestDepth[pixel];
-            const int i = int(pixel % frame.width), j = int(pixel / frame.width);
-            for (uint32_t t = start[pixel]; t < start[pixel + 1]; ++t)
-            {
-              const Node& node = nodes[tuples[t].node];
-              outcome[t] = Failed;
-              tried[t] = 0;
-              if (firstHit && node.info.box.lo[2] > best)
-              {
-                outcome[t] = Dropped;
-                continue;
-              }
-              tried[t] = node.info.certified ? 1 : 0;
-              switch (
-                solveTuple(viewOf(node, pool, shapes), node.info, i, j, frame.isovalues[node.iso],
-                  frame.tolerance, &solution[4 * t], solution[4 * t + 3], frame.clip))
-              {
-                case TupleOutcome::Hit:
-                  outcome[t] = Solved;
-                  best = solution[4 * t + 3] < best ? solution[4 * t + 3] : best;
-                  break;
-                case TupleOutcome::Miss:
-                  outcome[t] = Dropped;
-                  break;
-                case TupleOutcome::Undecided:
-                  break;
-              }
-            }
-            bestDepth[pixel] = best;
+            certified[pixel] = 0;
+            bestDepth[pixel] = solvePixelTuples(
+              tuples, start[pixel], start[pixel + 1], uint32_t(pixel), nodes,
+              [=](const Node& node) { return viewOf(node, pool, shapes); }, bestDepth[pixel], frame,
+              outcome, solution, certified[pixel]);
           });
-        report.newtonSolves += thrust::count(exec(), tried, tried + tupleCount, 1);
+        report.newtonSolves +=
+          thrust::reduce(exec(), certified, certified + pixels, size_t(0), thrust::plus<size_t>());
         // Append the roots.
         uint32_t* hitIndex = sized(this->Counts, tupleCount + 1);
         forEach(tupleCount, [=] IGA_HD(size_t t) { hitIndex[t] = outcome[t] == Solved ? 1 : 0; });
@@ -1231,7 +1201,8 @@ struct Driver
   Array<Tuple> Tuples, Next;
   Array<uint32_t> Counts, Index, PixelStart, ToSplit, FirstChild;
   Array<uint64_t> Offsets;
-  Array<uint8_t> Present, Outcomes, Tried, SplitFlags, Deferred, KeepFlags, Used;
+  Array<uint32_t> PixelSolves;
+  Array<uint8_t> Present, Outcomes, SplitFlags, Deferred, KeepFlags, Used;
   Array<double> Solution;
   Array<RawHit> Hits;
   Array<Hit> Shaded, Compact;

@@ -303,13 +303,6 @@ private:
 
   // ---- shared subdivision trees ------------------------------------------------------------
 
-  enum Outcome : uint8_t
-  {
-    Solved,
-    Failed,
-    Dropped
-  };
-
   void sharedSubdivisionTrees()
   {
     std::vector<uint32_t> cursor(this->ItemOffsets.begin(), this->ItemOffsets.end() - 1);
@@ -461,7 +454,7 @@ private:
         tuples.swap(byPixel);
         this->PixelStart.swap(start);
       }
-      outcome.assign(tuples.size(), Failed);
+      outcome.resize(tuples.size());
       solution.resize(tuples.size() * 4);
       std::atomic<size_t> solves{ 0 };
       parallelFor(this->PixelCount, this->Plan.threads,
@@ -477,32 +470,12 @@ private:
                 const double za = nodes[a.node].info.box.lo[2], zb = nodes[b.node].info.box.lo[2];
                 return za < zb || (za == zb && a.node < b.node);
               });
-            double best = this->BestDepth[pixel];
-            for (uint32_t t = first; t < last; ++t)
-            {
-              const Node& node = nodes[tuples[t].node];
-              if (firstHit && node.info.box.lo[2] > best)
-              {
-                outcome[t] = Dropped;
-                continue;
-              }
-              const int i = int(pixel % this->Config.width), j = int(pixel / this->Config.width);
-              local += node.info.certified ? 1 : 0;
-              switch (solveTuple(this->nodeView(node, pool), node.info, i, j,
-                this->Config.isovalues[node.iso], this->Plan.frame.tolerance, &solution[4 * t],
-                solution[4 * t + 3], this->Plan.frame.clip))
-              {
-                case TupleOutcome::Hit:
-                  outcome[t] = Solved;
-                  best = std::min(best, solution[4 * t + 3]);
-                  break;
-                case TupleOutcome::Miss:
-                  outcome[t] = Dropped;
-                  break;
-                case TupleOutcome::Undecided:
-                  break;
-              }
-            }
+            uint32_t certified = 0;
+            this->BestDepth[pixel] = solvePixelTuples(
+              tuples.data(), first, last, uint32_t(pixel), nodes.data(),
+              [&](const Node& node) { return this->nodeView(node, pool); }, this->BestDepth[pixel],
+              this->Plan.frame, outcome.data(), solution.data(), certified);
+            local += certified;
           }
           solves += local;
         });

@@ -160,6 +160,53 @@ IGA_HD inline bool inGroup(const uint32_t* items, uint32_t begin, uint32_t end, 
   return false;
 }
 
+/// How a tuple leaves the solution stage: solved (a hit), failed (its node must be split for
+/// it) or dropped (provably no visible root, or behind the pixel's best hit).
+enum TupleState : uint8_t
+{
+  Solved,
+  Failed,
+  Dropped
+};
+
+/// The solution stage for one pixel: its tuples [first, last), sorted nearest first, each solved
+/// unless, in first-hit mode, it lies behind the best hit so far. Writes every tuple's state
+/// and, for a hit, its root (u, NDC depth) at solution[4 t]; returns the pixel's best depth.
+/// `certified` counts the tuples tried on certified nodes. `viewOf(node)` gives a node's screen
+/// patch.
+template<class ViewOf>
+IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t last, uint32_t pixel,
+  const Node* nodes, const ViewOf& viewOf, double best, const FrameConstants& frame, uint8_t* state,
+  double* solution, uint32_t& certified)
+{
+  const int i = int(pixel % frame.width), j = int(pixel / frame.width);
+  for (uint32_t t = first; t < last; ++t)
+  {
+    const Node& node = nodes[tuples[t].node];
+    state[t] = Failed;
+    if (frame.firstHitOnly && node.info.box.lo[2] > best)
+    {
+      state[t] = Dropped;
+      continue;
+    }
+    certified += node.info.certified ? 1 : 0;
+    switch (solveTuple(viewOf(node), node.info, i, j, frame.isovalues[node.iso], frame.tolerance,
+      &solution[4 * t], solution[4 * t + 3], frame.clip))
+    {
+      case TupleOutcome::Hit:
+        state[t] = Solved;
+        best = solution[4 * t + 3] < best ? solution[4 * t + 3] : best;
+        break;
+      case TupleOutcome::Miss:
+        state[t] = Dropped;
+        break;
+      case TupleOutcome::Undecided:
+        break;
+    }
+  }
+  return best;
+}
+
 /// A root in node coordinates, moved to the input patch's parameter cube.
 IGA_HD inline RawHit rawHitOf(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
 {
