@@ -61,15 +61,8 @@ struct Scene
 
   void addSphere(double x, double y, double z, double radius)
   {
-    vtkNew<vtkSphereSource> source;
-    source->SetCenter(x, y, z);
-    source->SetRadius(radius);
-    source->SetThetaResolution(64);
-    source->SetPhiResolution(64);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(source->GetOutputPort());
     vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
+    actor->SetMapper(igatest::sphereMapper(x, y, z, radius));
     actor->GetProperty()->SetColor(0, 1, 0);
     actor->GetProperty()->SetAmbient(1);
     actor->GetProperty()->SetDiffuse(0);

@@ -4,8 +4,10 @@
 #include <vtkCamera.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPolyDataMapper.h>
 #include <vtkRenderWindow.h>
 #include <vtkSmartPointer.h>
+#include <vtkSphereSource.h>
 #include <vtkWindowToImageFilter.h>
 
 namespace igatest
@@ -31,6 +33,19 @@ inline void lookAtTheOriginFromMinusY(vtkCamera* camera)
   camera->SetViewUp(0, 0, 1);
   camera->SetViewAngle(40);
   camera->SetClippingRange(1, 10);
+}
+
+/// A mapper of a finely tessellated polydata sphere (an ordinary VTK prop to composite with).
+inline vtkSmartPointer<vtkPolyDataMapper> sphereMapper(double x, double y, double z, double radius)
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetCenter(x, y, z);
+  source->SetRadius(radius);
+  source->SetThetaResolution(64);
+  source->SetPhiResolution(64);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(source->GetOutputPort());
+  return mapper;
 }
 
 } // namespace igatest

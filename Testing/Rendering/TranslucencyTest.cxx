@@ -104,14 +104,7 @@ struct Scene
 
   vtkActor* addSphere(double x, double y, double z, double radius)
   {
-    vtkNew<vtkSphereSource> source;
-    source->SetCenter(x, y, z);
-    source->SetRadius(radius);
-    source->SetThetaResolution(64);
-    source->SetPhiResolution(64);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(source->GetOutputPort());
-    return this->add(mapper, 0, 1, 0, 1);
+    return this->add(igatest::sphereMapper(x, y, z, radius), 0, 1, 0, 1);
   }
 
   /// A square facing the camera at depth y, 3 wide: one translucent layer.
