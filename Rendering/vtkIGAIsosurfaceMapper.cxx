@@ -36,9 +36,24 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <set>
 
 vtkStandardNewMacro(vtkIGAIsosurfaceMapper);
+
+namespace
+{
+
+/// True the first time this process sees `message`.
+bool firstInProcess(const std::string& message)
+{
+  static std::mutex mutex;
+  static std::set<std::string> seen;
+  std::lock_guard<std::mutex> lock(mutex);
+  return seen.insert(message).second;
+}
+
+} // namespace
 
 struct vtkIGAIsosurfaceMapper::Internals
 {
@@ -600,8 +615,9 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
         {
           vtkWarningMacro(<< report.notice);
         }
-        else
+        else if (firstInProcess(report.notice))
         {
+          // Once per process: every mapper of a session without a GPU would say the same.
           vtkOutputWindowDisplayText(
             (std::string(this->GetClassName()) + ": " + report.notice + "\n").c_str());
         }

@@ -11,6 +11,7 @@
 #include "vtkImageData.h"
 #include "vtkLookupTable.h"
 #include "vtkNew.h"
+#include "vtkOutputWindow.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -22,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -48,6 +50,10 @@ public:
     {
       errors.emplace_back(static_cast<const char*>(data));
     }
+    else if (event == vtkCommand::TextEvent)
+    {
+      texts.emplace_back(static_cast<const char*>(data));
+    }
   }
   int count(const std::string& part) const
   {
@@ -61,6 +67,7 @@ public:
   std::vector<double> progress;
   std::vector<std::string> warnings;
   std::vector<std::string> errors;
+  std::vector<std::string> texts; ///< the output window's plain messages
 };
 
 /// The default dataset (the twisted tube at time 0.5), its temperature = 0 sheet coloured by
@@ -304,6 +311,34 @@ TEST(IsosurfaceMapperSettings, CUDABackendFallsBackToTheSameCPUImage)
   EXPECT_STREQ(cpu.mapper->GetLastBackend(), "cpu");
   EXPECT_STRNE(cpu.mapper->GetLastNotice(), "");
   EXPECT_EQ(cpu.recorder->warnings.size(), 0u);
+}
+
+/// Without a GPU the automatic backend's notice is a plain message, once per process however
+/// many mappers draw.
+TEST(IsosurfaceMapperSettings, AutomaticFallbackIsNoticedOncePerProcess)
+{
+  vtkNew<Recorder> output;
+  const unsigned long observer =
+    vtkOutputWindow::GetInstance()->AddObserver(vtkCommand::TextEvent, output);
+  TubeScene first, second;
+  first.render();
+  second.render();
+  vtkOutputWindow::GetInstance()->RemoveObserver(observer);
+  const std::string notice = first.mapper->GetLastNotice();
+  if (notice.empty())
+  {
+    GTEST_SKIP() << "the automatic backend found a GPU: " << first.mapper->GetLastBackend();
+  }
+  EXPECT_STREQ(second.mapper->GetLastNotice(), notice.c_str());
+  int shown = 0;
+  for (const auto& text : output->texts)
+  {
+    shown += text.find(notice) != std::string::npos;
+  }
+  // Alone in its process (as ctest runs it) exactly once; after other tests at most once.
+  const bool alone = ::testing::UnitTest::GetInstance()->test_to_run_count() == 1;
+  EXPECT_EQ(shown, alone ? 1 : std::min(shown, 1));
+  EXPECT_EQ(first.recorder->warnings.size() + second.recorder->warnings.size(), 0u);
 }
 
 TEST(IsosurfaceMapperSettings, LookupTableKeepsItsRangeWhenAskedTo)
