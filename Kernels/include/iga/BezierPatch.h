@@ -161,20 +161,32 @@ namespace detail
 /// Scratch limit of the sum-factorised trivariate evaluation (orders up to 6, 8 channels).
 constexpr int kFactorisedScratch = 6 * 6 * 8;
 
+/// Orders and channel count of a trivariate evaluation, known at run time...
+struct RuntimeShape
+{
+  int n0, n1, n2, channels;
+};
+/// ... or at compile time (the common tri-degree cases), so that the loops below unroll.
+template<int N, int C>
+struct FixedShape
+{
+  static constexpr int n0 = N, n1 = N, n2 = N, channels = C;
+};
+
 /// Trivariate evaluation contracting one direction at a time (sum factorisation): about
 /// (p+1)^2 (2 + ...) C operations instead of 4 (p+1)^3 C for value and gradient.
-template<class T>
-IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&basis)[3][kMaxOrder],
+template<class T, class Shape>
+IGA_HD void evaluateFactorised(const T* coeffs, const Shape& shape, const T (&basis)[3][kMaxOrder],
   const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
 {
-  const int n0 = patch.order(0), n1 = patch.order(1), n2 = patch.order(2), C = patch.channels;
+  const int n0 = shape.n0, n1 = shape.n1, n2 = shape.n2, C = shape.channels;
   T line[kFactorisedScratch], dline[kFactorisedScratch]; // contracted along u: (j, k, c)
   for (int jk = 0; jk < n1 * n2; ++jk)
   {
     for (int c = 0; c < C; ++c)
     {
       T v = T(0), dv = T(0);
-      const T* p = patch.coeffs + (jk * n0) * C + c;
+      const T* p = coeffs + (jk * n0) * C + c;
       for (int i = 0; i < n0; ++i)
       {
         v += basis[0][i] * p[i * C];
@@ -210,6 +222,41 @@ IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&bas
       derivatives[2 * C + c] = dw;
     }
   }
+}
+
+/// Picks a compile-time shape for equal degrees 1..5 with 6 channels (the engine's screen and
+/// shading patches), the run-time one otherwise.
+template<class T>
+IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&basis)[3][kMaxOrder],
+  const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
+{
+  const int p = patch.degree[0];
+  if (patch.channels == 6 && patch.degree[1] == p && patch.degree[2] == p)
+  {
+    switch (p)
+    {
+      case 1:
+        return evaluateFactorised(
+          patch.coeffs, FixedShape<2, 6>(), basis, dbasis, values, derivatives);
+      case 2:
+        return evaluateFactorised(
+          patch.coeffs, FixedShape<3, 6>(), basis, dbasis, values, derivatives);
+      case 3:
+        return evaluateFactorised(
+          patch.coeffs, FixedShape<4, 6>(), basis, dbasis, values, derivatives);
+      case 4:
+        return evaluateFactorised(
+          patch.coeffs, FixedShape<5, 6>(), basis, dbasis, values, derivatives);
+      case 5:
+        return evaluateFactorised(
+          patch.coeffs, FixedShape<6, 6>(), basis, dbasis, values, derivatives);
+      default:
+        break;
+    }
+  }
+  evaluateFactorised(patch.coeffs,
+    RuntimeShape{ patch.order(0), patch.order(1), patch.order(2), patch.channels }, basis, dbasis,
+    values, derivatives);
 }
 } // namespace detail
 
