@@ -1,0 +1,24 @@
+# Runs a command and fails as it does, except that a run that failed because the X server
+# refused the render window's connection ("bad X server connection", seen intermittently under
+# xvfb here when tests run in parallel, with no relation to the code under test) is run again,
+# up to 3 times. The command is COMMAND (a ;-list) or, when this script serves as a test
+# executable's CROSSCOMPILING_EMULATOR, the arguments after the script. Its output goes to
+# standard output (gtest_discover_tests reads the test list from there).
+if(NOT DEFINED COMMAND)
+  math(EXPR last "${CMAKE_ARGC} - 1")
+  foreach(i RANGE 3 ${last})
+    list(APPEND COMMAND "${CMAKE_ARGV${i}}")
+  endforeach()
+endif()
+foreach(attempt RANGE 1 3)
+  execute_process(COMMAND ${COMMAND} RESULT_VARIABLE result OUTPUT_VARIABLE out
+    ERROR_VARIABLE out)
+  if(result EQUAL 0 OR NOT out MATCHES "bad X server connection")
+    break()
+  endif()
+  message(STATUS "attempt ${attempt}: the X server refused a connection; running again")
+endforeach()
+execute_process(COMMAND ${CMAKE_COMMAND} -E echo "${out}")
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "failed (${result})")
+endif()
