@@ -1,6 +1,7 @@
 // A frame's host-side preparation, shared by the CPU and CUDA drivers.
 #include "FramePlan.h"
 
+#include "iga/NurbsSet.h"
 #include "iga/Validation.h"
 
 #include <algorithm>
@@ -124,40 +125,22 @@ void checkNurbsVolumes(const NurbsVolumes& volumes)
       throw std::invalid_argument(name + "no extraction or no control net");
     }
     const auto& extraction = *volumes.extractions[v];
-    size_t points = 1;
+    int netSize[3];
     for (int d = 0; d < 3; ++d)
     {
-      const auto& op = extraction.direction(d);
-      if (op.degree < 1 || op.degree > kMaxDegree)
+      const int degree = extraction.direction(d).degree;
+      if (degree < 1 || degree > kMaxDegree)
       {
-        throw std::invalid_argument(name + "degree " + std::to_string(op.degree) +
-                                    " is outside 1.." + std::to_string(kMaxDegree));
+        throw std::invalid_argument(name + "degree " + std::to_string(degree) + " is outside 1.." +
+                                    std::to_string(kMaxDegree));
       }
-      points *= size_t(extraction.netSize(d));
+      netSize[d] = extraction.netSize(d);
     }
-    const std::vector<double>& net = *volumes.nets[v];
-    if (net.size() != points * size_t(volumes.channels))
+    const std::string problem =
+      checkControlNet<double, 3>(netSize, volumes.channels, *volumes.nets[v]);
+    if (!problem.empty())
     {
-      throw std::invalid_argument(name + "control net has " + std::to_string(net.size()) +
-                                  " values, expected " +
-                                  std::to_string(points * size_t(volumes.channels)));
-    }
-    for (size_t p = 0; p < points; ++p)
-    {
-      const double* cp = net.data() + p * volumes.channels;
-      for (int c = 0; c < volumes.channels; ++c)
-      {
-        if (!std::isfinite(cp[c]))
-        {
-          throw std::invalid_argument(name + "control point " + std::to_string(p) +
-                                      " has a non-finite value in channel " + std::to_string(c));
-        }
-      }
-      if (!(cp[kWeightChannel] > 0))
-      {
-        throw std::invalid_argument(name + "control point " + std::to_string(p) + " has weight " +
-                                    std::to_string(cp[kWeightChannel]) + ", not positive");
-      }
+      throw std::invalid_argument(name + problem);
     }
   }
 }

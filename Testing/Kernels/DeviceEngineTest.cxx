@@ -430,7 +430,7 @@ TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
     }
     catch (const std::invalid_argument& e)
     {
-      EXPECT_STREQ(e.what(), "volume 0: control point 7 has weight -1.000000, not positive");
+      EXPECT_STREQ(e.what(), "volume 0: control point (2, 1, 0) has non-positive weight -1.000000");
     }
   }
   ball.net.pop_back();

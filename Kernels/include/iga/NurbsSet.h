@@ -37,16 +37,21 @@ size_t controlPointCount(const BSplinePatch<T, Dim>& patch)
   return count;
 }
 
-/// Empty when the control net of `patch` holds netSize points of `channels` finite values with
-/// positive weights; otherwise one sentence naming the first bad control point by its indices.
+/// Empty when `net` holds netSize[0] x ... x netSize[Dim-1] points of `channels` finite values
+/// with positive weights; otherwise one sentence naming the first bad control point by its
+/// indices.
 template<class T, int Dim>
-std::string checkControlNet(const BSplinePatch<T, Dim>& patch, const std::vector<T>& net)
+std::string checkControlNet(const int* netSize, int channels, const std::vector<T>& net)
 {
-  const size_t points = controlPointCount(patch);
-  if (net.size() != points * static_cast<size_t>(patch.channels))
+  size_t points = 1;
+  for (int d = 0; d < Dim; ++d)
+  {
+    points *= static_cast<size_t>(netSize[d] > 0 ? netSize[d] : 0);
+  }
+  if (net.size() != points * static_cast<size_t>(channels))
   {
     return "control net has " + std::to_string(net.size()) + " values, expected " +
-           std::to_string(points * patch.channels);
+           std::to_string(points * channels);
   }
   for (size_t p = 0; p < points; ++p)
   {
@@ -54,12 +59,12 @@ std::string checkControlNet(const BSplinePatch<T, Dim>& patch, const std::vector
     size_t rest = p;
     for (int d = 0; d < Dim; ++d)
     {
-      where += (d ? ", " : "") + std::to_string(rest % patch.netSize[d]);
-      rest /= patch.netSize[d];
+      where += (d ? ", " : "") + std::to_string(rest % netSize[d]);
+      rest /= netSize[d];
     }
     where += ")";
-    const T* point = net.data() + p * patch.channels;
-    for (int c = 0; c < patch.channels; ++c)
+    const T* point = net.data() + p * channels;
+    for (int c = 0; c < channels; ++c)
     {
       if (!isFinite(point[c]))
       {
@@ -72,6 +77,13 @@ std::string checkControlNet(const BSplinePatch<T, Dim>& patch, const std::vector
     }
   }
   return std::string();
+}
+
+/// The same for a patch's net size and channel count.
+template<class T, int Dim>
+std::string checkControlNet(const BSplinePatch<T, Dim>& patch, const std::vector<T>& net)
+{
+  return checkControlNet<T, Dim>(patch.netSize, patch.channels, net);
 }
 
 /// Greville abscissae xi_i = (t_{i+1} + ... + t_{i+p}) / p of the `count` B-splines of degree p:
