@@ -231,17 +231,6 @@ void pixelOffsets(const Record* records, size_t count, size_t pixelCount, uint32
     });
 }
 
-/// Whether pixel (i, j) takes a tuple of an implicit node this round: the box covers it, it is
-/// a work item of the pixel's group and, in first-hit mode, not behind the pixel's best hit.
-IGA_HD inline bool roundCovers(const Node& node, int i, int j, const double* best,
-  const uint32_t* items, const uint32_t* cursor, const uint32_t* ends, const FrameConstants& frame)
-{
-  const size_t p = size_t(j) * frame.width + i;
-  return boxCoversPixel(node.info.box, i, j) &&
-         !(frame.firstHitOnly && node.info.box.lo[2] > best[p]) &&
-         inGroup(items, cursor[p], ends[p], node.initial);
-}
-
 enum SplitState : uint8_t
 {
   Keep = 0,
@@ -643,16 +632,8 @@ struct Driver
     forEach(nodeCount,
       [=] IGA_HD(size_t n)
       {
-        int range[4];
-        pixelRange(nodes[n].info.box, frame.width, frame.height, range);
         uint32_t count = 0;
-        for (int j = range[2]; j <= range[3]; ++j)
-        {
-          for (int i = range[0]; i <= range[1]; ++i)
-          {
-            count += boxCoversPixel(nodes[n].info.box, i, j) ? 1 : 0;
-          }
-        }
+        forEachCoveredPixel(nodes[n].info.box, frame.width, frame.height, [&](size_t) { ++count; });
         counts[n] = count;
       });
     const size_t total = scanCounts(this->Counts, nodeCount);
@@ -660,19 +641,11 @@ struct Driver
     forEach(nodeCount,
       [=] IGA_HD(size_t n)
       {
-        int range[4];
-        pixelRange(nodes[n].info.box, frame.width, frame.height, range);
         uint32_t write = counts[n];
-        for (int j = range[2]; j <= range[3]; ++j)
-        {
-          for (int i = range[0]; i <= range[1]; ++i)
-          {
-            if (boxCoversPixel(nodes[n].info.box, i, j))
-            {
-              items[write++] = { uint32_t(size_t(j) * frame.width + i), uint32_t(n) };
-            }
-          }
-        }
+        forEachCoveredPixel(nodes[n].info.box, frame.width, frame.height,
+          [&](size_t p) {
+            items[write++] = { uint32_t(p), uint32_t(n) };
+          });
       });
     thrust::sort(exec(), items, items + total, TupleOrder{ nodes });
     pixelOffsets(items, total, this->PixelCount, sized(this->ItemOffsets, this->PixelCount + 1));
@@ -838,15 +811,11 @@ struct Driver
             uint32_t count = 0;
             if (nodes[n].implicit && readyForTuples(nodes[n], frame))
             {
-              int range[4];
-              pixelRange(nodes[n].info.box, frame.width, frame.height, range);
-              for (int j = range[2]; j <= range[3]; ++j)
-              {
-                for (int i = range[0]; i <= range[1]; ++i)
-                {
-                  count += roundCovers(nodes[n], i, j, best, items, cursor, ends, frame) ? 1 : 0;
-                }
-              }
+              forEachCoveredPixel(nodes[n].info.box, frame.width, frame.height,
+                [&](size_t p) {
+                  count +=
+                    roundTakesPixel(nodes[n], best[p], items, cursor[p], ends[p], frame) ? 1 : 0;
+                });
             }
             counts[n] = count;
           });
@@ -861,19 +830,15 @@ struct Driver
             {
               return;
             }
-            int range[4];
-            pixelRange(node.info.box, frame.width, frame.height, range);
             uint32_t write = counts[n];
-            for (int j = range[2]; j <= range[3]; ++j)
-            {
-              for (int i = range[0]; i <= range[1]; ++i)
+            forEachCoveredPixel(node.info.box, frame.width, frame.height,
+              [&](size_t p)
               {
-                if (roundCovers(node, i, j, best, items, cursor, ends, frame))
+                if (roundTakesPixel(node, best[p], items, cursor[p], ends[p], frame))
                 {
-                  tuples[write++] = { uint32_t(size_t(j) * frame.width + i), uint32_t(n) };
+                  tuples[write++] = { uint32_t(p), uint32_t(n) };
                 }
-              }
-            }
+              });
             node.implicit = false;
             analyzeNodeCentre(viewOf(node, pool, shapes), node.info);
           });

@@ -245,24 +245,6 @@ private:
 
   // ---- sweep and group ---------------------------------------------------------------------
 
-  /// Calls fn(pixel index) for every pixel whose centre the box covers.
-  template<class Fn>
-  void forEachCoveredPixel(const Box3<double>& box, Fn fn) const
-  {
-    int range[4];
-    pixelRange(box, this->Config.width, this->Config.height, range);
-    for (int j = range[2]; j <= range[3]; ++j)
-    {
-      for (int i = range[0]; i <= range[1]; ++i)
-      {
-        if (boxCoversPixel(box, i, j))
-        {
-          fn(size_t(j) * this->Config.width + i);
-        }
-      }
-    }
-  }
-
   /// Per pixel, the initial nodes whose boxes cover it, sorted by nearest depth: the work items
   /// of SAG. Stored as one array with per-pixel offsets.
   void sweepAndGroup()
@@ -270,8 +252,8 @@ private:
     std::vector<uint32_t> counts(this->PixelCount + 1, 0);
     for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
-      this->forEachCoveredPixel(
-        this->Plan.initialNodes[n].info.box, [&](size_t p) { ++counts[p]; });
+      forEachCoveredPixel(this->Plan.initialNodes[n].info.box, this->Config.width,
+        this->Config.height, [&](size_t p) { ++counts[p]; });
     }
     const size_t total = exclusiveScan(counts);
     this->ItemOffsets = counts;
@@ -279,8 +261,8 @@ private:
     std::vector<uint32_t> fill(counts.begin(), counts.end() - 1);
     for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
-      this->forEachCoveredPixel(this->Plan.initialNodes[n].info.box,
-        [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
+      forEachCoveredPixel(this->Plan.initialNodes[n].info.box, this->Config.width,
+        this->Config.height, [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
     }
     parallelFor(this->PixelCount, this->Plan.threads,
       [&](size_t begin, size_t end)
@@ -389,11 +371,11 @@ private:
       std::vector<uint32_t> readyCounts(ready.size() + 1, 0);
       auto forCoveredPixels = [&](const Node& node, auto fn)
       {
-        this->forEachCoveredPixel(node.info.box,
+        forEachCoveredPixel(node.info.box, this->Config.width, this->Config.height,
           [&](size_t p)
           {
-            if (!(firstHit && node.info.box.lo[2] > this->BestDepth[p]) &&
-                inGroup(this->Items.data(), this->GroupBegin[p], this->GroupEnd[p], node.initial))
+            if (roundTakesPixel(node, this->BestDepth[p], this->Items.data(), this->GroupBegin[p],
+                  this->GroupEnd[p], this->Plan.frame))
             {
               fn(p);
             }

@@ -89,6 +89,24 @@ IGA_HD inline void pixelRange(const Box3<double>& box, int width, int height, in
   range[3] = j1 < height - 1 ? int(j1) : height - 1;
 }
 
+/// Calls fn(pixel index) for every pixel whose centre the box covers, row by row.
+template<class Fn>
+IGA_HD void forEachCoveredPixel(const Box3<double>& box, int width, int height, Fn&& fn)
+{
+  int range[4];
+  pixelRange(box, width, height, range);
+  for (int j = range[2]; j <= range[3]; ++j)
+  {
+    for (int i = range[0]; i <= range[1]; ++i)
+    {
+      if (boxCoversPixel(box, i, j))
+      {
+        fn(size_t(j) * width + i);
+      }
+    }
+  }
+}
+
 IGA_HD inline bool onScreen(const Box3<double>& box, int width, int height)
 {
   return box.hi[0] >= 0 && box.lo[0] <= width && box.hi[1] >= 0 && box.lo[1] <= height;
@@ -205,6 +223,16 @@ IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t las
     }
   }
   return best;
+}
+
+/// Whether a pixel its box covers takes a tuple of an implicit node this round: the node's
+/// initial node is among the pixel's work items [begin, end) and, in first-hit mode, the node
+/// is not behind the pixel's best hit.
+IGA_HD inline bool roundTakesPixel(const Node& node, double bestDepth, const uint32_t* items,
+  uint32_t begin, uint32_t end, const FrameConstants& frame)
+{
+  return !(frame.firstHitOnly && node.info.box.lo[2] > bestDepth) &&
+         inGroup(items, begin, end, node.initial);
 }
 
 /// A root in node coordinates, moved to the input patch's parameter cube.
