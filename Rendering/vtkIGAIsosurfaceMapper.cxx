@@ -91,6 +91,8 @@ struct vtkIGAIsosurfaceMapper::Internals
   uint64_t DataVersion = 0;
   vtkMTimeType VersionSetTime = 0;
   double VersionMatrix[16] = {};
+  /// The data's patches moved by that matrix (empty for the identity).
+  std::vector<iga::BezierVolume<double>> World;
 };
 
 vtkIGAIsosurfaceMapper::vtkIGAIsosurfaceMapper()
@@ -523,9 +525,9 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   {
 
     in.FrameKey = key;
-    // Patches in world space: the actor's matrix acts linearly on homogeneous control points,
-    // exactly, whatever the matrix.
-    std::vector<iga::BezierVolume<double>> world = in.Set.patches;
+    // Patches in world space, made again only when the data or the actor's matrix change (a
+    // new data version): the matrix acts linearly on homogeneous control points, exactly,
+    // whatever the matrix.
     vtkMatrix4x4* matrix = actor->GetMatrix();
     if (!in.DataVersion || in.VersionSetTime != in.SetTime ||
         !std::equal(in.VersionMatrix, in.VersionMatrix + 16, matrix->GetData()))
@@ -536,18 +538,26 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       in.DataVersion = (mapper << 40) | (changes + 1);
       in.VersionSetTime = in.SetTime;
       std::copy(matrix->GetData(), matrix->GetData() + 16, in.VersionMatrix);
-    }
-    for (auto& patch : world)
-    {
-      const auto view = patch.view();
-      for (int p = 0; p < view.pointCount(); ++p)
+      // The identity (the usual case) needs no copy.
+      in.World.clear();
+      if (!matrix->IsIdentity())
       {
-        double* cp = view.point(p);
-        double moved[4];
-        matrix->MultiplyPoint(cp, moved);
-        std::copy(moved, moved + 4, cp);
+        in.World = in.Set.patches;
+      }
+      for (auto& patch : in.World)
+      {
+        const auto view = patch.view();
+        for (int p = 0; p < view.pointCount(); ++p)
+        {
+          double* cp = view.point(p);
+          double moved[4];
+          matrix->MultiplyPoint(cp, moved);
+          std::copy(moved, moved + 4, cp);
+        }
       }
     }
+    const std::vector<iga::BezierVolume<double>>& world =
+      matrix->IsIdentity() ? in.Set.patches : in.World;
 
     iga::sst::View view;
     for (int i = 0; i < 4; ++i)

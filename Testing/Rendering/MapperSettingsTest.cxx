@@ -179,6 +179,46 @@ TEST(IsosurfaceMapperSettings, DataVersionFollowsTheDataAndTheActorMatrixOnly)
   EXPECT_NE(other.mapper->GetLastDataVersion() >> 40, first >> 40) << "two mappers, one version";
 }
 
+/// The actor's matrix moves the surface: the actor and the camera moved by the same offset give
+/// the same hits, offset; moving it back gives the first frame again.
+TEST(IsosurfaceMapperSettings, ActorMatrixMovesTheSurface)
+{
+  TubeScene scene;
+  scene.render();
+  const iga::sst::GBuffer first = scene.mapper->GetLastGBuffer();
+  const double offset[3] = { 0.25, -0.5, 0.125 }; // exact in binary: no rounding in the move
+  vtkCamera* camera = scene.renderer->GetActiveCamera();
+  double position[3], focal[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  scene.actor->SetPosition(offset[0], offset[1], offset[2]);
+  camera->SetPosition(position[0] + offset[0], position[1] + offset[1], position[2] + offset[2]);
+  camera->SetFocalPoint(focal[0] + offset[0], focal[1] + offset[1], focal[2] + offset[2]);
+  scene.render();
+  const iga::sst::GBuffer& moved = scene.mapper->GetLastGBuffer();
+  ASSERT_EQ(moved.offsets, first.offsets);
+  ASSERT_GT(first.coveredPixels(), 1000u);
+  double largest = 0;
+  for (size_t h = 0; h < first.hits.size(); ++h)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      largest = std::max(
+        largest, std::abs(moved.hits[h].position[d] - offset[d] - first.hits[h].position[d]));
+    }
+  }
+  EXPECT_LT(largest, 1e-9);
+  scene.actor->SetPosition(0, 0, 0);
+  camera->SetPosition(position);
+  camera->SetFocalPoint(focal);
+  scene.render();
+  ASSERT_EQ(scene.mapper->GetLastGBuffer().offsets, first.offsets);
+  for (size_t h = 0; h < first.hits.size(); ++h)
+  {
+    EXPECT_EQ(scene.mapper->GetLastGBuffer().hits[h].position[0], first.hits[h].position[0]);
+  }
+}
+
 TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns)
 {
   TubeScene scene;
