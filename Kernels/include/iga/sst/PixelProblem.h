@@ -124,6 +124,7 @@ struct NodeInfo
   bool hasCentre;          ///< the centre data below is valid
   T centre[3];             ///< F at the parametric centre: (X/W, Y/W, A/V), no pixel offset
   T centreInverse[3][3];   ///< J(centre)^-1
+  T centreWeights[2];      ///< W and V at the centre
 };
 
 /// The cheap part of a node's analysis: window box, eye-plane status, sign change, clip depth
@@ -190,6 +191,8 @@ IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info
     info.centre[r] = rationalValue<T, 3>(
       values, derivatives, kScreenChannels, rows.rows[r].numerator, rows.rows[r].denominator, J[r]);
   }
+  info.centreWeights[0] = values[kScreenW];
+  info.centreWeights[1] = values[kScreenWeight];
   info.hasCentre = invertMatrix<T, 3>(J, info.centreInverse);
 }
 
@@ -216,9 +219,10 @@ IGA_HD bool boxCoversPixel(const Box3<T>& box, int i, int j)
 /// True when the pixel's ray provably misses the isosurface inside the node: the residual
 /// G(u) = (X - x W, Y - y W, A - iso V) is a polynomial whose Bernstein coefficients G_i span a
 /// convex hull that holds every value of G, so a direction n with n . G_i > 0 for all i excludes
-/// a root. Tried: the coefficients' mean, in 3D and in the window plane. This drops (pixel,
-/// node) pairs whose box covers the pixel although the surface piece inside does not, which
-/// would otherwise fail Newton and force subdivision.
+/// a root. Here n is the coefficients' mean, in 3D and in the window plane: the directions at
+/// hand for a node without centre data. This drops (pixel, node) pairs whose box covers the
+/// pixel although the surface piece inside does not, which would otherwise fail Newton and force
+/// subdivision.
 template<class T>
 IGA_HD bool excludesPixel(const VolumeView<const T>& node, int i, int j, T isovalue)
 {
@@ -243,6 +247,47 @@ IGA_HD bool excludesPixel(const VolumeView<const T>& node, int i, int j, T isova
     separated3 = separated3 && planar + mean[2] * g2 > T(0);
   }
   return separated3 || separated2;
+}
+
+/// The same proof along better directions, for a node with centre data: the rows of
+/// J(centre)^-1, rescaled from the rational F to the homogeneous residual G (dG ~ diag(W, W, V)
+/// dF near a root). Along row d, n . G is about (u_d - root_d) times a positive factor, so when
+/// the ray's root lies outside the node in direction d, n . G_i keeps one sign over all the
+/// coefficients of a nearly linear node. `rows` is a bit mask of the rows to try.
+template<class T>
+IGA_HD bool excludesPixelAlongRows(
+  const VolumeView<const T>& node, const NodeInfo<T>& info, int i, int j, T isovalue, int rows)
+{
+  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
+  T n[3][3];
+  bool positive[3], negative[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    n[d][0] = info.centreInverse[d][0] / info.centreWeights[0];
+    n[d][1] = info.centreInverse[d][1] / info.centreWeights[0];
+    n[d][2] = info.centreInverse[d][2] / info.centreWeights[1];
+    positive[d] = negative[d] = (rows >> d & 1) != 0;
+  }
+  const int count = node.pointCount();
+  for (int p = 0; p < count; ++p)
+  {
+    const T* cp = node.point(p);
+    const T g0 = cp[kScreenX] - x * cp[kScreenW], g1 = cp[kScreenY] - y * cp[kScreenW];
+    const T g2 = cp[kScreenAttribute] - isovalue * cp[kScreenWeight];
+    bool open = false;
+    for (int d = 0; d < 3; ++d)
+    {
+      const T h = n[d][0] * g0 + n[d][1] * g1 + n[d][2] * g2;
+      positive[d] = positive[d] && h > T(0);
+      negative[d] = negative[d] && h < T(0);
+      open = open || positive[d] || negative[d];
+    }
+    if (!open)
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 enum class TupleOutcome
@@ -308,25 +353,30 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
   {
     return TupleOutcome::Miss;
   }
-  if (excludesPixel(node, i, j, isovalue))
+  if (!info.hasCentre)
   {
-    return TupleOutcome::Miss;
+    return excludesPixel(node, i, j, isovalue) ? TupleOutcome::Miss : TupleOutcome::Undecided;
   }
-  if (!info.certified || !info.hasCentre)
+  if (!info.certified)
   {
-    return TupleOutcome::Undecided;
+    return excludesPixelAlongRows(node, info, i, j, isovalue, 7) ? TupleOutcome::Miss
+                                                                 : TupleOutcome::Undecided;
   }
-  // Newton's first step from the centre, then the iteration proper.
+  // Newton's first step from the centre, then the iteration proper. A step that leaves the
+  // node says along which rows the pixel most likely misses it: a proof there saves the split.
   T start[3];
+  int outside = 0;
   for (int d = 0; d < 3; ++d)
   {
     start[d] =
       T(0.5) - (info.centreInverse[d][0] * residual[0] + info.centreInverse[d][1] * residual[1] +
                  info.centreInverse[d][2] * residual[2]);
-    if (!(start[d] >= -slack && start[d] <= T(1) + slack))
-    {
-      return TupleOutcome::Undecided;
-    }
+    outside |= start[d] >= -slack && start[d] <= T(1) + slack ? 0 : 1 << d;
+  }
+  if (outside)
+  {
+    return excludesPixelAlongRows(node, info, i, j, isovalue, outside) ? TupleOutcome::Miss
+                                                                       : TupleOutcome::Undecided;
   }
   return solvePixel(node, i, j, isovalue, tolerance, start, u, ndcDepth, clip);
 }

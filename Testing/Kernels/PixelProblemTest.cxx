@@ -1,0 +1,154 @@
+// The per-tuple exclusion proofs of the SST solution stage against multi-start Newton: a proof
+// must never drop a (pixel, node) pair whose ray meets the isosurface inside the node, and the
+// sharper proof must drop most pairs whose ray misses it.
+#include "iga/sst/PixelProblem.h"
+#include "iga/Camera.h"
+#include "iga/Datasets.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+
+struct ExclusionCounts
+{
+  int rootPairs = 0;        ///< pairs with a root strictly inside the node
+  int missPairs = 0;        ///< pairs where no start converged
+  int missesAlongRows = 0;  ///< of those, proved by excludesPixelAlongRows
+  int missesByMean = 0;     ///< of those, proved by excludesPixel
+  int missesByKrawczyk = 0; ///< of those, proved by the Krawczyk test
+  int wrongExclusions = 0;  ///< root pairs that some proof dropped
+};
+
+/// Every node of a uniform subdivision of `world` to `depth` that may hold the surface, against
+/// every pixel of a width x width image that its box covers.
+ExclusionCounts countExclusions(
+  const iga::BezierVolume<double>& world, double isovalue, int width, int depth)
+{
+  double bounds[6];
+  for (int d = 0; d < 3; ++d)
+  {
+    bounds[2 * d] = 1e300;
+    bounds[2 * d + 1] = -1e300;
+  }
+  const auto view = world.view();
+  for (int p = 0; p < view.pointCount(); ++p)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      const double x = view.point(p)[d] / view.point(p)[iga::kWeightChannel];
+      bounds[2 * d] = std::min(bounds[2 * d], x);
+      bounds[2 * d + 1] = std::max(bounds[2 * d + 1], x);
+    }
+  }
+  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
+  const iga::Camera camera = iga::frameBounds(bounds, direction, up, 30);
+  iga::Matrix4<double> window = iga::Matrix4<double>::identity();
+  window.m[0][0] = window.m[0][3] = window.m[1][1] = window.m[1][3] = 0.5 * width;
+  const auto windowFromWorld = iga::multiply(window, iga::worldToClip(camera, 1.0));
+
+  const int count = view.pointCount() * iga::sst::kScreenChannels;
+  std::vector<double> level(count);
+  iga::sst::makeScreenPatch<double>(
+    view, windowFromWorld, iga::kFirstAttributeChannel, level.data());
+  for (int d = 0; d < depth; ++d)
+  {
+    std::vector<double> next(level.size() * 8);
+    for (size_t n = 0; n < level.size() / count; ++n)
+    {
+      iga::splitMidpoint<double, 3>(iga::VolumeView<const double>(level.data() + n * count,
+                                      view.degree, iga::sst::kScreenChannels),
+        next.data() + n * 8 * count);
+    }
+    level.swap(next);
+  }
+
+  ExclusionCounts counts;
+  const double tolerance[3] = { 1e-6, 1e-6, 1e-9 };
+  for (size_t n = 0; n < level.size() / count; ++n)
+  {
+    const iga::VolumeView<const double> node(
+      level.data() + n * count, view.degree, iga::sst::kScreenChannels);
+    const auto info = iga::sst::analyzeNode(node, isovalue);
+    if (info.status != iga::ProjectionStatus::InFront || !info.mayContainSurface || !info.hasCentre)
+    {
+      continue;
+    }
+    for (int j = std::max(0, int(info.box.lo[1])); j <= std::min(width - 1, int(info.box.hi[1]));
+         ++j)
+    {
+      for (int i = std::max(0, int(info.box.lo[0])); i <= std::min(width - 1, int(info.box.hi[0]));
+           ++i)
+      {
+        if (!iga::sst::boxCoversPixel(info.box, i, j))
+        {
+          continue;
+        }
+        bool inside = false, converged = false;
+        for (int s = 0; s < 27 && !inside; ++s)
+        {
+          const double start[3] = { 0.1 + 0.4 * (s % 3), 0.1 + 0.4 * (s / 3 % 3),
+            0.1 + 0.4 * (s / 9) };
+          double u[3], ndc;
+          if (iga::sst::solvePixel<double>(node, i, j, isovalue, tolerance, start, u, ndc,
+                iga::sst::ClipPlanes<double>()) != iga::sst::TupleOutcome::Undecided)
+          {
+            converged = true;
+            inside = u[0] > 1e-6 && u[0] < 1 - 1e-6 && u[1] > 1e-6 && u[1] < 1 - 1e-6 &&
+                     u[2] > 1e-6 && u[2] < 1 - 1e-6;
+          }
+        }
+        const bool alongRows = iga::sst::excludesPixelAlongRows(node, info, i, j, isovalue, 7);
+        const bool byMean = iga::sst::excludesPixel(node, i, j, isovalue);
+        const double residual[3] = { info.centre[0] - (i + 0.5), info.centre[1] - (j + 0.5),
+          info.centre[2] - isovalue };
+        const bool byKrawczyk =
+          info.canExclude && iga::krawczykExcludes<double, 3>(info.inverse, info.spread, residual,
+                               iga::NewtonSettings<double>().domainSlack);
+        if (inside)
+        {
+          ++counts.rootPairs;
+          counts.wrongExclusions += alongRows || byMean || byKrawczyk ? 1 : 0;
+        }
+        else if (!converged)
+        {
+          ++counts.missPairs;
+          counts.missesAlongRows += alongRows ? 1 : 0;
+          counts.missesByMean += byMean ? 1 : 0;
+          counts.missesByKrawczyk += byKrawczyk ? 1 : 0;
+        }
+      }
+    }
+  }
+  return counts;
+}
+
+void expectSoundAndSharp(const ExclusionCounts& c)
+{
+  EXPECT_GT(c.rootPairs, 200) << "the scene should have many pairs with a root";
+  EXPECT_GT(c.missPairs, 200) << "the scene should have many pairs without one";
+  EXPECT_EQ(c.wrongExclusions, 0) << "a proof dropped a pair whose ray meets the surface";
+  // The rows of J(centre)^-1 are the sharper directions: most misses are proved.
+  EXPECT_GT(c.missesAlongRows, c.missPairs / 2);
+  EXPECT_GT(c.missesAlongRows, c.missesByMean);
+  std::printf("root pairs %d, miss pairs %d: proved along rows %d, by the mean %d, by Krawczyk "
+              "%d\n",
+    c.rootPairs, c.missPairs, c.missesAlongRows, c.missesByMean, c.missesByKrawczyk);
+}
+
+TEST(PixelProblem, ExclusionsAreSoundOnTheSphere)
+{
+  const auto sphere = iga::makeMarsdenSphere<double>(2);
+  expectSoundAndSharp(countExclusions(sphere.patches[0], 0.0, 96, 3));
+}
+
+TEST(PixelProblem, ExclusionsAreSoundOnTheTwistedTeardrop)
+{
+  const auto teardrop = iga::makeTeardrop<double>(1.2);
+  expectSoundAndSharp(countExclusions(teardrop.patches[0], 0.0, 96, 3));
+}
+
+} // namespace
