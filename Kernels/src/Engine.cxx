@@ -2,6 +2,7 @@
 // the per-pixel basic scheme and a brute-force reference, over the shared pixel-problem kernels.
 #include "iga/sst/Engine.h"
 
+#include "BlockCache.h"
 #include "CudaEngine.h"
 #include "FramePlan.h"
 
@@ -122,37 +123,9 @@ void parallelFor(size_t n, int threads, Fn&& fn)
   }
 }
 
-/// Leaves new elements uninitialised (they are written before they are read): a vector of it
-/// grows without zero-filling megabytes of node records and coefficients.
-template<class T>
-struct DefaultInitAllocator : std::allocator<T>
-{
-  template<class U>
-  struct rebind
-  {
-    using other = DefaultInitAllocator<U>;
-  };
-  DefaultInitAllocator() = default;
-  template<class U>
-  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept
-  {
-  }
-  template<class U>
-  void construct(U* p) noexcept
-  {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template<class U, class... Args>
-  void construct(U* p, Args&&... args)
-  {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template<class T>
-using Buffer = std::vector<T, DefaultInitAllocator<T>>;
-
 /// Exclusive prefix sum in place; returns the total.
-size_t exclusiveScan(std::vector<uint32_t>& counts)
+template<class Counts>
+size_t exclusiveScan(Counts& counts)
 {
   size_t total = 0;
   for (auto& c : counts)
@@ -249,7 +222,7 @@ private:
   /// of SAG. Stored as one array with per-pixel offsets.
   void sweepAndGroup()
   {
-    std::vector<uint32_t> counts(this->PixelCount + 1, 0);
+    Array<uint32_t> counts(this->PixelCount + 1, 0);
     for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
       forEachCoveredPixel(this->Plan.initialNodes[n].info.box, this->Config.width,
@@ -258,7 +231,7 @@ private:
     const size_t total = exclusiveScan(counts);
     this->ItemOffsets = counts;
     this->Items.resize(total);
-    std::vector<uint32_t> fill(counts.begin(), counts.end() - 1);
+    Array<uint32_t> fill(counts.begin(), counts.end() - 1);
     for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
       forEachCoveredPixel(this->Plan.initialNodes[n].info.box, this->Config.width,
@@ -287,12 +260,12 @@ private:
 
   void sharedSubdivisionTrees()
   {
-    std::vector<uint32_t> cursor(this->ItemOffsets.begin(), this->ItemOffsets.end() - 1);
+    Array<uint32_t> cursor(this->ItemOffsets.begin(), this->ItemOffsets.end() - 1);
     for (;;)
     {
       // Each round takes every pixel's next depth group (the SAG work sets).
       const Clock::time_point stage = Clock::now();
-      std::vector<uint32_t> ends(this->PixelCount);
+      Array<uint32_t> ends(this->PixelCount);
       std::atomic<size_t> total{ 0 };
       parallelFor(this->PixelCount, this->Plan.threads,
         [&](size_t begin, size_t end)
@@ -318,7 +291,7 @@ private:
 
   /// The SST loop of the paper over one round: overlap (tuples of pixels and node boxes),
   /// solution, subdivision and compaction, until no tuple and no implicit node is left.
-  void solveRound(const std::vector<uint32_t>& groupBegin, const std::vector<uint32_t>& groupEnd)
+  void solveRound(const Array<uint32_t>& groupBegin, const Array<uint32_t>& groupEnd)
   {
     this->GroupBegin = groupBegin;
     this->GroupEnd = groupEnd;
@@ -327,7 +300,7 @@ private:
     Buffer<Node> nodes;
     Buffer<double> pool;
     {
-      std::vector<uint8_t> present(this->Plan.initialNodes.size(), 0);
+      Array<uint8_t> present(this->Plan.initialNodes.size(), 0);
       for (size_t p = 0; p < this->PixelCount; ++p)
       {
         for (uint32_t k = groupBegin[p]; k < groupEnd[p]; ++k)
@@ -349,9 +322,9 @@ private:
         }
       }
     }
-    std::vector<Tuple> tuples;
-    std::vector<uint8_t> outcome;
-    std::vector<double> solution; // per tuple: u[3], ndc depth
+    Array<Tuple> tuples;
+    Array<uint8_t> outcome;
+    Array<double> solution; // per tuple: u[3], ndc depth
     while (!nodes.empty())
     {
       ++this->Report.iterations;
@@ -360,7 +333,7 @@ private:
       // Overlap stage: implicit nodes that are ready become tuples of the pixels whose centres
       // their boxes cover (members of the round, not behind a nearer hit).
       Clock::time_point stage = Clock::now();
-      std::vector<uint32_t> ready;
+      Array<uint32_t> ready;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
         if (nodes[n].implicit && readyForTuples(nodes[n], this->Plan.frame))
@@ -368,7 +341,7 @@ private:
           ready.push_back(uint32_t(n));
         }
       }
-      std::vector<uint32_t> readyCounts(ready.size() + 1, 0);
+      Array<uint32_t> readyCounts(ready.size() + 1, 0);
       auto forCoveredPixels = [&](const Node& node, auto fn)
       {
         forEachCoveredPixel(node.info.box, this->Config.width, this->Config.height,
@@ -421,14 +394,14 @@ private:
       // mode a hit drops the tuples behind it at once.
       stage = Clock::now();
       {
-        std::vector<uint32_t> start(this->PixelCount + 1, 0);
+        Array<uint32_t> start(this->PixelCount + 1, 0);
         for (const auto& t : tuples)
         {
           ++start[t.pixel];
         }
         exclusiveScan(start);
-        std::vector<Tuple> byPixel(tuples.size());
-        std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+        Array<Tuple> byPixel(tuples.size());
+        Array<uint32_t> fill(start.begin(), start.end() - 1);
         for (const auto& t : tuples)
         {
           byPixel[fill[t.pixel]++] = t;
@@ -487,7 +460,7 @@ private:
             }
           }
         });
-      std::vector<uint8_t> split(nodes.size(), 0);
+      Array<uint8_t> split(nodes.size(), 0);
       for (size_t t = 0; t < tuples.size(); ++t)
       {
         if (outcome[t] == Failed)
@@ -495,7 +468,7 @@ private:
           split[tuples[t].node] = 1;
         }
       }
-      std::vector<uint32_t> toSplit;
+      Array<uint32_t> toSplit;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
         if (nodes[n].implicit)
@@ -528,8 +501,8 @@ private:
         }
         childBytes += bytes;
       }
-      std::vector<Node> deferred;
-      std::vector<double> deferredPool;
+      Array<Node> deferred;
+      Array<double> deferredPool;
       for (size_t k = allowed; k < toSplit.size(); ++k)
       {
         Node& node = nodes[toSplit[k]];
@@ -545,7 +518,7 @@ private:
         }
       }
       toSplit.resize(allowed);
-      std::vector<uint32_t> poolOffset(toSplit.size() + 1, 0);
+      Array<uint32_t> poolOffset(toSplit.size() + 1, 0);
       for (size_t k = 0; k < toSplit.size(); ++k)
       {
         poolOffset[k + 1] = poolOffset[k] + 8 * this->valueCount(nodes[toSplit[k]].patch);
@@ -556,7 +529,7 @@ private:
       }
       Buffer<double>& childPool = this->ChildPool;
       Buffer<Node> children(toSplit.size() * 8);
-      std::vector<uint8_t> keep(children.size(), 0);
+      Array<uint8_t> keep(children.size(), 0);
       parallelFor(toSplit.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
@@ -591,7 +564,7 @@ private:
       // Compaction: failed tuples move to the kept children covering their pixel; solved and
       // dropped tuples and unsplit explicit nodes leave.
       stage = Clock::now();
-      std::vector<uint32_t> firstChild(nodes.size(), 0);
+      Array<uint32_t> firstChild(nodes.size(), 0);
       for (size_t k = 0; k < toSplit.size(); ++k)
       {
         firstChild[toSplit[k]] = uint32_t(8 * k);
@@ -602,7 +575,7 @@ private:
         return keep[c] &&
                mayHitPixel(children[c], t.pixel, this->BestDepth[t.pixel], this->Plan.frame);
       };
-      std::vector<uint32_t> newCounts(tuples.size(), 0);
+      Array<uint32_t> newCounts(tuples.size(), 0);
       parallelFor(tuples.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
@@ -628,8 +601,8 @@ private:
                                         : this->Report.unresolvedAtBudget);
         }
       }
-      std::vector<uint32_t> newOffsets = newCounts;
-      std::vector<Tuple> next(exclusiveScan(newOffsets));
+      Array<uint32_t> newOffsets = newCounts;
+      Array<Tuple> next(exclusiveScan(newOffsets));
       parallelFor(tuples.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
@@ -648,15 +621,15 @@ private:
         });
       // The next nodes: implicit children that were kept, explicit children that received
       // pixels, and deferred implicit nodes; stored contiguously.
-      std::vector<uint8_t> used(children.size(), 0);
+      Array<uint8_t> used(children.size(), 0);
       for (const auto& t : next)
       {
         used[t.node] = 1;
       }
       // Which nodes and where their coefficients go, in order; the records are copied below.
-      std::vector<uint32_t> newIndex(children.size(), 0), keptFrom;
+      Array<uint32_t> newIndex(children.size(), 0), keptFrom;
       keptFrom.reserve(children.size() + deferred.size());
-      std::vector<size_t> keptOffset(1, 0);
+      Array<size_t> keptOffset(1, 0);
       for (size_t c = 0; c < children.size(); ++c)
       {
         if (keep[c] && (children[c].implicit || used[c]))
@@ -931,15 +904,15 @@ private:
   void fillGBuffer(GBuffer& out)
   {
     // Group by pixel, shade, sort front to back and merge duplicates.
-    std::vector<uint32_t> offsets(this->PixelCount + 1, 0);
+    Array<uint32_t> offsets(this->PixelCount + 1, 0);
     for (const auto& hit : this->Hits)
     {
       ++offsets[hit.pixel];
     }
     exclusiveScan(offsets);
-    std::vector<uint32_t> source(this->Hits.size());
+    Array<uint32_t> source(this->Hits.size());
     {
-      std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+      Array<uint32_t> fill(offsets.begin(), offsets.end() - 1);
       for (size_t h = 0; h < this->Hits.size(); ++h)
       {
         source[fill[this->Hits[h].pixel]++] = uint32_t(h);
@@ -953,8 +926,8 @@ private:
     }
     viewer.parallel = this->TheView.parallel;
     viewer.hasColor = this->Config.colorAttribute >= 0;
-    std::vector<Hit> shaded(this->Hits.size());
-    std::vector<uint32_t> keptCount(this->PixelCount, 0);
+    Array<Hit> shaded(this->Hits.size());
+    Array<uint32_t> keptCount(this->PixelCount, 0);
     parallelFor(this->PixelCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
@@ -988,14 +961,14 @@ private:
   FrameReport& Report;
   FramePlan Plan;
   size_t PixelCount = 0;
-  std::vector<uint32_t> ItemOffsets;
-  std::vector<uint32_t> Items;
-  std::vector<double> BestDepth;
-  std::vector<uint8_t> Unresolved;
-  std::vector<RawHit> Hits;
-  std::vector<uint32_t> GroupBegin, GroupEnd; ///< this round's work items per pixel
-  std::vector<uint32_t> PixelStart;           ///< SST: each pixel's first tuple
-  Buffer<double> ChildPool;                   ///< SST: children's coefficients, reused
+  Array<uint32_t> ItemOffsets;
+  Array<uint32_t> Items;
+  Array<double> BestDepth;
+  Array<uint8_t> Unresolved;
+  Array<RawHit> Hits;
+  Array<uint32_t> GroupBegin, GroupEnd; ///< this round's work items per pixel
+  Array<uint32_t> PixelStart;           ///< SST: each pixel's first tuple
+  Buffer<double> ChildPool;             ///< SST: children's coefficients, reused
 };
 
 } // namespace
