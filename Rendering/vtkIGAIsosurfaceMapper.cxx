@@ -1,12 +1,14 @@
 #include "vtkIGAIsosurfaceMapper.h"
 
 #include "vtkIGABezierHexahedra.h"
+#include "vtkIGANurbsData.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataObjectTreeIterator.h"
+#include "vtkFieldData.h"
 #include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
@@ -30,6 +32,7 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtk_glew.h"
 
+#include "iga/NurbsSet.h"
 #include "iga/sst/Engine.h"
 
 #include <algorithm>
@@ -51,6 +54,136 @@ bool firstInProcess(const std::string& message)
   static std::set<std::string> seen;
   std::lock_guard<std::mutex> lock(mutex);
   return seen.insert(message).second;
+}
+
+/// Moves homogeneous control points (4 leading channels of `channels` per point) by a matrix:
+/// exact for the rational volume they span, whatever the matrix.
+void moveControlPoints(vtkMatrix4x4* matrix, double* points, size_t count, int channels)
+{
+  for (size_t p = 0; p < count; ++p)
+  {
+    double* cp = points + p * channels;
+    double moved[4];
+    matrix->MultiplyPoint(cp, moved);
+    std::copy(moved, moved + 4, cp);
+  }
+}
+
+/// The NURBS form of an input whose cells are the Bézier elements of NURBS volumes.
+struct NurbsForm
+{
+  std::vector<std::unique_ptr<iga::BezierExtraction<double, 3>>> Extractions;
+  std::vector<double> ExtractionKey; ///< degrees, net sizes and knots the operators belong to
+  uint64_t ExtractionVersion = 0;
+  std::vector<std::vector<double>> Nets;  ///< as the input has them
+  std::vector<std::vector<double>> World; ///< moved by the actor's matrix (empty: identity)
+  uint64_t WorldVersion = 0;              ///< the data version World was made for
+  int Channels = 0;
+
+  iga::sst::NurbsVolumes volumes(bool moved) const
+  {
+    iga::sst::NurbsVolumes volumes;
+    volumes.channels = this->Channels;
+    volumes.extractionVersion = this->ExtractionVersion;
+    for (size_t v = 0; v < this->Nets.size(); ++v)
+    {
+      volumes.extractions.push_back(this->Extractions[v].get());
+      volumes.nets.push_back(moved ? &this->World[v] : &this->Nets[v]);
+    }
+    return volumes;
+  }
+};
+
+/// Fills `form` from a grid that carries a NURBS description (vtkIGANurbsData) of volumes whose
+/// extracted elements are exactly `cells` (the grid's cells, in order, same attributes, equal
+/// to rounding). False, and `form` not to be used, for anything else.
+bool collectNurbs(vtkDataObject* input, const iga::VolumeSet<double>& cells, NurbsForm& form)
+{
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(input);
+  if (!grid || !grid->GetFieldData()->GetAbstractArray("NurbsPatchInfo"))
+  {
+    return false;
+  }
+  vtkNew<vtkIGANurbsData> data;
+  if (!vtkIGANurbsData::FromUnstructuredGrid(grid, data).empty())
+  {
+    return false;
+  }
+  iga::NurbsSet<double> set = data->GetPatches(0);
+  if (set.volumes.empty() || !set.surfaces.empty() || set.attributeNames != cells.attributeNames)
+  {
+    return false;
+  }
+  // Operators are rebuilt, under a new version, only when the knots change.
+  std::vector<double> key;
+  for (const auto& volume : set.volumes)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      key.push_back(volume.degree[d]);
+      key.push_back(volume.netSize[d]);
+      key.push_back(double(volume.knots[d].size()));
+      key.insert(key.end(), volume.knots[d].begin(), volume.knots[d].end());
+    }
+  }
+  if (key != form.ExtractionKey || !form.ExtractionVersion)
+  {
+    static std::atomic<uint64_t> versions{ 0 };
+    form.Extractions.clear();
+    for (const auto& volume : set.volumes)
+    {
+      form.Extractions.push_back(std::make_unique<iga::BezierExtraction<double, 3>>(
+        volume.knots, volume.degree, volume.netSize));
+    }
+    form.ExtractionKey.swap(key);
+    form.ExtractionVersion = ++versions;
+  }
+  form.Channels = set.channels();
+  form.Nets.clear();
+  for (auto& volume : set.volumes)
+  {
+    form.Nets.push_back(std::move(volume.net));
+  }
+  form.World.clear();
+  form.WorldVersion = 0;
+  // The elements must be the cells: same count, degrees and coefficients to rounding (the
+  // cells went through Euclidean points and weights).
+  std::vector<iga::BezierVolume<double>> elements;
+  try
+  {
+    elements = iga::sst::extractElements(form.volumes(false));
+  }
+  catch (const std::invalid_argument&)
+  {
+    return false;
+  }
+  if (elements.size() != cells.patches.size())
+  {
+    return false;
+  }
+  for (size_t e = 0; e < elements.size(); ++e)
+  {
+    const auto a = elements[e].view();
+    const auto b = cells.patches[e].view();
+    if (a.channels != b.channels || a.pointCount() != b.pointCount() ||
+        !std::equal(a.degree, a.degree + 3, b.degree))
+    {
+      return false;
+    }
+    double scale = 0;
+    for (int v = 0; v < b.valueCount(); ++v)
+    {
+      scale = std::max(scale, std::abs(b.coeffs[v]));
+    }
+    for (int v = 0; v < b.valueCount(); ++v)
+    {
+      if (!(std::abs(a.coeffs[v] - b.coeffs[v]) <= 1e-9 * scale))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 } // namespace
@@ -93,6 +226,13 @@ struct vtkIGAIsosurfaceMapper::Internals
   double VersionMatrix[16] = {};
   /// The data's patches moved by that matrix (empty for the identity).
   std::vector<iga::BezierVolume<double>> World;
+  // The NURBS form of the input, collected when a frame is tried on a GPU; valid for the input
+  // of NurbsTime.
+  NurbsForm Nurbs;
+  bool NurbsValid = false;
+  vtkMTimeType NurbsTime = 0;
+  std::string LastEngineInput;
+  uint64_t LastExtractionVersion = 0;
 };
 
 vtkIGAIsosurfaceMapper::vtkIGAIsosurfaceMapper()
@@ -188,6 +328,16 @@ const char* vtkIGAIsosurfaceMapper::GetLastBackend() const
 vtkTypeUInt64 vtkIGAIsosurfaceMapper::GetLastDataVersion() const
 {
   return this->Internal->DataVersion;
+}
+
+const char* vtkIGAIsosurfaceMapper::GetLastEngineInput() const
+{
+  return this->Internal->LastEngineInput.c_str();
+}
+
+vtkTypeUInt64 vtkIGAIsosurfaceMapper::GetLastExtractionVersion() const
+{
+  return this->Internal->LastExtractionVersion;
 }
 
 const char* vtkIGAIsosurfaceMapper::GetLastNotice() const
@@ -547,13 +697,7 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       for (auto& patch : in.World)
       {
         const auto view = patch.view();
-        for (int p = 0; p < view.pointCount(); ++p)
-        {
-          double* cp = view.point(p);
-          double moved[4];
-          matrix->MultiplyPoint(cp, moved);
-          std::copy(moved, moved + 4, cp);
-        }
+        moveControlPoints(matrix, view.coeffs, size_t(view.pointCount()), view.channels);
       }
     }
     const std::vector<iga::BezierVolume<double>>& world =
@@ -607,8 +751,30 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     this->UpdateProgress(0.0);
     try
     {
-      const auto report =
-        iga::sst::render(world, view, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+      // A GPU takes NURBS volumes as their nets (elements extracted there), checked once per
+      // input; CPU threads take the cells the mapper already has.
+      const bool gpu = iga::sst::triesGpu(settings.backend);
+      if (gpu && in.NurbsTime != in.SetTime)
+      {
+        in.NurbsValid = collectNurbs(input, in.Set, in.Nurbs);
+        in.NurbsTime = in.SetTime;
+      }
+      const bool nurbs = gpu && in.NurbsValid;
+      if (nurbs && !matrix->IsIdentity() && in.Nurbs.WorldVersion != in.DataVersion)
+      {
+        in.Nurbs.World = in.Nurbs.Nets;
+        for (auto& net : in.Nurbs.World)
+        {
+          moveControlPoints(matrix, net.data(), net.size() / in.Nurbs.Channels, in.Nurbs.Channels);
+        }
+        in.Nurbs.WorldVersion = in.DataVersion;
+      }
+      in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
+      in.LastExtractionVersion = nurbs ? in.Nurbs.ExtractionVersion : 0;
+      const auto report = nurbs ? iga::sst::render(in.Nurbs.volumes(!matrix->IsIdentity()), view,
+                                    settings, iga::sst::Method::SharedSubdivisionTree, gbuffer)
+                                : iga::sst::render(world, view, settings,
+                                    iga::sst::Method::SharedSubdivisionTree, gbuffer);
       this->UpdateProgress(1.0);
       this->LastEngineTime = report.msTotal;
       this->LastUnresolvedPixels = vtkIdType(report.unresolvedPixels);

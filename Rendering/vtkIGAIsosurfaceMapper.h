@@ -42,6 +42,15 @@
  * CUDA was asked for (Backend CUDA, or IGAVIEW_BACKEND=cuda) or a CUDA frame failed, a plain
  * message (vtkOutputWindow text) when the automatic choice fell back to CPU threads.
  *
+ * NURBS input on a GPU: when a frame is tried on a GPU and the input is one grid that carries
+ * the NURBS description vtkIGANurbsData writes (the readers' and sources' output), the mapper
+ * hands the engine the control nets and knot vectors instead of the Bézier cells, provided the
+ * extracted elements equal the grid's cells (checked once per input change: a filter that moved
+ * the points or dropped cells without updating that description fails it). The GPU then
+ * extracts the elements itself, so a new time step sends only the moved control nets, and the
+ * extraction operators stay on the device while the knots do not change.
+ * GetLastEngineInput() says which form the last frame used.
+ *
  * Progress: while the engine runs, the mapper fires vtkCommand::ProgressEvent (vtkAlgorithm's
  * UpdateProgress) with a monotone estimate in [0, 1) after every subdivision round, from the
  * (pixel, sub-patch) pairs left relative to the most seen in the frame, and 1 at the end of
@@ -147,6 +156,14 @@ public:
   /// engines that keep a copy of them on a GPU: unchanged by camera moves and property edits,
   /// new when the input or the actor's matrix changes, never shared by two mappers.
   vtkTypeUInt64 GetLastDataVersion() const;
+
+  /// The form the last frame computed handed the engine: "NURBS volumes" or "Bezier cells"
+  /// (empty before the first frame).
+  const char* GetLastEngineInput() const;
+
+  /// Names the knot vectors, degrees and net sizes of the last frame's NURBS input (0 when it
+  /// used the cells): unchanged over time steps that only move the control nets.
+  vtkTypeUInt64 GetLastExtractionVersion() const;
 
   /// Pixels of the last frame computed that still had work left at a cap.
   vtkIdType GetLastUnresolvedPixels() const { return this->LastUnresolvedPixels; }

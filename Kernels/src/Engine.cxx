@@ -1019,6 +1019,24 @@ Backend parseBackend(const std::string& name)
 namespace
 {
 
+/// The backend asked for: the setting, or for Automatic, IGAVIEW_BACKEND where it is set.
+Backend requestedBackend(Backend setting)
+{
+  const char* forced = std::getenv("IGAVIEW_BACKEND");
+  if (setting != Backend::Automatic || !forced || !*forced)
+  {
+    return setting;
+  }
+  try
+  {
+    return parseBackend(forced);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(std::string("IGAVIEW_BACKEND: ") + e.what());
+  }
+}
+
 /// Runs a frame where the settings and IGAVIEW_BACKEND say: `onCuda` when CUDA is wanted and
 /// usable (a cuda::Failure redoes the frame with `onCpu`), else `onCpu`.
 FrameReport dispatch(const Settings& settings, Method method,
@@ -1026,22 +1044,7 @@ FrameReport dispatch(const Settings& settings, Method method,
 {
   FrameReport report;
   report.method = methodName(method);
-  Backend wanted = settings.backend;
-  if (wanted == Backend::Automatic)
-  {
-    const char* forced = std::getenv("IGAVIEW_BACKEND");
-    if (forced && *forced)
-    {
-      try
-      {
-        wanted = parseBackend(forced);
-      }
-      catch (const std::invalid_argument& e)
-      {
-        throw std::invalid_argument(std::string("IGAVIEW_BACKEND: ") + e.what());
-      }
-    }
-  }
+  const Backend wanted = requestedBackend(settings.backend);
   if (method == Method::SharedSubdivisionTree && wanted != Backend::Cpu)
   {
     std::string why;
@@ -1072,6 +1075,13 @@ FrameReport dispatch(const Settings& settings, Method method,
 }
 
 } // namespace
+
+bool triesGpu(Backend backend)
+{
+  const Backend wanted = requestedBackend(backend);
+  std::string why;
+  return wanted == Backend::Cuda || (wanted == Backend::Automatic && cuda::usable(why));
+}
 
 FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, Method method, GBuffer& out)

@@ -182,5 +182,10 @@ const char* methodName(Method method);
 const char* backendName(Backend backend);
 Backend parseBackend(const std::string& name);
 
+/// Whether a shared-subdivision-tree frame with this backend setting is tried on a GPU first:
+/// CUDA asked for (here or, for Automatic, by IGAVIEW_BACKEND), or Automatic with a usable
+/// device. Callers holding their data in two forms hand the engine the one that driver prefers.
+bool triesGpu(Backend backend);
+
 } // namespace sst
 } // namespace iga
