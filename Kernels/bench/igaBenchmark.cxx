@@ -111,7 +111,10 @@ std::string json(
         << ", \"height\": " << m.height << ", \"threads\": " << m.threads << ", \"ms\": " << m.ms
         << ", \"peakMB\": " << m.peakMB << ", \"coveredPixels\": " << m.covered
         << ", \"newtonSolves\": " << m.newtonSolves << ", \"subdividedPatches\": " << m.subdivided
-        << ", \"unresolvedPixels\": " << m.unresolved << ", \"stagesMs\": {\"setup\": " << r.msSetup
+        << ", \"unresolvedPixels\": " << m.unresolved
+        << ", \"uploadedMB\": " << r.uploadedBytes / 1048576.0
+        << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
+        << ", \"stagesMs\": {\"setup\": " << r.msSetup
         << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution
         << ", \"overlap\": " << r.msOverlap << ", \"subdivision\": " << r.msSubdivision
         << ", \"compaction\": " << r.msCompaction << ", \"gbuffer\": " << r.msGBuffer << "}}"

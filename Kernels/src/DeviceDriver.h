@@ -1125,6 +1125,7 @@ struct Driver
     out.hits.resize(total);
     download(kept, pixels + 1, out.offsets.data());
     download(compact, total, out.hits.data());
+    this->Report->downloadedBytes = (pixels + 1) * sizeof(uint32_t) + total * sizeof(Hit);
   }
 
   FrameReport* Report = nullptr;

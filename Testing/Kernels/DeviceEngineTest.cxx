@@ -285,6 +285,9 @@ void expectMatchesTheCpuDriver(
   EXPECT_EQ(deviceReport.unresolvedPixels > 0, cpuReport.unresolvedPixels > 0);
   EXPECT_EQ(cpuReport.unresolvedPixels > 0, s.name == "depth cap");
   EXPECT_GT(deviceReport.uploadedBytes, 0u);
+  EXPECT_EQ(deviceReport.downloadedBytes,
+    (device.offsets.size() * sizeof(uint32_t) + device.hits.size() * sizeof(iga::sst::Hit)));
+  EXPECT_EQ(cpuReport.downloadedBytes, 0u);
 #ifdef IGAVIEW_DEVICE_LOGIC
   // The same work, step for step.
   EXPECT_EQ(deviceReport.iterations, cpuReport.iterations);

@@ -119,6 +119,9 @@ struct FrameReport
   size_t maxPatches = 0;
   size_t peakBytes = 0;     ///< largest engine-owned working set
   size_t uploadedBytes = 0; ///< CUDA: bytes copied to the device for this frame
+  /// CUDA: bytes copied back for the G-buffer (a copy to host memory: there is no CUDA-GL
+  /// interop), the pixel offsets and the hits
+  size_t downloadedBytes = 0;
   double msSetup = 0, msSweepAndGroup = 0, msOverlap = 0, msSolution = 0, msSubdivision = 0,
          msCompaction = 0, msGBuffer = 0, msTotal = 0;
 };
