@@ -218,7 +218,7 @@ int main(int argc, char** argv)
     }
   }
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  const int reps = quick ? 1 : 3;
+  const int reps = quick ? 1 : 5;
   std::vector<Measurement> all;
   std::vector<std::pair<std::string, double>> ratios;
   using iga::sst::Method;
