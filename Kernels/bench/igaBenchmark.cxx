@@ -6,7 +6,8 @@
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
 // peak memory over resolutions 256^2..2048^2 (fig. 11); 1 vs 2 threads; the 512^2 tri-quadratic
-// sphere frame; the default dataset. Ratios compare runs of the same process.
+// sphere frame; the default dataset; the deforming 10k-patch blade at 1080p. Ratios compare runs
+// of the same process.
 //
 // --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
@@ -303,6 +304,14 @@ int main(int argc, char** argv)
   const auto tube = iga::makeTwistedTube<double>(0.5);
   all.push_back(measure("default", "twisted-tube", tube, 0.0, 2, 800, 600, threads,
     Method::SharedSubdivisionTree, reps));
+
+  // Many patches on CPU threads: the deforming blade (a new control net every frame) at 1080p,
+  // where the frame's preparation over all patches weighs.
+  const iga::BladeLayout bladeLayout = iga::bladeLayout(quick ? 1000 : 10000);
+  auto flapping = [&](int r) { return iga::makeBlade<double>(bladeLayout, 0.1 * (r % 10)); };
+  all.push_back(measure("patches",
+    "blade-" + std::to_string(bladeLayout.patchCount()) + "-deforming", flapping(0), 0.3, 2, 1920,
+    1080, threads, Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, flapping));
 
   return emit(json(all, ratios));
 }

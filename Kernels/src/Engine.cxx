@@ -5,6 +5,7 @@
 #include "BlockCache.h"
 #include "CudaEngine.h"
 #include "FramePlan.h"
+#include "ParallelFor.h"
 
 #include "iga/Validation.h"
 #include "iga/sst/PixelProblem.h"
@@ -82,45 +83,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 double millisecondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-/// Runs fn(begin, end) over [0, n) on `threads` threads pulling chunks. Callers write results
-/// per index, so outputs never depend on the thread count or scheduling.
-template<class Fn>
-void parallelFor(size_t n, int threads, Fn&& fn)
-{
-  const size_t grain = std::max<size_t>(1, n / (size_t(std::max(threads, 1)) * 16));
-  if (threads <= 1 || n <= grain)
-  {
-    if (n > 0)
-    {
-      fn(size_t(0), n);
-    }
-    return;
-  }
-  std::atomic<size_t> next{ 0 };
-  auto worker = [&]()
-  {
-    for (;;)
-    {
-      const size_t begin = next.fetch_add(grain);
-      if (begin >= n)
-      {
-        break;
-      }
-      fn(begin, std::min(n, begin + grain));
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-  {
-    pool.emplace_back(worker);
-  }
-  worker();
-  for (auto& thread : pool)
-  {
-    thread.join();
-  }
 }
 
 /// Exclusive prefix sum in place; returns the total.

@@ -1,5 +1,6 @@
 // A frame's host-side preparation, shared by the CPU and CUDA drivers.
 #include "FramePlan.h"
+#include "ParallelFor.h"
 
 #include "iga/NurbsSet.h"
 #include "iga/Validation.h"
@@ -23,47 +24,83 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// Sub-patches per level kept while splitting a patch at the eye plane.
 constexpr size_t kMaxEyePlaneNodes = size_t(1) << 16;
 
+/// Parts a loop over patches is cut into: several per thread, so that uneven parts even out.
+size_t partsFor(size_t patches, int threads)
+{
+  return std::min(patches, size_t(threads) * 8);
+}
+
+bool attributesFit(int channels, const Settings& s)
+{
+  return s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels &&
+         (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels);
+}
+
 } // namespace
+
+int threadCount(const Settings& s)
+{
+  return s.threads > 0 ? s.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+}
 
 void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs,
   const Settings& settings, FrameReport& report)
 {
   const int count = (degree[0] + 1) * (degree[1] + 1) * (degree[2] + 1) * kScreenChannels;
+  // Analyses a node: keeps it when it lies in front of the eye, drops it when it cannot show
+  // surface; true when it straddles the eye plane and must be split.
+  auto straddles = [&](Node& node, const double* values)
+  {
+    const VolumeView<const double> view(values, degree, kScreenChannels);
+    node.info = analyzeNodeBounds(view, settings.isovalues[node.iso], plan.frame.clip);
+    if (!worthKeeping(node.info, plan.frame))
+    {
+      return false;
+    }
+    if (node.info.status == ProjectionStatus::InFront)
+    {
+      analyzeNodeSolver(view, node.info);
+      analyzeNodeCentre(view, node.info);
+      node.coeff = plan.initialPool.size();
+      plan.initialPool.insert(plan.initialPool.end(), values, values + count);
+      plan.initialNodes.push_back(node);
+      return false;
+    }
+    return true;
+  };
+  // Most roots lie in front of the eye: settled here, without copies.
+  if (!straddles(root, coeffs))
+  {
+    return;
+  }
+  root.coeff = 0;
   std::vector<Node> level = { root };
   std::vector<double> pool(coeffs, coeffs + count);
   while (!level.empty())
   {
     std::vector<Node> straddling;
     std::vector<double> straddlingPool;
-    for (Node node : level)
+    for (const Node& node : level)
     {
-      const VolumeView<const double> view(pool.data() + node.coeff, degree, kScreenChannels);
-      node.info = analyzeNode(view, settings.isovalues[node.iso], plan.frame.clip);
-      if (!worthKeeping(node.info, plan.frame))
-      {
-        continue;
-      }
-      if (node.info.status == ProjectionStatus::InFront)
-      {
-        const size_t offset = plan.initialPool.size();
-        plan.initialPool.insert(plan.initialPool.end(), view.coeffs, view.coeffs + count);
-        node.coeff = offset;
-        plan.initialNodes.push_back(node);
-        continue;
-      }
-      if (node.level >= settings.maxSubdivisionDepth || straddling.size() + 8 > kMaxEyePlaneNodes)
+      if (node.level >= settings.maxSubdivisionDepth ||
+          straddlingPool.size() / count + 8 > kMaxEyePlaneNodes)
       {
         ++report.droppedAtEyePlane;
         continue;
       }
       const size_t offset = straddlingPool.size();
       straddlingPool.resize(offset + size_t(8) * count);
-      splitMidpoint<double, 3>(view, straddlingPool.data() + offset);
+      splitMidpoint<double, 3>(
+        VolumeView<const double>(pool.data() + node.coeff, degree, kScreenChannels),
+        straddlingPool.data() + offset);
       for (int c = 0; c < 8; ++c)
       {
         Node child = childOf(node, c);
         child.coeff = offset + size_t(c) * count;
-        straddling.push_back(child);
+        if (straddles(child, straddlingPool.data() + child.coeff))
+        {
+          straddling.push_back(child);
+        }
       }
     }
     level.swap(straddling);
@@ -73,8 +110,7 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
 
 void checkAttributes(int channels, const Settings& s, const std::string& name)
 {
-  if (s.surfaceAttribute < 0 || kFirstAttributeChannel + s.surfaceAttribute >= channels ||
-      (s.colorAttribute >= 0 && kFirstAttributeChannel + s.colorAttribute >= channels))
+  if (!attributesFit(channels, s))
   {
     throw std::invalid_argument(name + " has " + std::to_string(channels - kFirstAttributeChannel) +
                                 " attributes; the surface uses " +
@@ -86,20 +122,55 @@ void checkAttributes(int channels, const Settings& s, const std::string& name)
 double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& s)
 {
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
-  double attributeLo = kInfinity, attributeHi = -kInfinity;
-  for (size_t p = 0; p < patches.size(); ++p)
+  // Per part: the attribute's range, or the first bad patch and its problem. Parts are joined in
+  // order, so the message names the first bad patch whatever the thread count.
+  struct Part
   {
-    const auto patch = patches[p].view();
-    const std::string problem = checkPatch<double, 3>(patch);
-    if (!problem.empty())
+    double lo = kInfinity, hi = -kInfinity;
+    std::string problem;
+  };
+  const size_t parts = partsFor(patches.size(), threadCount(s));
+  std::vector<Part> found(parts);
+  parallelParts(patches.size(), parts, threadCount(s),
+    [&](size_t k, size_t begin, size_t end)
     {
-      throw std::invalid_argument("patch " + std::to_string(p) + ": " + problem);
+      Part& part = found[k];
+      for (size_t p = begin; p < end; ++p)
+      {
+        const auto patch = patches[p].view();
+        const std::string problem = checkPatch<double, 3>(patch);
+        if (!problem.empty())
+        {
+          part.problem = "patch " + std::to_string(p) + ": " + problem;
+          return;
+        }
+        if (!attributesFit(patch.channels, s))
+        {
+          try
+          {
+            checkAttributes(patch.channels, s, "patch " + std::to_string(p));
+          }
+          catch (const std::invalid_argument& e)
+          {
+            part.problem = e.what();
+            return;
+          }
+        }
+        double lo, hi;
+        rationalRange(patch, attribute, kWeightChannel, lo, hi);
+        part.lo = std::min(part.lo, lo);
+        part.hi = std::max(part.hi, hi);
+      }
+    });
+  double attributeLo = kInfinity, attributeHi = -kInfinity;
+  for (const Part& part : found)
+  {
+    if (!part.problem.empty())
+    {
+      throw std::invalid_argument(part.problem);
     }
-    checkAttributes(patch.channels, s, "patch " + std::to_string(p));
-    double lo, hi;
-    rationalRange(patch, attribute, kWeightChannel, lo, hi);
-    attributeLo = std::min(attributeLo, lo);
-    attributeHi = std::max(attributeHi, hi);
+    attributeLo = std::min(attributeLo, part.lo);
+    attributeHi = std::max(attributeHi, part.hi);
   }
   return attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
 }
@@ -174,7 +245,7 @@ FramePlan planView(const View& view, const Settings& s, double attributeRange, F
                                 std::to_string(s.clipPlanes.size()));
   }
   FramePlan plan;
-  plan.threads = s.threads > 0 ? s.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  plan.threads = threadCount(s);
   report.threads = plan.threads;
   plan.frame.tolerance[0] = plan.frame.tolerance[1] = s.pixelTolerance;
   plan.frame.tolerance[2] = s.isoTolerance * attributeRange;
@@ -214,24 +285,55 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
 {
   FramePlan plan = planView(view, s, checkPatches(patches, s), report);
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
-  // Screen patches of every input patch, then the subdivision-tree roots: one per (patch,
-  // isovalue) with a possible sign change. Roots straddling the eye plane are split until
-  // their parts lie in front of or behind it.
+  const int colour = s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1;
+  // Shading patches go where their sizes put them.
+  plan.shadingOffsets.resize(patches.size());
+  size_t shadingValues = 0;
   for (size_t p = 0; p < patches.size(); ++p)
   {
-    const auto world = patches[p].view();
-    std::vector<double> screen(size_t(world.pointCount()) * kScreenChannels);
-    makeScreenPatch<double>(world, plan.windowFromWorld, attribute, screen.data());
-    plan.shadingOffsets.push_back(plan.shadingPool.size());
-    plan.shadingPool.resize(plan.shadingPool.size() + world.pointCount() * kShadeChannels);
-    makeShadingPatch(world, attribute,
-      s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1,
-      plan.shadingPool.data() + plan.shadingOffsets.back());
-    for (int iso = 0; iso < int(s.isovalues.size()); ++iso)
+    plan.shadingOffsets[p] = shadingValues;
+    shadingValues += size_t(patches[p].view().pointCount()) * kShadeChannels;
+  }
+  plan.shadingPool.resize(shadingValues);
+  // Screen patches, then the subdivision-tree roots: one per (patch, isovalue) with a possible
+  // sign change; roots straddling the eye plane are split until their parts lie in front of or
+  // behind it. Found per part of the patches and joined in order: the same plan for any thread
+  // count.
+  const size_t parts = partsFor(patches.size(), plan.threads);
+  std::vector<FramePlan> found(parts);
+  std::vector<size_t> dropped(parts, 0);
+  parallelParts(patches.size(), parts, plan.threads,
+    [&](size_t k, size_t begin, size_t end)
     {
-      Node root = rootNode(int(p), iso);
-      addRoot(plan, patches[p].view().degree, root, screen.data(), s, report);
+      FramePlan& part = found[k];
+      part.frame = plan.frame;
+      FrameReport partReport;
+      std::vector<double> screen;
+      for (size_t p = begin; p < end; ++p)
+      {
+        const auto world = patches[p].view();
+        screen.resize(size_t(world.pointCount()) * kScreenChannels);
+        makeScreenPatch<double>(world, plan.windowFromWorld, attribute, screen.data());
+        makeShadingPatch(
+          world, attribute, colour, plan.shadingPool.data() + plan.shadingOffsets[p]);
+        for (int iso = 0; iso < int(s.isovalues.size()); ++iso)
+        {
+          addRoot(part, world.degree, rootNode(int(p), iso), screen.data(), s, partReport);
+        }
+      }
+      dropped[k] = partReport.droppedAtEyePlane;
+    });
+  for (size_t k = 0; k < parts; ++k)
+  {
+    const size_t offset = plan.initialPool.size();
+    plan.initialPool.insert(
+      plan.initialPool.end(), found[k].initialPool.begin(), found[k].initialPool.end());
+    for (Node node : found[k].initialNodes)
+    {
+      node.coeff += offset;
+      plan.initialNodes.push_back(node);
     }
+    report.droppedAtEyePlane += dropped[k];
   }
   return plan;
 }

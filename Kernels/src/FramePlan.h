@@ -2,6 +2,7 @@
 // checked, screen and shading patches made, and the subdivision-tree roots found.
 #pragma once
 
+#include "BlockCache.h"
 #include "iga/sst/Engine.h"
 #include "iga/sst/Tree.h"
 
@@ -20,12 +21,15 @@ struct FramePlan
   int threads = 1;
   /// Roots (one per patch and isovalue with a possible sign change, in front of the eye) and
   /// their screen coefficients.
-  std::vector<Node> initialNodes;
-  std::vector<double> initialPool;
+  Buffer<Node> initialNodes;
+  Buffer<double> initialPool;
   /// Shading patches of the input patches, kShadeChannels per control point.
-  std::vector<double> shadingPool;
-  std::vector<size_t> shadingOffsets;
+  Buffer<double> shadingPool;
+  Buffer<size_t> shadingOffsets;
 };
+
+/// The CPU threads a frame with these settings uses (Settings::threads, 0: all).
+int threadCount(const Settings& settings);
 
 /// Checks that control points of `channels` values hold the settings' surface and colour
 /// attributes; throws std::invalid_argument starting with `name` otherwise.
@@ -33,7 +37,7 @@ void checkAttributes(int channels, const Settings& settings, const std::string& 
 
 /// Checks every patch against the settings (degrees, values, weights, attribute indices) and
 /// returns the surface attribute's range over all patches. Throws std::invalid_argument naming
-/// the patch and the problem.
+/// the first bad patch and its problem. Runs on threadCount(settings) threads.
 double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& settings);
 
 /// Checks NURBS volumes: one net per extraction, of the extraction's size, finite values and
@@ -54,7 +58,8 @@ FramePlan planView(
 void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs,
   const Settings& settings, FrameReport& report);
 
-/// All of the above for every patch and isovalue, plus the shading patches.
+/// All of the above for every patch and isovalue, plus the shading patches, on the settings'
+/// threads (the same plan for any thread count).
 FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, FrameReport& report);
 

@@ -622,6 +622,17 @@ TEST(Engine, BadInputIsRejectedWithTheProblemNamed)
   nan.patches[5].view().point(0)[1] = NAN;
   EXPECT_NE(message(nan, settings).find("patch 5: control point 0 has a non-finite value"),
     std::string::npos);
+  // Checked in parts on several threads: the first bad patch is named, whichever part finishes
+  // first.
+  auto twoBad = nan;
+  twoBad.patches[7].view().point(2)[iga::kWeightChannel] = 0.0;
+  for (int threads : { 1, 2, 8 })
+  {
+    Settings parallel = settings;
+    parallel.threads = threads;
+    EXPECT_EQ(
+      message(twoBad, parallel).rfind("patch 5: control point 0 has a non-finite value", 0), 0u);
+  }
   Settings noIso = settings;
   noIso.isovalues.clear();
   EXPECT_NE(message(set, noIso).find("no isovalue"), std::string::npos);

@@ -1,0 +1,70 @@
+// Host loops over CPU threads, shared by the CPU driver and the frame preparation.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace iga
+{
+namespace sst
+{
+
+/// Runs fn(begin, end) over [0, n) on `threads` threads pulling chunks. Callers write results
+/// per index, so outputs never depend on the thread count or scheduling.
+template<class Fn>
+void parallelFor(size_t n, int threads, Fn&& fn)
+{
+  const size_t grain = std::max<size_t>(1, n / (size_t(std::max(threads, 1)) * 16));
+  if (threads <= 1 || n <= grain)
+  {
+    if (n > 0)
+    {
+      fn(size_t(0), n);
+    }
+    return;
+  }
+  std::atomic<size_t> next{ 0 };
+  auto worker = [&]()
+  {
+    for (;;)
+    {
+      const size_t begin = next.fetch_add(grain);
+      if (begin >= n)
+      {
+        break;
+      }
+      fn(begin, std::min(n, begin + grain));
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t)
+  {
+    pool.emplace_back(worker);
+  }
+  worker();
+  for (auto& thread : pool)
+  {
+    thread.join();
+  }
+}
+
+/// Runs fn(part, begin, end) for `parts` contiguous ranges of [0, n) in order of index, on
+/// `threads` threads: for results that are gathered per part and then joined in order.
+template<class Fn>
+void parallelParts(size_t n, size_t parts, int threads, Fn&& fn)
+{
+  parallelFor(parts, threads,
+    [&](size_t first, size_t last)
+    {
+      for (size_t k = first; k < last; ++k)
+      {
+        fn(k, n * k / parts, n * (k + 1) / parts);
+      }
+    });
+}
+
+} // namespace sst
+} // namespace iga
