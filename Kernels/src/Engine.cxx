@@ -99,6 +99,66 @@ size_t exclusiveScan(Counts& counts)
   return total;
 }
 
+/// Groups tuples or hits by pixel, keeping their order within a pixel: a stable LSD radix sort
+/// on the pixel index, 11 bits a pass. O(items) whatever the image size, where a counting sort
+/// over the pixels paid for every pixel of a large, sparsely covered image (every iteration, for
+/// the tuples). `runs` gets where each pixel's run starts, then the end.
+template<class Item>
+void groupByPixel(
+  Array<Item>& tuples, Array<Item>& scratch, size_t pixelCount, Array<uint32_t>& runs)
+{
+  constexpr int kRadixBits = 11;
+  constexpr uint32_t kDigits = uint32_t(1) << kRadixBits;
+  Array<uint32_t> counts;
+  const bool ordered = std::is_sorted(
+    tuples.begin(), tuples.end(), [](const Item& a, const Item& b) { return a.pixel < b.pixel; });
+  for (int shift = 0; !ordered && (size_t(1) << shift) < pixelCount; shift += kRadixBits)
+  {
+    counts.assign(kDigits, 0);
+    for (const Item& t : tuples)
+    {
+      ++counts[(t.pixel >> shift) & (kDigits - 1)];
+    }
+    exclusiveScan(counts);
+    scratch.resize(tuples.size());
+    for (const Item& t : tuples)
+    {
+      scratch[counts[(t.pixel >> shift) & (kDigits - 1)]++] = t;
+    }
+    tuples.swap(scratch);
+  }
+  runs.clear();
+  for (size_t t = 0; t < tuples.size(); ++t)
+  {
+    if (t == 0 || tuples[t].pixel != tuples[t - 1].pixel)
+    {
+      runs.push_back(uint32_t(t));
+    }
+  }
+  runs.push_back(uint32_t(tuples.size()));
+}
+
+/// Per-pixel offsets from runs (`pixels[r]`, ascending, starts at `starts[r]`; `starts` has one
+/// entry more, the end): every pixel gets the start of the first run at or after it, the end
+/// past the last run. The one pass over all pixels, on all threads.
+template<class Offsets>
+void offsetsFromRuns(const Array<uint32_t>& pixels, const Array<uint32_t>& starts,
+  size_t pixelCount, int threads, Offsets& offsets)
+{
+  offsets.resize(pixelCount + 1);
+  const size_t runCount = pixels.size();
+  parallelFor(runCount + 1, threads,
+    [&](size_t begin, size_t end)
+    {
+      for (size_t r = begin; r < end; ++r)
+      {
+        const size_t from = r == 0 ? 0 : size_t(pixels[r - 1]) + 1;
+        const size_t to = r < runCount ? size_t(pixels[r]) : pixelCount;
+        std::fill(offsets.begin() + from, offsets.begin() + to + 1, starts[r]);
+      }
+    });
+}
+
 template<class V>
 size_t bytesOf(const V& v)
 {
@@ -181,91 +241,126 @@ private:
   // ---- sweep and group ---------------------------------------------------------------------
 
   /// Per pixel, the initial nodes whose boxes cover it, sorted by nearest depth: the work items
-  /// of SAG. Stored as one array with per-pixel offsets.
+  /// of SAG. Stored as one array with per-pixel offsets; the pixels that have any are listed.
   void sweepAndGroup()
   {
-    Array<uint32_t> counts(this->PixelCount + 1, 0);
-    for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
-    {
-      forEachCoveredPixel(this->Plan.initialNodes[n].info.box, this->Config.width,
-        this->Config.height, [&](size_t p) { ++counts[p]; });
-    }
-    const size_t total = exclusiveScan(counts);
-    this->ItemOffsets = counts;
-    this->Items.resize(total);
-    Array<uint32_t> fill(counts.begin(), counts.end() - 1);
-    for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
-    {
-      forEachCoveredPixel(this->Plan.initialNodes[n].info.box, this->Config.width,
-        this->Config.height, [&](size_t p) { this->Items[fill[p]++] = uint32_t(n); });
-    }
-    parallelFor(this->PixelCount, this->Plan.threads,
+    // (pixel, initial node) pairs, grouped by pixel with the nodes in order.
+    const Buffer<Node>& initial = this->Plan.initialNodes;
+    Array<uint32_t> pairStart(initial.size() + 1, 0);
+    parallelFor(initial.size(), this->Plan.threads,
       [&](size_t begin, size_t end)
       {
-        for (size_t p = begin; p < end; ++p)
+        for (size_t n = begin; n < end; ++n)
         {
-          std::sort(this->Items.begin() + this->ItemOffsets[p],
-            this->Items.begin() + this->ItemOffsets[p + 1],
+          forEachCoveredPixel(initial[n].info.box, this->Config.width, this->Config.height,
+            [&](size_t) { ++pairStart[n]; });
+        }
+      });
+    Array<Tuple> pairs(exclusiveScan(pairStart));
+    parallelFor(initial.size(), this->Plan.threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t n = begin; n < end; ++n)
+        {
+          size_t write = pairStart[n];
+          forEachCoveredPixel(initial[n].info.box, this->Config.width, this->Config.height,
+            [&](size_t p) {
+              pairs[write++] = { uint32_t(p), uint32_t(n) };
+            });
+        }
+      });
+    Array<uint32_t> runs;
+    {
+      Array<Tuple> scratch;
+      groupByPixel(pairs, scratch, this->PixelCount, runs);
+    }
+    const size_t runCount = runs.size() - 1;
+    this->ActivePixels.resize(runCount);
+    this->Items.resize(pairs.size());
+    parallelFor(runCount, this->Plan.threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t r = begin; r < end; ++r)
+        {
+          this->ActivePixels[r] = pairs[runs[r]].pixel;
+          for (uint32_t k = runs[r]; k < runs[r + 1]; ++k)
+          {
+            this->Items[k] = pairs[k].node;
+          }
+          std::sort(this->Items.begin() + runs[r], this->Items.begin() + runs[r + 1],
             [&](uint32_t a, uint32_t b)
             {
-              const double za = this->Plan.initialNodes[a].info.box.lo[2],
-                           zb = this->Plan.initialNodes[b].info.box.lo[2];
+              const double za = initial[a].info.box.lo[2], zb = initial[b].info.box.lo[2];
               return za < zb || (za == zb && a < b);
             });
         }
       });
-    this->trackMemory(
-      bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->Plan.initialPool));
+    offsetsFromRuns(
+      this->ActivePixels, runs, this->PixelCount, this->Plan.threads, this->ItemOffsets);
+    this->trackMemory(bytesOf(this->Items) + bytesOf(this->ItemOffsets) +
+                      bytesOf(this->Plan.initialPool) + bytesOf(pairs));
   }
 
   // ---- shared subdivision trees ------------------------------------------------------------
 
   void sharedSubdivisionTrees()
   {
-    Array<uint32_t> cursor(this->ItemOffsets.begin(), this->ItemOffsets.end() - 1);
+    // GroupBegin/GroupEnd hold each pixel's group of the round, empty for pixels without work;
+    // only the pixels with work left are visited.
+    Array<uint32_t> active = this->ActivePixels;
+    this->GroupBegin.assign(this->PixelCount, 0);
+    this->GroupEnd.assign(this->PixelCount, 0);
+    for (uint32_t p : active)
+    {
+      this->GroupEnd[p] = this->ItemOffsets[p];
+    }
     for (;;)
     {
       // Each round takes every pixel's next depth group (the SAG work sets).
       const Clock::time_point stage = Clock::now();
-      Array<uint32_t> ends(this->PixelCount);
       std::atomic<size_t> total{ 0 };
-      parallelFor(this->PixelCount, this->Plan.threads,
+      parallelFor(active.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           size_t local = 0;
-          for (size_t p = begin; p < end; ++p)
+          for (size_t k = begin; k < end; ++k)
           {
-            ends[p] = groupEnd(this->Plan.initialNodes.data(), this->Items.data(), cursor[p],
-              this->ItemOffsets[p + 1], this->BestDepth[p], this->Config.firstHitOnly);
-            local += ends[p] - cursor[p];
+            const uint32_t p = active[k];
+            this->GroupBegin[p] = this->GroupEnd[p];
+            this->GroupEnd[p] =
+              groupEnd(this->Plan.initialNodes.data(), this->Items.data(), this->GroupBegin[p],
+                this->ItemOffsets[p + 1], this->BestDepth[p], this->Config.firstHitOnly);
+            local += this->GroupEnd[p] - this->GroupBegin[p];
           }
           total += local;
         });
+      // An empty group is final: no items are left, or they lie behind the best hit.
+      active.erase(std::remove_if(active.begin(), active.end(),
+                     [&](uint32_t p) { return this->GroupEnd[p] == this->GroupBegin[p]; }),
+        active.end());
       this->Report.msSweepAndGroup += millisecondsSince(stage);
       if (total == 0)
       {
         break;
       }
-      this->solveRound(cursor, ends);
-      cursor = ends;
+      this->solveRound(active);
     }
   }
 
-  /// The SST loop of the paper over one round: overlap (tuples of pixels and node boxes),
-  /// solution, subdivision and compaction, until no tuple and no implicit node is left.
-  void solveRound(const Array<uint32_t>& groupBegin, const Array<uint32_t>& groupEnd)
+  /// The SST loop of the paper over one round (the groups in GroupBegin/GroupEnd of the pixels
+  /// `active`): overlap (tuples of pixels and node boxes), solution, subdivision and
+  /// compaction, until no tuple and no implicit node is left.
+  void solveRound(const Array<uint32_t>& active)
   {
-    this->GroupBegin = groupBegin;
-    this->GroupEnd = groupEnd;
     const bool firstHit = this->Config.firstHitOnly;
     // This round's initial nodes, all implicit.
     Buffer<Node> nodes;
     Buffer<double> pool;
     {
       Array<uint8_t> present(this->Plan.initialNodes.size(), 0);
-      for (size_t p = 0; p < this->PixelCount; ++p)
+      for (uint32_t p : active)
       {
-        for (uint32_t k = groupBegin[p]; k < groupEnd[p]; ++k)
+        for (uint32_t k = this->GroupBegin[p]; k < this->GroupEnd[p]; ++k)
         {
           present[this->Items[k]] = 1;
         }
@@ -356,31 +451,20 @@ private:
       // mode a hit drops the tuples behind it at once.
       stage = Clock::now();
       {
-        Array<uint32_t> start(this->PixelCount + 1, 0);
-        for (const auto& t : tuples)
-        {
-          ++start[t.pixel];
-        }
-        exclusiveScan(start);
-        Array<Tuple> byPixel(tuples.size());
-        Array<uint32_t> fill(start.begin(), start.end() - 1);
-        for (const auto& t : tuples)
-        {
-          byPixel[fill[t.pixel]++] = t;
-        }
-        tuples.swap(byPixel);
-        this->PixelStart.swap(start);
+        Array<Tuple> scratch;
+        groupByPixel(tuples, scratch, this->PixelCount, this->PixelRuns);
       }
       outcome.resize(tuples.size());
       solution.resize(tuples.size() * 4);
       std::atomic<size_t> solves{ 0 };
-      parallelFor(this->PixelCount, this->Plan.threads,
+      parallelFor(this->PixelRuns.size() - 1, this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           size_t local = 0;
-          for (size_t pixel = begin; pixel < end; ++pixel)
+          for (size_t run = begin; run < end; ++run)
           {
-            const uint32_t first = this->PixelStart[pixel], last = this->PixelStart[pixel + 1];
+            const uint32_t first = this->PixelRuns[run], last = this->PixelRuns[run + 1];
+            const uint32_t pixel = tuples[first].pixel;
             std::sort(tuples.begin() + first, tuples.begin() + last,
               [&](const Tuple& a, const Tuple& b)
               {
@@ -389,7 +473,7 @@ private:
               });
             uint32_t certified = 0;
             this->BestDepth[pixel] = solvePixelTuples(
-              tuples.data(), first, last, uint32_t(pixel), nodes.data(),
+              tuples.data(), first, last, pixel, nodes.data(),
               [&](const Node& node) { return this->nodeView(node, pool); }, this->BestDepth[pixel],
               this->Plan.frame, outcome.data(), solution.data(), certified);
             local += certified;
@@ -866,20 +950,12 @@ private:
   void fillGBuffer(GBuffer& out)
   {
     // Group by pixel, shade, sort front to back and merge duplicates.
-    Array<uint32_t> offsets(this->PixelCount + 1, 0);
-    for (const auto& hit : this->Hits)
+    Array<uint32_t> runs;
     {
-      ++offsets[hit.pixel];
+      Array<RawHit> scratch;
+      groupByPixel(this->Hits, scratch, this->PixelCount, runs);
     }
-    exclusiveScan(offsets);
-    Array<uint32_t> source(this->Hits.size());
-    {
-      Array<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-      for (size_t h = 0; h < this->Hits.size(); ++h)
-      {
-        source[fill[this->Hits[h].pixel]++] = uint32_t(h);
-      }
-    }
+    const size_t runCount = runs.size() - 1;
     ShadingView viewer{};
     for (int d = 0; d < 3; ++d)
     {
@@ -889,32 +965,37 @@ private:
     viewer.parallel = this->TheView.parallel;
     viewer.hasColor = this->Config.colorAttribute >= 0;
     Array<Hit> shaded(this->Hits.size());
-    Array<uint32_t> keptCount(this->PixelCount, 0);
-    parallelFor(this->PixelCount, this->Plan.threads,
+    Array<uint32_t> keptCount(runCount + 1), runPixels(runCount);
+    parallelFor(runCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
-        for (size_t p = begin; p < end; ++p)
+        for (size_t r = begin; r < end; ++r)
         {
-          for (uint32_t k = offsets[p]; k < offsets[p + 1]; ++k)
+          runPixels[r] = this->Hits[runs[r]].pixel;
+          for (uint32_t k = runs[r]; k < runs[r + 1]; ++k)
           {
-            const RawHit& raw = this->Hits[source[k]];
+            const RawHit& raw = this->Hits[k];
             shaded[k] = shadeHit(this->shadingView(raw.patch), raw, viewer);
           }
-          keptCount[p] =
-            uint32_t(mergePixelHits(shaded.data() + offsets[p], int(offsets[p + 1] - offsets[p]),
+          keptCount[r] =
+            uint32_t(mergePixelHits(shaded.data() + runs[r], int(runs[r + 1] - runs[r]),
               this->TheView.pixelFootprint, viewer.parallel, this->Config.firstHitOnly));
         }
       });
     out.width = this->Config.width;
     out.height = this->Config.height;
-    out.offsets.assign(keptCount.begin(), keptCount.end());
-    out.offsets.push_back(0);
-    out.hits.resize(exclusiveScan(out.offsets));
-    for (size_t p = 0; p < this->PixelCount; ++p)
-    {
-      std::copy(shaded.begin() + offsets[p], shaded.begin() + offsets[p] + keptCount[p],
-        out.hits.begin() + out.offsets[p]);
-    }
+    out.hits.resize(exclusiveScan(keptCount)); // now where each run's kept hits go
+    offsetsFromRuns(runPixels, keptCount, this->PixelCount, this->Plan.threads, out.offsets);
+    parallelFor(runCount, this->Plan.threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t r = begin; r < end; ++r)
+        {
+          std::copy(shaded.begin() + runs[r],
+            shaded.begin() + runs[r] + (keptCount[r + 1] - keptCount[r]),
+            out.hits.begin() + keptCount[r]);
+        }
+      });
   }
 
   const std::vector<BezierVolume<double>>& Patches;
@@ -928,8 +1009,9 @@ private:
   Array<double> BestDepth;
   Array<uint8_t> Unresolved;
   Array<RawHit> Hits;
+  Array<uint32_t> ActivePixels;         ///< pixels with work items
   Array<uint32_t> GroupBegin, GroupEnd; ///< this round's work items per pixel
-  Array<uint32_t> PixelStart;           ///< SST: each pixel's first tuple
+  Array<uint32_t> PixelRuns;            ///< SST: where each pixel's tuples start, then the end
   Buffer<double> ChildPool;             ///< SST: children's coefficients, reused
 };
 
