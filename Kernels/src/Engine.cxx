@@ -104,38 +104,39 @@ size_t exclusiveScan(Counts& counts)
 /// over the pixels paid for every pixel of a large, sparsely covered image (every iteration, for
 /// the tuples). `runs` gets where each pixel's run starts, then the end.
 template<class Item>
-void groupByPixel(
-  Array<Item>& tuples, Array<Item>& scratch, size_t pixelCount, Array<uint32_t>& runs)
+void groupByPixel(Array<Item>& items, size_t pixelCount, Array<uint32_t>& runs)
 {
   constexpr int kRadixBits = 11;
   constexpr uint32_t kDigits = uint32_t(1) << kRadixBits;
-  Array<uint32_t> counts;
+  auto digit = [](const Item& item, int shift) { return (item.pixel >> shift) & (kDigits - 1); };
   const bool ordered = std::is_sorted(
-    tuples.begin(), tuples.end(), [](const Item& a, const Item& b) { return a.pixel < b.pixel; });
+    items.begin(), items.end(), [](const Item& a, const Item& b) { return a.pixel < b.pixel; });
+  Array<uint32_t> counts;
+  Array<Item> scratch;
   for (int shift = 0; !ordered && (size_t(1) << shift) < pixelCount; shift += kRadixBits)
   {
     counts.assign(kDigits, 0);
-    for (const Item& t : tuples)
+    for (const Item& item : items)
     {
-      ++counts[(t.pixel >> shift) & (kDigits - 1)];
+      ++counts[digit(item, shift)];
     }
     exclusiveScan(counts);
-    scratch.resize(tuples.size());
-    for (const Item& t : tuples)
+    scratch.resize(items.size());
+    for (const Item& item : items)
     {
-      scratch[counts[(t.pixel >> shift) & (kDigits - 1)]++] = t;
+      scratch[counts[digit(item, shift)]++] = item;
     }
-    tuples.swap(scratch);
+    items.swap(scratch);
   }
   runs.clear();
-  for (size_t t = 0; t < tuples.size(); ++t)
+  for (size_t k = 0; k < items.size(); ++k)
   {
-    if (t == 0 || tuples[t].pixel != tuples[t - 1].pixel)
+    if (k == 0 || items[k].pixel != items[k - 1].pixel)
     {
-      runs.push_back(uint32_t(t));
+      runs.push_back(uint32_t(k));
     }
   }
-  runs.push_back(uint32_t(tuples.size()));
+  runs.push_back(uint32_t(items.size()));
 }
 
 /// Per-pixel offsets from runs (`pixels[r]`, ascending, starts at `starts[r]`; `starts` has one
@@ -270,10 +271,7 @@ private:
         }
       });
     Array<uint32_t> runs;
-    {
-      Array<Tuple> scratch;
-      groupByPixel(pairs, scratch, this->PixelCount, runs);
-    }
+    groupByPixel(pairs, this->PixelCount, runs);
     const size_t runCount = runs.size() - 1;
     this->ActivePixels.resize(runCount);
     this->Items.resize(pairs.size());
@@ -450,10 +448,7 @@ private:
       // pixel's tuples are solved in order of nearest depth by one thread, so that in first-hit
       // mode a hit drops the tuples behind it at once.
       stage = Clock::now();
-      {
-        Array<Tuple> scratch;
-        groupByPixel(tuples, scratch, this->PixelCount, this->PixelRuns);
-      }
+      groupByPixel(tuples, this->PixelCount, this->PixelRuns);
       outcome.resize(tuples.size());
       solution.resize(tuples.size() * 4);
       std::atomic<size_t> solves{ 0 };
@@ -951,10 +946,7 @@ private:
   {
     // Group by pixel, shade, sort front to back and merge duplicates.
     Array<uint32_t> runs;
-    {
-      Array<RawHit> scratch;
-      groupByPixel(this->Hits, scratch, this->PixelCount, runs);
-    }
+    groupByPixel(this->Hits, this->PixelCount, runs);
     const size_t runCount = runs.size() - 1;
     ShadingView viewer{};
     for (int d = 0; d < 3; ++d)
