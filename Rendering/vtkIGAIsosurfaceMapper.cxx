@@ -412,6 +412,8 @@ void vtkIGAIsosurfaceMapper::ReleaseGraphicsResources(vtkWindow* window)
     this->Internal->Quad.reset();
   }
   this->Internal->UploadTime = vtkTimeStamp();
+  // The window is going away: the engine's idle host blocks go too.
+  iga::sst::releaseHostCache();
 }
 
 namespace

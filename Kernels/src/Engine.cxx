@@ -1112,6 +1112,11 @@ FrameReport dispatch(const Settings& settings, Method method,
 
 } // namespace
 
+void releaseHostCache()
+{
+  BlockCache::instance().release();
+}
+
 bool triesGpu(Backend backend)
 {
   const Backend wanted = requestedBackend(backend);

@@ -190,5 +190,9 @@ Backend parseBackend(const std::string& name);
 /// device. Callers holding their data in two forms hand the engine the one that driver prefers.
 bool triesGpu(Backend backend);
 
+/// The CPU engine keeps the large host blocks its frames free (up to 512 MiB) for the next
+/// frame, so steady frames touch no fresh pages; this gives them back to the system.
+void releaseHostCache();
+
 } // namespace sst
 } // namespace iga
