@@ -2,13 +2,15 @@
 // the grid's NURBS description matches its cells, and the cells otherwise. Without a GPU, a CUDA
 // request runs the NURBS form through the engine's CPU fallback (host extraction): its image
 // must equal the cells' image, over time steps, under an actor matrix, and after a filter made
-// the description stale.
+// the description stale or kept only part of the cells.
 #include "RenderingTestUtilities.h"
 #include "vtkIGAIsosurfaceMapper.h"
 #include "vtkIGANurbsData.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkExtractCells.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -164,7 +166,7 @@ TEST(MapperNurbsInput, TheGpuGetsNetsAndTheImageEqualsTheCells)
   EXPECT_LE(differingPixels(cells.image, nurbs.image), 3);
 }
 
-TEST(MapperNurbsInput, StaleDescriptionFallsBackToTheCells)
+TEST(MapperNurbsInput, StaleOrPartialDescriptionFallsBackToTheCells)
 {
   auto data = bentCube();
   // A filter that moves the points and passes the field data on: the description is stale.
@@ -186,6 +188,19 @@ TEST(MapperNurbsInput, StaleDescriptionFallsBackToTheCells)
   EXPECT_EQ(nurbs.mapper->GetLastExtractionVersion(), 0u);
   EXPECT_EQ(differingPixels(cells.image, nurbs.image), 0);
   EXPECT_GT(nurbs.mapper->GetLastGBuffer().coveredPixels(), 2500u);
+
+  // Part of the cells with the whole description, as a rank holds after redistribution.
+  vtkNew<vtkExtractCells> part;
+  part->SetInputData(data->ToUnstructuredGrid(0));
+  part->AddCellRange(0, 13);
+  part->Update();
+  ASSERT_EQ(part->GetOutput()->GetNumberOfCells(), 14);
+  ASSERT_NE(part->GetOutput()->GetFieldData()->GetAbstractArray("NurbsPatchInfo"), nullptr);
+  cells.render(part->GetOutput());
+  nurbs.render(part->GetOutput());
+  EXPECT_STREQ(nurbs.mapper->GetLastEngineInput(), "Bezier cells");
+  EXPECT_EQ(differingPixels(cells.image, nurbs.image), 0);
+  EXPECT_GT(nurbs.mapper->GetLastGBuffer().coveredPixels(), 500u);
 
   // The automatic backend without a GPU draws the cells on CPU threads: no NURBS work at all.
   Scene automatic(false);
