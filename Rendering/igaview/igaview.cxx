@@ -442,9 +442,9 @@ void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
       viewer.press(key);
       window->Render();
       viewer.updateReadout();
-      std::printf("igaview: key %s: %s, %zu pixels covered, engine %.1f ms\n", key.c_str(),
-        viewer.state().c_str(), viewer.mapper->GetLastGBuffer().coveredPixels(),
-        viewer.mapper->GetLastEngineTime());
+      std::printf("igaview: key %s: %s, %zu pixels covered, engine %.1f ms, frame %.1f ms\n",
+        key.c_str(), viewer.state().c_str(), viewer.mapper->GetLastGBuffer().coveredPixels(),
+        viewer.mapper->GetLastEngineTime(), 1000 * viewer.renderer->GetLastRenderTimeInSeconds());
     }
     window->Render();
     return;
