@@ -1136,12 +1136,33 @@ FrameReport render(const std::vector<BezierVolume<double>>& patches, const View&
 std::vector<BezierVolume<double>> extractElements(const NurbsVolumes& volumes)
 {
   checkNurbsVolumes(volumes);
+  // Elements numbered volume by volume, extracted on all threads.
+  std::vector<size_t> first(volumes.extractions.size() + 1, 0);
   std::vector<BezierVolume<double>> patches;
   for (size_t v = 0; v < volumes.extractions.size(); ++v)
   {
-    auto elements = volumes.extractions[v]->apply(*volumes.nets[v], volumes.channels);
-    std::move(elements.begin(), elements.end(), std::back_inserter(patches));
+    const auto& extraction = *volumes.extractions[v];
+    first[v + 1] = first[v] + size_t(extraction.elementCount());
+    int degree[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      degree[d] = extraction.direction(d).degree;
+    }
+    patches.resize(first[v + 1], BezierVolume<double>(degree, volumes.channels));
   }
+  parallelFor(patches.size(), int(std::max(1u, std::thread::hardware_concurrency())),
+    [&](size_t begin, size_t end)
+    {
+      std::vector<double> work;
+      for (size_t e = begin; e < end; ++e)
+      {
+        const size_t v =
+          size_t(std::upper_bound(first.begin(), first.end(), e) - first.begin()) - 1;
+        work.resize(2 * patches[e].coeffs().size());
+        volumes.extractions[v]->extract(int(e - first[v]), volumes.nets[v]->data(),
+          volumes.channels, patches[e].coeffs().data(), work.data());
+      }
+    });
   return patches;
 }
 

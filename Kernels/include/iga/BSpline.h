@@ -294,26 +294,30 @@ public:
       throw std::invalid_argument("control net has " + std::to_string(net.size()) +
                                   " values, expected " + std::to_string(points * channels));
     }
-    std::vector<BezierPatch<T, Dim>> patches;
-    patches.reserve(this->elementCount());
-    BezierPatch<T, Dim> prototype(this->Degree, channels);
-    std::vector<T> work(2 * prototype.coeffs().size());
+    std::vector<BezierPatch<T, Dim>> patches(
+      this->elementCount(), BezierPatch<T, Dim>(this->Degree, channels));
+    std::vector<T> work(2 * patches.front().coeffs().size());
     for (int e = 0; e < this->elementCount(); ++e)
     {
-      int element[Dim];
-      this->elementIndex(e, element);
-      const T* matrices[Dim];
-      int first[Dim];
-      for (int d = 0; d < Dim; ++d)
-      {
-        matrices[d] = this->Operators[d].matrix(element[d]);
-        first[d] = this->Operators[d].firstBasis[element[d]];
-      }
-      patches.push_back(prototype);
-      extractElement<T, Dim>(net.data(), this->NetSize, channels, this->Degree, matrices, first,
-        patches.back().coeffs().data(), work.data());
+      this->extract(e, net.data(), channels, patches[e].coeffs().data(), work.data());
     }
     return patches;
+  }
+
+  /// Extracts element `e` of a net of the right size into `out` (the element's coefficients);
+  /// `work` holds twice as many values. Callers that spread elements over threads use it.
+  void extract(int e, const T* net, int channels, T* out, T* work) const
+  {
+    int element[Dim];
+    this->elementIndex(e, element);
+    const T* matrices[Dim];
+    int first[Dim];
+    for (int d = 0; d < Dim; ++d)
+    {
+      matrices[d] = this->Operators[d].matrix(element[d]);
+      first[d] = this->Operators[d].firstBasis[element[d]];
+    }
+    extractElement<T, Dim>(net, this->NetSize, channels, this->Degree, matrices, first, out, work);
   }
 
 private:
