@@ -64,8 +64,13 @@ Measurement measure(const std::string& study, const std::string& dataset,
   const iga::Camera camera = frame(set);
   std::vector<std::pair<double, iga::sst::FrameReport>> runs;
   iga::sst::GBuffer gbuffer;
+  // Data versions as the VTK mapper sets them: one for a static set (after the first frame a
+  // GPU keeps its copy, as for a camera move), a new one for every frame of deforming data.
+  static uint64_t versions = 0;
+  const uint64_t version = ++versions << 20;
   for (int r = 0; r < repetitions; ++r)
   {
+    settings.dataVersion = frames ? version + uint64_t(r) : version;
     const auto report = frames
                           ? iga::sst::render(frames(r).patches, camera, settings, method, gbuffer)
                           : iga::sst::render(set.patches, camera, settings, method, gbuffer);

@@ -215,19 +215,29 @@ struct HitPixelOrder
   IGA_HD bool operator()(const RawHit& a, const RawHit& b) const { return a.pixel < b.pixel; }
 };
 
-/// Writes per-pixel start offsets (pixelCount + 1 entries) of records sorted by pixel.
+/// Writes per-pixel start offsets (pixelCount + 1 entries) of records sorted by pixel: per
+/// pixel, a binary search for its first record. (Filling the gaps between records, one thread a
+/// record, left a sparse frame's last thread two million pixels to write: 50 ms at 1080p.)
 template<class Record>
 void pixelOffsets(const Record* records, size_t count, size_t pixelCount, uint32_t* offsets)
 {
-  forEach(count + 1,
-    [=] IGA_HD(size_t k)
+  forEach(pixelCount + 1,
+    [=] IGA_HD(size_t p)
     {
-      const size_t from = k == 0 ? 0 : size_t(records[k - 1].pixel) + 1;
-      const size_t to = k == count ? pixelCount : size_t(records[k].pixel);
-      for (size_t p = from; p <= to; ++p)
+      size_t lo = 0, hi = count;
+      while (lo < hi)
       {
-        offsets[p] = uint32_t(k);
+        const size_t mid = (lo + hi) / 2;
+        if (records[mid].pixel < p)
+        {
+          lo = mid + 1;
+        }
+        else
+        {
+          hi = mid;
+        }
       }
+      offsets[p] = uint32_t(lo);
     });
 }
 
@@ -629,23 +639,18 @@ struct Driver
     const Node* nodes = raw(this->InitialNodes);
     const FrameConstants frame = this->Frame;
     uint32_t* counts = sized(this->Counts, nodeCount + 1);
-    forEach(nodeCount,
-      [=] IGA_HD(size_t n)
-      {
-        uint32_t count = 0;
-        forEachCoveredPixel(nodes[n].info.box, frame.width, frame.height, [&](size_t) { ++count; });
-        counts[n] = count;
-      });
+    forEach(nodeCount, [=] IGA_HD(size_t n)
+      { counts[n] = coveredPixelCount(nodes[n].info.box, frame.width, frame.height); });
     const size_t total = scanCounts(this->Counts, nodeCount);
     Tuple* items = sized(this->Items, total);
-    forEach(nodeCount,
-      [=] IGA_HD(size_t n)
+    // One thread per (pixel, node) pair.
+    forEach(total,
+      [=] IGA_HD(size_t k)
       {
-        uint32_t write = counts[n];
-        forEachCoveredPixel(nodes[n].info.box, frame.width, frame.height,
-          [&](size_t p) {
-            items[write++] = { uint32_t(p), uint32_t(n) };
-          });
+        const uint32_t n = ownerOf(counts, nodeCount, k);
+        items[k] = { uint32_t(coveredPixel(
+                       nodes[n].info.box, frame.width, frame.height, uint32_t(k - counts[n]))),
+          n };
       });
     thrust::sort(exec(), items, items + total, TupleOrder{ nodes });
     pixelOffsets(items, total, this->PixelCount, sized(this->ItemOffsets, this->PixelCount + 1));
@@ -803,44 +808,50 @@ struct Driver
       // their boxes cover (members of the round, not behind a nearer hit).
       Clock::time_point stage = Clock::now();
       {
+        // Candidates: the covered pixels of the ready nodes, one thread each; those the round
+        // takes become tuples, in node and row order.
         const double* best = raw(this->BestDepth);
         uint32_t* counts = sized(this->Counts, nodeCount + 1);
         forEach(nodeCount,
           [=] IGA_HD(size_t n)
           {
-            uint32_t count = 0;
-            if (nodes[n].implicit && readyForTuples(nodes[n], frame))
-            {
-              forEachCoveredPixel(nodes[n].info.box, frame.width, frame.height,
-                [&](size_t p) {
-                  count +=
-                    roundTakesPixel(nodes[n], best[p], items, cursor[p], ends[p], frame) ? 1 : 0;
-                });
-            }
-            counts[n] = count;
+            counts[n] = nodes[n].implicit && readyForTuples(nodes[n], frame)
+                          ? coveredPixelCount(nodes[n].info.box, frame.width, frame.height)
+                          : 0;
           });
-        const size_t added = scanCounts(this->Counts, nodeCount);
+        const size_t candidates = scanCounts(this->Counts, nodeCount);
+        uint32_t* taken = sized(this->Taken, candidates + 1);
+        forEach(candidates,
+          [=] IGA_HD(size_t k)
+          {
+            const uint32_t n = ownerOf(counts, nodeCount, k);
+            const size_t p =
+              coveredPixel(nodes[n].info.box, frame.width, frame.height, uint32_t(k - counts[n]));
+            taken[k] = roundTakesPixel(nodes[n], best[p], items, cursor[p], ends[p], frame) ? 1 : 0;
+          });
+        const size_t added = scanCounts(this->Taken, candidates);
         this->Tuples.resize(tupleCount + added);
         Tuple* tuples = raw(this->Tuples) + tupleCount;
+        forEach(candidates,
+          [=] IGA_HD(size_t k)
+          {
+            if (taken[k + 1] != taken[k])
+            {
+              const uint32_t n = ownerOf(counts, nodeCount, k);
+              tuples[taken[k]] = { uint32_t(coveredPixel(nodes[n].info.box, frame.width,
+                                     frame.height, uint32_t(k - counts[n]))),
+                n };
+            }
+          });
         forEach(nodeCount,
           [=] IGA_HD(size_t n)
           {
             Node& node = nodes[n];
-            if (!(node.implicit && readyForTuples(node, frame)))
+            if (node.implicit && readyForTuples(node, frame))
             {
-              return;
+              node.implicit = false;
+              analyzeNodeCentre(viewOf(node, pool, shapes), node.info);
             }
-            uint32_t write = counts[n];
-            forEachCoveredPixel(node.info.box, frame.width, frame.height,
-              [&](size_t p)
-              {
-                if (roundTakesPixel(node, best[p], items, cursor[p], ends[p], frame))
-                {
-                  tuples[write++] = { uint32_t(p), uint32_t(n) };
-                }
-              });
-            node.implicit = false;
-            analyzeNodeCentre(viewOf(node, pool, shapes), node.info);
           });
         tupleCount += added;
       }
@@ -1165,7 +1176,7 @@ struct Driver
   Array<Node> Nodes, NextNodes, Children;
   Array<double> Pool, NextPool, ChildPool;
   Array<Tuple> Tuples, Next;
-  Array<uint32_t> Counts, Index, PixelStart, ToSplit, FirstChild;
+  Array<uint32_t> Counts, Index, PixelStart, ToSplit, FirstChild, Taken;
   Array<uint64_t> Offsets;
   Array<uint32_t> PixelSolves;
   Array<uint8_t> Present, Outcomes, SplitFlags, Deferred, KeepFlags, Used;

@@ -89,6 +89,25 @@ IGA_HD inline void pixelRange(const Box3<double>& box, int width, int height, in
   range[3] = j1 < height - 1 ? int(j1) : height - 1;
 }
 
+/// The pixels whose centres the box covers: the pixel range, a rectangle (boxCoversPixel's
+/// wider margin holds for all of it). How many, and the k-th row by row, so that a GPU can give
+/// every (pixel, box) pair its own thread: a box over a million pixels is not one thread's work.
+IGA_HD inline uint32_t coveredPixelCount(const Box3<double>& box, int width, int height)
+{
+  int range[4];
+  pixelRange(box, width, height, range);
+  return range[0] <= range[1] && range[2] <= range[3]
+           ? uint32_t(range[1] - range[0] + 1) * uint32_t(range[3] - range[2] + 1)
+           : 0;
+}
+IGA_HD inline size_t coveredPixel(const Box3<double>& box, int width, int height, uint32_t k)
+{
+  int range[4];
+  pixelRange(box, width, height, range);
+  const uint32_t columns = uint32_t(range[1] - range[0] + 1);
+  return size_t(range[2] + int(k / columns)) * width + size_t(range[0] + int(k % columns));
+}
+
 /// Calls fn(pixel index) for every pixel whose centre the box covers, row by row.
 template<class Fn>
 IGA_HD void forEachCoveredPixel(const Box3<double>& box, int width, int height, Fn&& fn)
@@ -99,12 +118,29 @@ IGA_HD void forEachCoveredPixel(const Box3<double>& box, int width, int height, 
   {
     for (int i = range[0]; i <= range[1]; ++i)
     {
-      if (boxCoversPixel(box, i, j))
-      {
-        fn(size_t(j) * width + i);
-      }
+      fn(size_t(j) * width + i);
     }
   }
+}
+
+/// The owner of item k when owner n's items start at starts[n] (an exclusive scan of counts,
+/// n in [0, owners), starts[owners] the total): the last n with starts[n] <= k.
+IGA_HD inline uint32_t ownerOf(const uint32_t* starts, size_t owners, size_t k)
+{
+  size_t lo = 0, hi = owners; // starts[lo] <= k < starts[hi]
+  while (hi - lo > 1)
+  {
+    const size_t mid = (lo + hi) / 2;
+    if (starts[mid] <= k)
+    {
+      lo = mid;
+    }
+    else
+    {
+      hi = mid;
+    }
+  }
+  return uint32_t(lo);
 }
 
 IGA_HD inline bool onScreen(const Box3<double>& box, int width, int height)
