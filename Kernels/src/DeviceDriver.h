@@ -986,25 +986,24 @@ struct Driver
       double* childPool = sized(this->ChildPool, size_t(readBack(poolOffset + allowed)));
       Node* children = sized(this->Children, 8 * allowed);
       uint8_t* keep = sized(this->KeepFlags, 8 * allowed);
-      forEach(allowed,
+      // One thread per child (a parent's eight children in one thread left most of the GPU
+      // idle).
+      forEach(8 * allowed,
         [=] IGA_HD(size_t k)
         {
-          const Node& parent = nodes[toSplit[k]];
-          const int count = shapes[parent.patch].screenValues;
-          splitMidpoint<double, 3>(viewOf(parent, pool, shapes), childPool + poolOffset[k]);
-          for (int c = 0; c < 8; ++c)
+          const Node& parent = nodes[toSplit[k / 8]];
+          const int c = int(k % 8);
+          Node child = childOf(parent, c);
+          child.coeff = poolOffset[k / 8] + size_t(c) * shapes[parent.patch].screenValues;
+          midpointChild<double, 3>(viewOf(parent, pool, shapes), c, childPool + child.coeff);
+          const auto view = viewOf(child, childPool, shapes);
+          child.info = analyzeNodeBounds(view, frame.isovalues[child.iso], frame.clip);
+          keep[k] = worthKeeping(child.info, frame) ? 1 : 0;
+          if (child.implicit && keep[k])
           {
-            Node child = childOf(parent, c);
-            child.coeff = poolOffset[k] + size_t(c) * count;
-            const auto view = viewOf(child, childPool, shapes);
-            child.info = analyzeNodeBounds(view, frame.isovalues[child.iso], frame.clip);
-            keep[8 * k + c] = worthKeeping(child.info, frame) ? 1 : 0;
-            if (child.implicit && keep[8 * k + c])
-            {
-              analyzeNodeSolver(view, child.info);
-            }
-            children[8 * k + c] = child;
+            analyzeNodeSolver(view, child.info);
           }
+          children[k] = child;
         });
       report.subdividedPatches += allowed;
       this->trackMemory();

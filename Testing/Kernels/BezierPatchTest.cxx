@@ -190,6 +190,10 @@ void checkMidpointSplit(std::mt19937& rng)
         EXPECT_LT(euclideanDifference(childView, u, view, parentU), Tolerance<T>::relative)
           << "child " << child;
       }
+      // One child alone (the GPU's thread per child) is the same, bit for bit.
+      std::vector<T> alone(static_cast<size_t>(view.valueCount()));
+      iga::midpointChild<T, Dim>(view, child, alone.data());
+      EXPECT_TRUE(std::equal(alone.begin(), alone.end(), childView.coeffs)) << "child " << child;
     }
   }
 }

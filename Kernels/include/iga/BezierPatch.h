@@ -372,12 +372,12 @@ IGA_HD void forEachLine(const PatchView<T, Dim>& patch, int dir, Fn fn)
   }
 }
 
-/// Splits a patch at parameter t of direction dir into the parts [0,t] (left) and [t,1] (right),
-/// both reparametrised to [0,1]. `left` may alias `patch` (each line is read before it is
-/// written); all three share degrees and channels.
+/// Splits a patch at parameter t of direction dir into the parts [0,t] (coefficients `left`)
+/// and [t,1] (`right`), both reparametrised to [0,1] and laid out like `patch`. Either may be
+/// null (that part is not written) and either may alias `patch`: each line is read whole before
+/// it is written.
 template<class T, int Dim>
-IGA_HD void split(const PatchView<const T, Dim>& patch, int dir, T t, const PatchView<T, Dim>& left,
-  const PatchView<T, Dim>& right)
+IGA_HD void splitParts(const PatchView<const T, Dim>& patch, int dir, T t, T* left, T* right)
 {
   const int n = patch.degree[dir];
   const int stride = patch.stride(dir);
@@ -400,10 +400,13 @@ IGA_HD void split(const PatchView<const T, Dim>& patch, int dir, T t, const Patc
             work[i * width + c] = patch.coeffs[offset + i * stride + c0 + c];
           }
         }
-        for (int c = 0; c < width; ++c)
+        for (int c = 0; c < width && left; ++c)
         {
-          left.coeffs[offset + c0 + c] = work[c];
-          right.coeffs[offset + n * stride + c0 + c] = work[n * width + c];
+          left[offset + c0 + c] = work[c];
+        }
+        for (int c = 0; c < width && right; ++c)
+        {
+          right[offset + n * stride + c0 + c] = work[n * width + c];
         }
         for (int r = 1; r <= n; ++r)
         {
@@ -414,14 +417,25 @@ IGA_HD void split(const PatchView<const T, Dim>& patch, int dir, T t, const Patc
               work[i * width + c] = s * work[i * width + c] + t * work[(i + 1) * width + c];
             }
           }
-          for (int c = 0; c < width; ++c)
+          for (int c = 0; c < width && left; ++c)
           {
-            left.coeffs[offset + r * stride + c0 + c] = work[c];
-            right.coeffs[offset + (n - r) * stride + c0 + c] = work[(n - r) * width + c];
+            left[offset + r * stride + c0 + c] = work[c];
+          }
+          for (int c = 0; c < width && right; ++c)
+          {
+            right[offset + (n - r) * stride + c0 + c] = work[(n - r) * width + c];
           }
         }
       }
     });
+}
+
+/// Both parts (see splitParts); `left` may alias `patch`. All three share degrees and channels.
+template<class T, int Dim>
+IGA_HD void split(const PatchView<const T, Dim>& patch, int dir, T t, const PatchView<T, Dim>& left,
+  const PatchView<T, Dim>& right)
+{
+  splitParts<T, Dim>(patch, dir, t, left.coeffs, right.coeffs);
 }
 
 /// Splits a patch at the parametric midpoint in every direction into 2^Dim children written to
@@ -443,6 +457,25 @@ IGA_HD void splitMidpoint(const PatchView<const T, Dim>& patch, T* out)
       const PatchView<T, Dim> upper(out + (child | (1 << d)) * size, patch.degree, patch.channels);
       split<T, Dim>(lower, d, T(0.5), lower, upper);
     }
+  }
+}
+
+/// Child `child` of splitMidpoint alone, written to `out` (patch.valueCount() values): the same
+/// operations on the same values, so the same result, with one GPU thread per child instead of
+/// one per parent.
+template<class T, int Dim>
+IGA_HD void midpointChild(const PatchView<const T, Dim>& patch, int child, T* out)
+{
+  const int size = patch.valueCount();
+  for (int i = 0; i < size; ++i)
+  {
+    out[i] = patch.coeffs[i];
+  }
+  const PatchView<const T, Dim> current(out, patch.degree, patch.channels);
+  for (int d = 0; d < Dim; ++d)
+  {
+    const bool upper = ((child >> d) & 1) != 0;
+    splitParts<T, Dim>(current, d, T(0.5), upper ? nullptr : out, upper ? out : nullptr);
   }
 }
 
