@@ -47,13 +47,16 @@ iga::Camera frame(const iga::VolumeSet<double>& set)
   return iga::frameBounds(bounds, direction, up, 30);
 }
 
-/// Frames of `set` (or of the sets `frames` returns for repetition r, for deforming data), the
-/// median time reported.
-Measurement measure(const std::string& study, const std::string& dataset,
-  const iga::VolumeSet<double>& set, double isovalue, int degree, int width, int height,
-  int threads, iga::sst::Method method, int repetitions,
-  iga::sst::Backend backend = iga::sst::Backend::Cpu,
-  const std::function<iga::VolumeSet<double>(int)>& frames = {})
+/// Renders frame r of a measurement with the settings given (data version set) into a G-buffer.
+using RenderFrame = std::function<iga::sst::FrameReport(
+  int r, const iga::sst::Settings&, const iga::sst::Method, iga::sst::GBuffer&)>;
+
+/// Frames drawn by `render`, the median time reported. Data versions as the VTK mapper sets
+/// them: one for static data (after the first frame a GPU keeps its copy, as for a camera move),
+/// a new one for every frame of `deforming` data.
+Measurement measureFrames(const std::string& study, const std::string& dataset, double isovalue,
+  int degree, int width, int height, int threads, iga::sst::Method method, int repetitions,
+  iga::sst::Backend backend, bool deforming, const RenderFrame& render)
 {
   iga::sst::Settings settings;
   settings.width = width;
@@ -61,19 +64,14 @@ Measurement measure(const std::string& study, const std::string& dataset,
   settings.threads = threads;
   settings.isovalues = { isovalue };
   settings.backend = backend;
-  const iga::Camera camera = frame(set);
   std::vector<std::pair<double, iga::sst::FrameReport>> runs;
   iga::sst::GBuffer gbuffer;
-  // Data versions as the VTK mapper sets them: one for a static set (after the first frame a
-  // GPU keeps its copy, as for a camera move), a new one for every frame of deforming data.
   static uint64_t versions = 0;
   const uint64_t version = ++versions << 20;
   for (int r = 0; r < repetitions; ++r)
   {
-    settings.dataVersion = frames ? version + uint64_t(r) : version;
-    const auto report = frames
-                          ? iga::sst::render(frames(r).patches, camera, settings, method, gbuffer)
-                          : iga::sst::render(set.patches, camera, settings, method, gbuffer);
+    settings.dataVersion = deforming ? version + uint64_t(r) : version;
+    const auto report = render(r, settings, method, gbuffer);
     runs.emplace_back(report.msTotal, report);
   }
   std::sort(
@@ -99,6 +97,23 @@ Measurement measure(const std::string& study, const std::string& dataset,
     dataset.c_str(), m.method.c_str(), m.backend.c_str(), degree, width, height, threads, m.ms,
     m.peakMB, m.covered);
   return m;
+}
+
+/// Frames of `set` (or of the sets `frames` returns for repetition r, for deforming data).
+Measurement measure(const std::string& study, const std::string& dataset,
+  const iga::VolumeSet<double>& set, double isovalue, int degree, int width, int height,
+  int threads, iga::sst::Method method, int repetitions,
+  iga::sst::Backend backend = iga::sst::Backend::Cpu,
+  const std::function<iga::VolumeSet<double>(int)>& frames = {})
+{
+  const iga::Camera camera = frame(set);
+  return measureFrames(study, dataset, isovalue, degree, width, height, threads, method,
+    repetitions, backend, bool(frames),
+    [&](int r, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+    {
+      return frames ? iga::sst::render(frames(r).patches, camera, settings, m, out)
+                    : iga::sst::render(set.patches, camera, settings, m, out);
+    });
 }
 
 std::string json(
@@ -185,7 +200,43 @@ bool gpuStudy(bool quick, std::vector<Measurement>& all,
     all.push_back(measure("gpu", smallName, blade, 0.3, 2, size.first, size.second, 0,
       Method::SharedSubdivisionTree, reps, Backend::Cuda, flapping));
   }
-  const Measurement gpu1080 = all[all.size() - 2];
+  // A deforming NURBS volume of about 10k tri-quadratic elements, handed over as its nets (each
+  // frame uploads only the moved net; the GPU extracts the elements, as for the VTK mapper's
+  // NURBS input) and as its elements (uploaded whole every frame).
+  const int spans = quick ? 10 : 22;
+  const std::string ballName = "nurbs-ball-" + std::to_string(spans * spans * spans) + "-deforming";
+  const iga::BSplinePatch<double, 3> ball = iga::makeNurbsBall<double>(spans, 1.0);
+  const iga::BezierExtraction<double, 3> ballExtraction(ball.knots, ball.degree, ball.netSize);
+  std::vector<std::vector<double>> ballNets;
+  for (int r = 0; r < 10; ++r)
+  {
+    ballNets.push_back(iga::makeNurbsBall<double>(spans, 1.0 + 0.03 * r).net);
+  }
+  auto ballVolumes = [&](int r)
+  {
+    iga::sst::NurbsVolumes volumes;
+    volumes.extractions = { &ballExtraction };
+    volumes.nets = { &ballNets[r % 10] };
+    volumes.channels = ball.channels;
+    volumes.extractionVersion = 1;
+    return volumes;
+  };
+  iga::VolumeSet<double> ballElements;
+  ballElements.patches = iga::sst::extractElements(ballVolumes(0));
+  const iga::Camera ballCamera = frame(ballElements);
+  for (bool nets : { true, false })
+  {
+    all.push_back(measureFrames("gpu", ballName + (nets ? "-nets" : "-elements"), 0.0, 2, 1920,
+      1080, 0, Method::SharedSubdivisionTree, reps, Backend::Cuda, true,
+      [&](int r, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
+      {
+        const iga::sst::View view = iga::sst::makeView(ballCamera, 1920, 1080);
+        return nets ? iga::sst::render(ballVolumes(r), view, settings, m, out)
+                    : iga::sst::render(
+                        iga::sst::extractElements(ballVolumes(r)), view, settings, m, out);
+      }));
+  }
+  const Measurement gpu1080 = all[all.size() - 4];
   const Measurement cpu1080 = measure("gpu", smallName, blade, 0.3, 2, 1920, 1080, 0,
     Method::SharedSubdivisionTree, 1, Backend::Cpu, flapping);
   all.push_back(cpu1080);

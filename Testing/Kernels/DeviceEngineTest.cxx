@@ -151,43 +151,23 @@ bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string
 #endif
 }
 
-/// A rational B-spline ball: degree 2 in each direction on 3 x 3 x 3 elements (knots 0, 0, 0,
-/// 1/3, 2/3, 1, 1, 1), control points on [-1.2, 1.2]^3 stretched along x, varying weights, and
-/// the attribute |x|^2 - 1 sampled at the control points.
+/// The rational B-spline ball of iga::makeNurbsBall on 3 x 3 x 3 elements.
 struct NurbsBall
 {
-  std::vector<double> knots[3];
-  int degree[3] = { 2, 2, 2 };
-  int netSize[3] = { 5, 5, 5 };
+  iga::BSplinePatch<double, 3> patch;
   iga::BezierExtraction<double, 3> extraction;
-  std::vector<double> net;
 
   explicit NurbsBall(double stretch)
+    : patch(iga::makeNurbsBall<double>(3, stretch))
+    , extraction(patch.knots, patch.degree, patch.netSize)
   {
-    for (auto& k : knots)
-    {
-      k = { 0, 0, 0, 1.0 / 3, 2.0 / 3, 1, 1, 1 };
-    }
-    extraction = iga::BezierExtraction<double, 3>(knots, degree, netSize);
-    const double greville[5] = { 0, 1.0 / 6, 0.5, 5.0 / 6, 1 };
-    for (int k = 0; k < 5; ++k)
-      for (int j = 0; j < 5; ++j)
-        for (int i = 0; i < 5; ++i)
-        {
-          const double x = stretch * (2.4 * greville[i] - 1.2), y = 2.4 * greville[j] - 1.2,
-                       z = 2.4 * greville[k] - 1.2;
-          const double w = 1 + 0.15 * std::sin(3 * x + 2 * y - z);
-          const double a = x * x + y * y + z * z - 1;
-          for (double v : { w * x, w * y, w * z, w, w * a })
-            net.push_back(v);
-        }
   }
 
   iga::sst::NurbsVolumes volumes(uint64_t version) const
   {
     iga::sst::NurbsVolumes v;
     v.extractions = { &extraction };
-    v.nets = { &net };
+    v.nets = { &patch.net };
     v.channels = iga::kFirstAttributeChannel + 1;
     v.extractionVersion = version;
     return v;
@@ -394,7 +374,7 @@ TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
     GTEST_SKIP() << why;
   }
   expectMatchesTheCpuDriver(s, out, report);
-  const size_t netBytes = ball.net.size() * sizeof(double);
+  const size_t netBytes = ball.patch.net.size() * sizeof(double);
   EXPECT_GT(report.uploadedBytes, netBytes); // extraction operators too
 
   // The volume deforms: only the net moves.
@@ -416,7 +396,7 @@ TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
 TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
 {
   NurbsBall ball(1.0);
-  ball.net[5 * 7 + iga::kWeightChannel] = -1;
+  ball.patch.net[5 * 7 + iga::kWeightChannel] = -1;
   iga::Camera camera;
   Settings settings;
   settings.width = settings.height = 16;
@@ -436,7 +416,7 @@ TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
       EXPECT_STREQ(e.what(), "volume 0: control point (2, 1, 0) has non-positive weight -1.000000");
     }
   }
-  ball.net.pop_back();
+  ball.patch.net.pop_back();
   try
   {
     iga::sst::extractElements(ball.volumes(0));

@@ -3,6 +3,7 @@
 
 #include "iga/BezierPatch.h"
 #include "iga/Deformation.h"
+#include "iga/NurbsSet.h"
 #include "iga/Polynomial.h"
 #include "iga/TeapotPatches.h"
 
@@ -535,6 +536,44 @@ VolumeSet<T> makeBlade(const BladeLayout& layout, double time, long first = 0, l
     set.patches.push_back(std::move(patch));
   }
   return set;
+}
+
+/// A rational B-spline ball: degree 2 in each direction on spans^3 elements (open uniform
+/// knots), control points at the Greville abscissae of [-1.2, 1.2]^3 stretched along x by
+/// `stretch`, weights 1 + 0.15 sin(3x + 2y - z), and the attribute |x|^2 - 1 sampled at the
+/// control points (one channel). Only the net depends on `stretch`: a deforming volume whose
+/// knots, and so whose extraction operators, stay.
+template<class T>
+BSplinePatch<T, 3> makeNurbsBall(int spans, double stretch)
+{
+  BSplinePatch<T, 3> ball;
+  for (int d = 0; d < 3; ++d)
+  {
+    ball.degree[d] = 2;
+    ball.netSize[d] = spans + 2;
+    ball.knots[d] = { T(0), T(0) };
+    for (int s = 0; s <= spans; ++s)
+    {
+      ball.knots[d].push_back(T(s) / T(spans));
+    }
+    ball.knots[d].insert(ball.knots[d].end(), { T(1), T(1) });
+  }
+  const std::vector<T> greville = grevilleAbscissae(ball.knots[0], 2, spans + 2);
+  ball.channels = kFirstAttributeChannel + 1;
+  for (int k = 0; k < spans + 2; ++k)
+    for (int j = 0; j < spans + 2; ++j)
+      for (int i = 0; i < spans + 2; ++i)
+      {
+        const double x = stretch * (2.4 * double(greville[i]) - 1.2),
+                     y = 2.4 * double(greville[j]) - 1.2, z = 2.4 * double(greville[k]) - 1.2;
+        const double w = 1 + 0.15 * std::sin(3 * x + 2 * y - z);
+        const double a = x * x + y * y + z * z - 1;
+        for (double v : { w * x, w * y, w * z, w, w * a })
+        {
+          ball.net.push_back(T(v));
+        }
+      }
+  return ball;
 }
 
 } // namespace iga
