@@ -924,9 +924,8 @@ struct Driver
         {
           if (nodes[n].implicit)
           {
-            int range[4];
-            pixelRange(nodes[n].info.box, frame.width, frame.height, range);
-            split[n] = range[0] <= range[1] && range[2] <= range[3] ? Split : Keep;
+            split[n] =
+              coveredPixelCount(nodes[n].info.box, frame.width, frame.height) > 0 ? Split : Keep;
           }
           if (split[n] == Split && nodes[n].level >= frame.maxSubdivisionDepth)
           {

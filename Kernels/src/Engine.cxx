@@ -248,15 +248,11 @@ private:
     // (pixel, initial node) pairs, grouped by pixel with the nodes in order.
     const Buffer<Node>& initial = this->Plan.initialNodes;
     Array<uint32_t> pairStart(initial.size() + 1, 0);
-    parallelFor(initial.size(), this->Plan.threads,
-      [&](size_t begin, size_t end)
-      {
-        for (size_t n = begin; n < end; ++n)
-        {
-          forEachCoveredPixel(initial[n].info.box, this->Config.width, this->Config.height,
-            [&](size_t) { ++pairStart[n]; });
-        }
-      });
+    for (size_t n = 0; n < initial.size(); ++n)
+    {
+      pairStart[n] =
+        coveredPixelCount(initial[n].info.box, this->Config.width, this->Config.height);
+    }
     Array<Tuple> pairs(exclusiveScan(pairStart));
     parallelFor(initial.size(), this->Plan.threads,
       [&](size_t begin, size_t end)
@@ -514,9 +510,9 @@ private:
       {
         if (nodes[n].implicit)
         {
-          int range[4];
-          pixelRange(nodes[n].info.box, this->Config.width, this->Config.height, range);
-          split[n] = range[0] <= range[1] && range[2] <= range[3] ? 1 : 0;
+          split[n] =
+            coveredPixelCount(nodes[n].info.box, this->Config.width, this->Config.height) > 0 ? 1
+                                                                                              : 0;
         }
         if (split[n] && nodes[n].level >= this->Config.maxSubdivisionDepth)
         {
