@@ -30,11 +30,17 @@ def place_camera(view, camera=CAMERA):
     view.CameraViewAngle = 30
 
 
-def show_isosurface(source, view, camera=CAMERA):
+def show_surface(source, view, array, isovalue):
+    """source drawn by the "IGA Isosurface" representation: point array `array` = isovalue."""
     display = simple.Show(source, view)
     display.SetRepresentationType("IGA Isosurface")
-    display.IGASurfaceArray = ["POINTS", "temperature"]
-    display.IGAIsovalues = [0.0]
+    display.IGASurfaceArray = ["POINTS", array]
+    display.IGAIsovalues = [isovalue]
+    return display
+
+
+def show_isosurface(source, view, camera=CAMERA):
+    display = show_surface(source, view, "temperature", 0.0)
     display.Specular = 0.3
     display.SpecularPower = 30.0
     simple.ColorBy(display, ("POINTS", "radius"))

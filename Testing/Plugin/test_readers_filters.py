@@ -39,10 +39,7 @@ for reader in (gismo, geopdes):
 
 # Drawn by the representation: the isosurface z = 0.5 of the G+Smo file covers pixels.
 view = simple.CreateRenderView(ViewSize=[200, 160])
-display = simple.Show(gismo, view)
-display.SetRepresentationType("IGA Isosurface")
-display.IGASurfaceArray = ["POINTS", "z"]
-display.IGAIsovalues = [0.5]
+iga_scene.show_surface(gismo, view, "z", 0.5)
 simple.ResetCamera(view)
 shot = os.path.join(work_dir, "gismo_quarter_ring.png")
 simple.SaveScreenshot(shot, view, ImageResolution=[200, 160], TransparentBackground=0)
@@ -61,10 +58,7 @@ simple.Hide(gismo, view)
 def coverage(source, name):
     for shown in (gismo, group):
         simple.Hide(shown, view)
-    shown = simple.Show(source, view)
-    shown.SetRepresentationType("IGA Isosurface")
-    shown.IGASurfaceArray = ["POINTS", "z"]
-    shown.IGAIsovalues = [0.5]
+    iga_scene.show_surface(source, view, "z", 0.5)
     png = os.path.join(work_dir, name + ".png")
     simple.SaveScreenshot(png, view, ImageResolution=[200, 160], TransparentBackground=0)
     (w, h), px = iga_scene.read_rgb(png)
