@@ -30,10 +30,18 @@ size_t partsFor(size_t patches, int threads)
   return std::min(patches, size_t(threads) * 8);
 }
 
-bool attributesFit(int channels, const Settings& s)
+/// Empty when control points of `channels` values hold the settings' surface and colour
+/// attributes; otherwise the problem, to follow the name of what has them.
+std::string attributeProblem(int channels, const Settings& s)
 {
-  return s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels &&
-         (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels);
+  if (s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels &&
+      (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels))
+  {
+    return std::string();
+  }
+  return "has " + std::to_string(channels - kFirstAttributeChannel) +
+         " attributes; the surface uses " + std::to_string(s.surfaceAttribute) + ", the colour " +
+         std::to_string(s.colorAttribute);
 }
 
 } // namespace
@@ -110,12 +118,10 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
 
 void checkAttributes(int channels, const Settings& s, const std::string& name)
 {
-  if (!attributesFit(channels, s))
+  const std::string problem = attributeProblem(channels, s);
+  if (!problem.empty())
   {
-    throw std::invalid_argument(name + " has " + std::to_string(channels - kFirstAttributeChannel) +
-                                " attributes; the surface uses " +
-                                std::to_string(s.surfaceAttribute) + ", the colour " +
-                                std::to_string(s.colorAttribute));
+    throw std::invalid_argument(name + " " + problem);
   }
 }
 
@@ -144,17 +150,11 @@ double checkPatches(const std::vector<BezierVolume<double>>& patches, const Sett
           part.problem = "patch " + std::to_string(p) + ": " + problem;
           return;
         }
-        if (!attributesFit(patch.channels, s))
+        const std::string attributes = attributeProblem(patch.channels, s);
+        if (!attributes.empty())
         {
-          try
-          {
-            checkAttributes(patch.channels, s, "patch " + std::to_string(p));
-          }
-          catch (const std::invalid_argument& e)
-          {
-            part.problem = e.what();
-            return;
-          }
+          part.problem = "patch " + std::to_string(p) + " " + attributes;
+          return;
         }
         double lo, hi;
         rationalRange(patch, attribute, kWeightChannel, lo, hi);
