@@ -242,6 +242,14 @@ std::vector<double> vtkIGANurbsData::GetTimeSteps() const
   return this->Contents->Times;
 }
 
+std::shared_ptr<const iga::BezierExtraction<double, 3>> vtkIGANurbsData::GetVolumeExtraction(
+  int volume) const
+{
+  const auto& extractions = this->Contents->VolumeExtractions;
+  return volume >= 0 && volume < static_cast<int>(extractions.size()) ? extractions[volume]
+                                                                      : nullptr;
+}
+
 const std::vector<double>& vtkIGANurbsData::GetControlNet(int step, int patch) const
 {
   static const std::vector<double> empty;

@@ -33,7 +33,8 @@
 #include "IGAViewFiltersModule.h" // for export macro
 #include "iga/NurbsSet.h"         // for NurbsSet
 #include "vtkObject.h"
-#include "vtkSmartPointer.h" // for return value
+#include "vtkSmartPointer.h"  // for return value
+#include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
 
 #include <memory> // for shared_ptr
 #include <string> // for error messages
@@ -65,6 +66,9 @@ public:
   std::vector<double> GetTimeSteps() const;
   /// Control net of one patch at one step (empty when out of range).
   const std::vector<double>& GetControlNet(int step, int patch) const;
+  /// The Bézier extraction of volume `volume` (null when out of range), shared, immutable.
+  VTK_WRAPEXCLUDE std::shared_ptr<const iga::BezierExtraction<double, 3>> GetVolumeExtraction(
+    int volume) const;
   /// Number of Bézier cells ToUnstructuredGrid() produces.
   vtkIdType GetNumberOfBezierCells() const;
 

@@ -72,7 +72,7 @@ void moveControlPoints(vtkMatrix4x4* matrix, double* points, size_t count, int c
 /// The NURBS form of an input whose cells are the Bézier elements of NURBS volumes.
 struct NurbsForm
 {
-  std::vector<std::unique_ptr<iga::BezierExtraction<double, 3>>> Extractions;
+  std::vector<std::shared_ptr<const iga::BezierExtraction<double, 3>>> Extractions;
   std::vector<double> ExtractionKey; ///< degrees, net sizes and knots the operators belong to
   uint64_t ExtractionVersion = 0;
   std::vector<std::vector<double>> Nets;  ///< as the input has them
@@ -114,7 +114,7 @@ bool collectNurbs(vtkDataObject* input, const iga::VolumeSet<double>& cells, Nur
   {
     return false;
   }
-  // Operators are rebuilt, under a new version, only when the knots change.
+  // The data's extraction operators; a new version only when the knots change.
   std::vector<double> key;
   for (const auto& volume : set.volumes)
   {
@@ -126,15 +126,14 @@ bool collectNurbs(vtkDataObject* input, const iga::VolumeSet<double>& cells, Nur
       key.insert(key.end(), volume.knots[d].begin(), volume.knots[d].end());
     }
   }
+  form.Extractions.clear();
+  for (size_t v = 0; v < set.volumes.size(); ++v)
+  {
+    form.Extractions.push_back(data->GetVolumeExtraction(int(v)));
+  }
   if (key != form.ExtractionKey || !form.ExtractionVersion)
   {
     static std::atomic<uint64_t> versions{ 0 };
-    form.Extractions.clear();
-    for (const auto& volume : set.volumes)
-    {
-      form.Extractions.push_back(std::make_unique<iga::BezierExtraction<double, 3>>(
-        volume.knots, volume.degree, volume.netSize));
-    }
     form.ExtractionKey.swap(key);
     form.ExtractionVersion = ++versions;
   }
