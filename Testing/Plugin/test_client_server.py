@@ -54,6 +54,12 @@ try:
     print(f"client-server: rendered on the server, image difference to the serial baseline "
           f"{difference:.3f} (threshold 10)")
     simple.Disconnect()
+except Exception:
+    # The server's own words (e.g. xvfb refusing its render window) belong in the test's output,
+    # where the retry on "bad X server connection" looks for them.
+    with open(server_log) as log:
+        sys.stderr.write("pvserver output:\n" + log.read())
+    raise
 finally:
     server.terminate()
     try:
