@@ -135,7 +135,7 @@ std::string json(
         << ", \"unresolvedPixels\": " << m.unresolved
         << ", \"uploadedMB\": " << r.uploadedBytes / 1048576.0
         << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
-        << ", \"stagesMs\": {\"setup\": " << r.msSetup
+        << ", \"stagesMs\": {\"setup\": " << r.msSetup << ", \"input\": " << r.msInput
         << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution
         << ", \"overlap\": " << r.msOverlap << ", \"subdivision\": " << r.msSubdivision
         << ", \"compaction\": " << r.msCompaction << ", \"gbuffer\": " << r.msGBuffer << "}}"

@@ -5,12 +5,13 @@
 // Thrust's sequential host system, which checks the driver's logic on machines without a GPU.
 #pragma once
 
+#include "DeviceRuntime.h"
 #include "FramePlan.h"
+#include "ParallelFor.h"
 
 #include <thrust/binary_search.h>
 #include <thrust/copy.h>
 #include <thrust/count.h>
-#include <thrust/device_vector.h>
 #include <thrust/execution_policy.h>
 #include <thrust/fill.h>
 #include <thrust/for_each.h>
@@ -19,10 +20,6 @@
 #include <thrust/reduce.h>
 #include <thrust/scan.h>
 #include <thrust/sort.h>
-#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
-#include <thrust/system/cuda/execution_policy.h>
-#include <thrust/system/cuda/memory.h>
-#endif
 
 #include <algorithm>
 #include <chrono>
@@ -37,76 +34,9 @@ namespace device
 {
 
 template<class T>
-using Array = thrust::device_vector<T>;
-
-#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
-/// Thrust's temporary storage (sort, scan, copy_if, reduce) from device blocks kept across calls
-/// and frames, so that steady-state frames do not call cudaMalloc. Frames are serialised (one
-/// engine per process behind a mutex), and so are its uses.
-class TemporaryPool
-{
-public:
-  using value_type = char;
-
-  char* allocate(std::ptrdiff_t bytes)
-  {
-    const auto free = this->Free.lower_bound(bytes);
-    if (free != this->Free.end())
-    {
-      char* block = free->second;
-      this->Used.emplace(block, free->first);
-      this->Free.erase(free);
-      return block;
-    }
-    char* block = thrust::cuda::malloc<char>(size_t(bytes)).get(); // throws bad_alloc
-    this->Used.emplace(block, bytes);
-    return block;
-  }
-
-  void deallocate(char* block, size_t)
-  {
-    const auto used = this->Used.find(block);
-    this->Free.emplace(used->second, block);
-    this->Used.erase(used);
-  }
-
-  /// Gives the free blocks back to the device (after an out-of-memory error).
-  void trim()
-  {
-    for (const auto& free : this->Free)
-    {
-      thrust::cuda::free(thrust::cuda::pointer<char>(free.second));
-    }
-    this->Free.clear();
-  }
-
-private:
-  std::multimap<std::ptrdiff_t, char*> Free;
-  std::map<char*, std::ptrdiff_t> Used;
-};
-
-inline TemporaryPool& temporaryPool()
-{
-  static TemporaryPool pool;
-  return pool;
-}
-
-/// The execution policy of every device algorithm: the device, with pooled temporaries.
-inline auto exec()
-{
-  return thrust::cuda::par(temporaryPool());
-}
-#else
-inline auto exec()
-{
-  return thrust::device;
-}
-#endif
-
-template<class T>
 T* raw(Array<T>& v)
 {
-  return thrust::raw_pointer_cast(v.data());
+  return v.data();
 }
 
 /// Sizes an array for this frame. Shrinking keeps the allocation, so steady-state frames reuse
@@ -128,13 +58,14 @@ void forEach(size_t n, Fn fn)
   }
 }
 
-/// Exclusive scan of uint32 counts in place with one extra slot at the end; returns the total.
-/// Copies device memory to host memory.
+/// Copies device memory to host memory (the host waits for the work before it).
 template<class T>
 void download(const T* first, size_t count, T* host)
 {
-  const auto from = thrust::device_pointer_cast(first);
-  thrust::copy(from, from + count, host);
+  if (count > 0)
+  {
+    copyToHost(host, first, count * sizeof(T));
+  }
 }
 
 template<class T>
@@ -145,6 +76,7 @@ T readBack(const T* where)
   return value;
 }
 
+/// Exclusive scan of uint32 counts in place with one extra slot at the end; returns the total.
 inline size_t scanCounts(Array<uint32_t>& counts, size_t n)
 {
   uint32_t* c = raw(counts);
@@ -158,6 +90,13 @@ size_t countIf(size_t n, Pred pred)
 {
   return size_t(thrust::count_if(
     exec(), thrust::counting_iterator<size_t>(0), thrust::counting_iterator<size_t>(n), pred));
+}
+
+/// Threads for a host copy of `bytes`: one per MiB at most, since starting a thread costs about
+/// as much as copying a few hundred KiB.
+inline int copyThreads(size_t bytes, int threads)
+{
+  return std::max(1, std::min(threads, int(bytes >> 20)));
 }
 
 /// What the driver knows of an input patch: its shape and where its data lie on the device.
@@ -260,6 +199,8 @@ struct Driver
     const auto start = std::chrono::steady_clock::now();
     report.uploadedBytes = 0;
     this->uploadPatches(patches, settings, report);
+    report.msInput =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     this->draw(view, settings, out, report, start);
   }
 
@@ -269,6 +210,8 @@ struct Driver
     const auto start = std::chrono::steady_clock::now();
     report.uploadedBytes = 0;
     this->uploadNurbs(volumes, settings, report);
+    report.msInput =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     this->draw(view, settings, out, report, start);
   }
 
@@ -283,17 +226,25 @@ struct Driver
     this->Report = &report;
     this->Settings_ = &settings;
     this->Peak = 0;
+    unsigned long long* unresolvedTuples = sized(this->UnresolvedTuples, 2);
+    thrust::fill(exec(), unresolvedTuples, unresolvedTuples + 2, 0ull);
+    sized(this->Totals, 4);
     report.msSetup = ms(start);
 
-    Clock::time_point stage = Clock::now();
+    this->Stages.begin();
     this->sweepAndGroup();
-    report.msSweepAndGroup = ms(stage);
+    this->Stages.end(report.msSweepAndGroup);
     this->sharedSubdivisionTrees();
-    stage = Clock::now();
+    this->Stages.finish();
+    const Clock::time_point stage = Clock::now();
     this->fillGBuffer(view, settings, out);
     report.msGBuffer = ms(stage);
     report.unresolvedPixels =
       thrust::count(exec(), this->Unresolved.begin(), this->Unresolved.end(), 1);
+    unsigned long long tallies[2];
+    download(unresolvedTuples, 2, tallies);
+    report.unresolvedAtDepthCap = size_t(tallies[0]);
+    report.unresolvedAtBudget = size_t(tallies[1]);
     report.peakBytes = this->Peak;
     report.msTotal = ms(start);
   }
@@ -330,15 +281,20 @@ struct Driver
       world += size_t(v.valueCount());
       screen += size_t(shapes[p].screenValues);
     }
-    std::vector<double> coefficients(world);
-    for (size_t p = 0; p < patches.size(); ++p)
-    {
-      const auto v = patches[p].view();
-      std::copy(v.coeffs, v.coeffs + v.valueCount(), coefficients.begin() + shapes[p].world);
-    }
+    // Gathered on all threads into page-locked memory, which the bus reads at full speed.
+    double* staged = this->stage<double>(world);
+    parallelFor(patches.size(), copyThreads(world * sizeof(double), threadCount(settings)),
+      [&](size_t begin, size_t end)
+      {
+        for (size_t p = begin; p < end; ++p)
+        {
+          const auto v = patches[p].view();
+          std::copy(v.coeffs, v.coeffs + v.valueCount(), staged + shapes[p].world);
+        }
+      });
     this->setShapes(shapes, report);
-    this->World = coefficients;
-    report.uploadedBytes += coefficients.size() * sizeof(double);
+    this->World.upload(staged, world);
+    report.uploadedBytes += world * sizeof(double);
     this->ExtractionVersion = 0; // the device holds patches now, not extractions
     this->FromNurbs = false;
     this->SurfaceAttribute = settings.surfaceAttribute;
@@ -440,15 +396,15 @@ struct Driver
     }
     this->DataVersion = 0;
     checkAttributes(volumes.channels, settings, "volume 0");
-    std::vector<double> nets(this->NetValues);
+    double* nets = this->stage<double>(this->NetValues);
     size_t at = 0;
     for (const std::vector<double>* net : volumes.nets)
     {
-      std::copy(net->begin(), net->end(), nets.begin() + at);
+      std::copy(net->begin(), net->end(), nets + at);
       at += net->size();
     }
-    this->Nets = nets;
-    report.uploadedBytes += nets.size() * sizeof(double);
+    this->Nets.upload(nets, this->NetValues);
+    report.uploadedBytes += this->NetValues * sizeof(double);
 
     // Extraction, one element per thread; a scratch block of twice its size each.
     const size_t elementCount = this->Elements.size();
@@ -511,8 +467,11 @@ struct Driver
     this->Frame = plan.frame;
     this->Frame.isovalues = raw(this->Isovalues);
     this->PixelCount = size_t(settings.width) * settings.height;
-    this->Unresolved.assign(this->PixelCount, 0);
-    this->BestDepth.assign(this->PixelCount, std::numeric_limits<double>::infinity());
+    this->Unresolved.resize(this->PixelCount);
+    thrust::fill(exec(), this->Unresolved.begin(), this->Unresolved.end(), uint8_t(0));
+    this->BestDepth.resize(this->PixelCount);
+    thrust::fill(exec(), this->BestDepth.begin(), this->BestDepth.end(),
+      std::numeric_limits<double>::infinity());
     this->HitCount = 0;
 
     const size_t patchCount = this->Shapes.size();
@@ -610,8 +569,11 @@ struct Driver
         }
       });
     this->InitialPool.resize(this->ScreenValues + parts.initialPool.size());
-    thrust::copy(parts.initialPool.begin(), parts.initialPool.end(),
-      this->InitialPool.begin() + this->ScreenValues);
+    if (!parts.initialPool.empty())
+    {
+      copyToDevice(raw(this->InitialPool) + this->ScreenValues, parts.initialPool.data(),
+        parts.initialPool.size() * sizeof(double));
+    }
     report.uploadedBytes += straddlingCount * sizeof(uint32_t) +
                             parts.initialNodes.size() * sizeof(Node) +
                             parts.initialPool.size() * sizeof(double);
@@ -663,14 +625,14 @@ struct Driver
 
   void sharedSubdivisionTrees()
   {
-    using Clock = std::chrono::steady_clock;
     const size_t pixels = this->PixelCount;
     thrust::copy(
       exec(), this->ItemOffsets.begin(), this->ItemOffsets.end() - 1, sized(this->Cursor, pixels));
     sized(this->Ends, pixels);
+    uint32_t* certified = sized(this->PixelSolves, pixels);
+    thrust::fill(exec(), certified, certified + pixels, uint32_t(0));
     for (;;)
     {
-      const Clock::time_point stage = Clock::now();
       const Node* initial = raw(this->InitialNodes);
       const uint32_t* items = raw(this->ItemNodes);
       const uint32_t* offsets = raw(this->ItemOffsets);
@@ -684,8 +646,7 @@ struct Driver
         exec(), thrust::counting_iterator<size_t>(0), thrust::counting_iterator<size_t>(pixels),
         [=] IGA_HD(size_t p) { return size_t(ends[p] - cursor[p]); }, size_t(0),
         thrust::plus<size_t>());
-      this->Report->msSweepAndGroup +=
-        std::chrono::duration<double, std::milli>(Clock::now() - stage).count();
+      this->Stages.end(this->Report->msSweepAndGroup);
       if (total == 0)
       {
         break;
@@ -694,35 +655,50 @@ struct Driver
       this->Cursor.swap(this->Ends);
       sized(this->Ends, pixels);
     }
+    this->Report->newtonSolves +=
+      thrust::reduce(exec(), certified, certified + pixels, size_t(0), thrust::plus<size_t>());
   }
 
   /// Gathers the nodes flagged in `take` (with their coefficients) into Nodes and Pool, in
-  /// order, followed by `extra` flagged nodes of a second source. Returns the node count.
+  /// order, followed by the flagged nodes of a second source; Index holds the new index of each.
+  /// Returns the node count. `alsoRead`, when given, is a device value read back in the same
+  /// wait as the count, into `alsoReadValue`.
   size_t gatherNodes(const Node* first, const double* firstPool, const uint8_t* firstTake,
     size_t firstCount, const Node* second, const double* secondPool, const uint8_t* secondTake,
-    size_t secondCount, bool asRound)
+    size_t secondCount, bool asRound, const uint32_t* alsoRead = nullptr,
+    size_t* alsoReadValue = nullptr)
   {
     const size_t count = firstCount + secondCount;
     const PatchShape* shapes = raw(this->Shapes);
     uint32_t* index = sized(this->Index, count + 1);
-    forEach(count, [=] IGA_HD(size_t n)
-      { index[n] = n < firstCount ? firstTake[n] : secondTake[n - firstCount]; });
-    const size_t kept = scanCounts(this->Index, count);
-    uint64_t* offsets = sized(this->Offsets, kept + 1);
-    Node* nodes = sized(this->NextNodes, kept);
+    uint64_t* offsets = sized(this->Offsets, count + 1);
     forEach(count,
       [=] IGA_HD(size_t n)
       {
         const bool fromFirst = n < firstCount;
-        if (fromFirst ? firstTake[n] : secondTake[n - firstCount])
-        {
-          const Node& node = fromFirst ? first[n] : second[n - firstCount];
-          nodes[index[n]] = node;
-          offsets[index[n]] = uint64_t(shapes[node.patch].screenValues);
-        }
+        const bool take = fromFirst ? firstTake[n] : secondTake[n - firstCount];
+        const Node& node = fromFirst ? first[n] : second[n - firstCount];
+        index[n] = take ? 1 : 0;
+        offsets[n] = take ? uint64_t(shapes[node.patch].screenValues) : 0;
       });
-    thrust::exclusive_scan(exec(), offsets, offsets + kept + 1, offsets);
-    const size_t values = size_t(readBack(offsets + kept));
+    thrust::exclusive_scan(exec(), index, index + count + 1, index);
+    thrust::exclusive_scan(exec(), offsets, offsets + count + 1, offsets);
+    uint64_t* totals = raw(this->Totals);
+    forEach(1,
+      [=] IGA_HD(size_t)
+      {
+        totals[0] = index[count];
+        totals[1] = offsets[count];
+        totals[2] = alsoRead ? *alsoRead : 0;
+      });
+    uint64_t read[3];
+    download(totals, 3, read);
+    const size_t kept = size_t(read[0]), values = size_t(read[1]);
+    if (alsoReadValue)
+    {
+      *alsoReadValue = size_t(read[2]);
+    }
+    Node* nodes = sized(this->NextNodes, kept);
     double* pool = sized(this->NextPool, values);
     forEach(count,
       [=] IGA_HD(size_t n)
@@ -732,15 +708,14 @@ struct Driver
         {
           return;
         }
-        const uint32_t k = index[n];
-        Node& node = nodes[k];
+        Node node = fromFirst ? first[n] : second[n - firstCount];
         const double* source = (fromFirst ? firstPool : secondPool) + node.coeff;
         const int valueCount = shapes[node.patch].screenValues;
         for (int v = 0; v < valueCount; ++v)
         {
-          pool[offsets[k] + v] = source[v];
+          pool[offsets[n] + v] = source[v];
         }
-        node.coeff = offsets[k];
+        node.coeff = offsets[n];
         if (asRound)
         {
           node.initial = uint32_t(n);
@@ -753,6 +728,7 @@ struct Driver
           analyzeNodeSolver(view, node.info);
           analyzeNodeCentre(view, node.info);
         }
+        nodes[index[n]] = node;
       });
     this->Nodes.swap(this->NextNodes);
     this->Pool.swap(this->NextPool);
@@ -760,18 +736,18 @@ struct Driver
   }
 
   /// The SST loop over one round of SAG groups: overlap, solution, subdivision and compaction
-  /// until no tuple and no implicit node is left.
+  /// until no tuple and no implicit node is left. The host waits for the device four times an
+  /// iteration, each time for sizes it must allocate: the overlap's candidates and tuples, the
+  /// subdivision's children (with the solution's hits), and the compaction's nodes and tuples.
   void solveRound()
   {
-    using Clock = std::chrono::steady_clock;
-    auto ms = [](Clock::time_point t)
-    { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     FrameReport& report = *this->Report;
     const Settings& settings = *this->Settings_;
     const FrameConstants frame = this->Frame;
     const size_t pixels = this->PixelCount;
     const PatchShape* shapes = raw(this->Shapes);
     const bool firstHit = frame.firstHitOnly;
+    uint64_t* totals = raw(this->Totals);
 
     // This round's initial nodes, all implicit.
     {
@@ -806,7 +782,6 @@ struct Driver
 
       // Overlap stage: implicit nodes that are ready become tuples of the pixels whose centres
       // their boxes cover (members of the round, not behind a nearer hit).
-      Clock::time_point stage = Clock::now();
       {
         // Candidates: the covered pixels of the ready nodes, one thread each; those the round
         // takes become tuples, in node and row order.
@@ -856,53 +831,36 @@ struct Driver
         tupleCount += added;
       }
       report.maxTuples = std::max(report.maxTuples, tupleCount);
-      report.msOverlap += ms(stage);
+      this->Stages.end(report.msOverlap);
 
       // Solution stage: each pixel's tuples in order of nearest depth by one thread, so that in
-      // first-hit mode a hit drops the tuples behind it at once.
-      stage = Clock::now();
+      // first-hit mode a hit drops the tuples behind it at once. The hits are appended once the
+      // subdivision stage has read their count back.
       Tuple* tuples = raw(this->Tuples);
       uint8_t* outcome = sized(this->Outcomes, tupleCount);
       double* solution = sized(this->Solution, 4 * tupleCount);
+      thrust::sort(exec(), tuples, tuples + tupleCount, TupleOrder{ nodes });
       {
-        thrust::sort(exec(), tuples, tuples + tupleCount, TupleOrder{ nodes });
         uint32_t* start = sized(this->PixelStart, pixels + 1);
         pixelOffsets(tuples, tupleCount, pixels, start);
         double* bestDepth = raw(this->BestDepth);
-        uint32_t* certified = sized(this->PixelSolves, pixels);
+        uint32_t* certified = raw(this->PixelSolves);
         forEach(pixels,
           [=] IGA_HD(size_t pixel)
           {
-            certified[pixel] = 0;
             bestDepth[pixel] = solvePixelTuples(
               tuples, start[pixel], start[pixel + 1], uint32_t(pixel), nodes,
               [=](const Node& node) { return viewOf(node, pool, shapes); }, bestDepth[pixel], frame,
               outcome, solution, certified[pixel]);
           });
-        report.newtonSolves +=
-          thrust::reduce(exec(), certified, certified + pixels, size_t(0), thrust::plus<size_t>());
-        // Append the roots.
-        uint32_t* hitIndex = sized(this->Counts, tupleCount + 1);
-        forEach(tupleCount, [=] IGA_HD(size_t t) { hitIndex[t] = outcome[t] == Solved ? 1 : 0; });
-        const size_t newHits = scanCounts(this->Counts, tupleCount);
-        this->Hits.resize(this->HitCount + newHits);
-        RawHit* hits = raw(this->Hits) + this->HitCount;
-        forEach(tupleCount,
-          [=] IGA_HD(size_t t)
-          {
-            if (outcome[t] == Solved)
-            {
-              hits[hitIndex[t]] = rawHitOf(
-                tuples[t].pixel, nodes[tuples[t].node], &solution[4 * t], solution[4 * t + 3]);
-            }
-          });
-        this->HitCount += newHits;
       }
-      report.msSolution += ms(stage);
+      uint32_t* hitIndex = sized(this->HitIndex, tupleCount + 1);
+      forEach(tupleCount, [=] IGA_HD(size_t t) { hitIndex[t] = outcome[t] == Solved ? 1 : 0; });
+      thrust::exclusive_scan(exec(), hitIndex, hitIndex + tupleCount + 1, hitIndex);
+      this->Stages.end(report.msSolution);
 
       // Subdivision stage: split the nodes some pixel failed on, and the implicit ones whose
       // boxes still cover pixels.
-      stage = Clock::now();
       const double* best = raw(this->BestDepth);
       uint8_t* split = sized(this->SplitFlags, nodeCount);
       thrust::fill(exec(), split, split + nodeCount, uint8_t(Keep));
@@ -919,6 +877,11 @@ struct Driver
             split[tuples[t].node] = Split;
           }
         });
+      // Per node in order: whether it is to be split, and the running totals of its children's
+      // bytes and coefficients.
+      uint32_t* splitIndex = sized(this->SplitIndex, nodeCount + 1);
+      uint64_t* childBytes = sized(this->ChildBytes, nodeCount);
+      uint64_t* childValues = sized(this->ChildValues, nodeCount + 1);
       forEach(nodeCount,
         [=] IGA_HD(size_t n)
         {
@@ -931,38 +894,57 @@ struct Driver
           {
             split[n] = AtDepthCap; // its pixels stay unresolved
           }
+          const bool splits = split[n] == Split;
+          const uint64_t values = uint64_t(8) * shapes[nodes[n].patch].screenValues;
+          splitIndex[n] = splits ? 1 : 0;
+          childValues[n] = splits ? values : 0;
+          childBytes[n] = splits ? values * sizeof(double) + 8 * sizeof(Node) : 0;
+        });
+      thrust::exclusive_scan(exec(), splitIndex, splitIndex + nodeCount + 1, splitIndex);
+      thrust::exclusive_scan(exec(), childValues, childValues + nodeCount + 1, childValues);
+      thrust::inclusive_scan(exec(), childBytes, childBytes + nodeCount, childBytes);
+      // Memory cap: split as many nodes as the budget allows, in order (the nodes before the
+      // first whose children would pass it); implicit nodes beyond it become tuples in the next
+      // iteration instead, explicit ones leave their pixels unresolved.
+      const size_t base = this->Pool.size() * sizeof(double) + tupleCount * sizeof(Tuple);
+      const uint64_t room =
+        base > settings.memoryBudgetBytes ? 0 : uint64_t(settings.memoryBudgetBytes - base);
+      forEach(1,
+        [=] IGA_HD(size_t)
+        {
+          size_t lo = 0, hi = nodeCount;
+          while (lo < hi)
+          {
+            const size_t mid = (lo + hi) / 2;
+            if (childBytes[mid] <= room)
+            {
+              lo = mid + 1;
+            }
+            else
+            {
+              hi = mid;
+            }
+          }
+          totals[0] = splitIndex[lo]; // nodes split
+          totals[1] = childValues[lo];
+          totals[2] = hitIndex[tupleCount];
+          totals[3] = lo;
         });
       uint32_t* toSplit = sized(this->ToSplit, nodeCount);
-      const size_t splitCount = thrust::copy_if(exec(), thrust::counting_iterator<uint32_t>(0),
-                                  thrust::counting_iterator<uint32_t>(uint32_t(nodeCount)), split,
-                                  toSplit, [] IGA_HD(uint8_t flag) { return flag == Split; }) -
-                                toSplit;
-      // Memory cap: split as many nodes as the budget allows, in order; implicit nodes beyond
-      // it become tuples in the next iteration instead, explicit ones leave their pixels
-      // unresolved.
-      uint64_t* childBytes = sized(this->Offsets, splitCount + 1);
-      forEach(splitCount,
-        [=] IGA_HD(size_t k)
-        {
-          childBytes[k] =
-            uint64_t(8) * shapes[nodes[toSplit[k]].patch].screenValues * sizeof(double) +
-            8 * sizeof(Node);
-        });
-      thrust::inclusive_scan(exec(), childBytes, childBytes + splitCount, childBytes);
-      const size_t base = this->Pool.size() * sizeof(double) + tupleCount * sizeof(Tuple);
-      const size_t budget = settings.memoryBudgetBytes;
-      const size_t allowed = base > budget
-                               ? 0
-                               : size_t(thrust::upper_bound(exec(), childBytes,
-                                          childBytes + splitCount, uint64_t(budget - base)) -
-                                        childBytes);
       uint8_t* deferred = sized(this->Deferred, nodeCount);
-      thrust::fill(exec(), deferred, deferred + nodeCount, uint8_t(0));
-      forEach(splitCount - allowed,
-        [=] IGA_HD(size_t k)
+      forEach(nodeCount,
+        [=] IGA_HD(size_t n)
         {
-          const uint32_t n = toSplit[allowed + k];
-          if (nodes[n].implicit)
+          deferred[n] = 0;
+          if (split[n] != Split)
+          {
+            return;
+          }
+          if (n < totals[3])
+          {
+            toSplit[splitIndex[n]] = uint32_t(n);
+          }
+          else if (nodes[n].implicit)
           {
             nodes[n].overBudget = true; // ready for tuples next time
             deferred[n] = 1;
@@ -973,16 +955,24 @@ struct Driver
             split[n] = OverBudget;
           }
         });
-      uint32_t* firstChild = sized(this->FirstChild, nodeCount);
-      uint64_t* poolOffset = sized(this->Offsets, allowed + 1);
-      forEach(allowed,
-        [=] IGA_HD(size_t k)
+      uint64_t read[3];
+      download(totals, 3, read);
+      const size_t allowed = size_t(read[0]), newHits = size_t(read[2]);
+
+      this->Hits.resize(this->HitCount + newHits);
+      RawHit* hits = raw(this->Hits) + this->HitCount;
+      forEach(tupleCount,
+        [=] IGA_HD(size_t t)
         {
-          poolOffset[k] = uint64_t(8) * shapes[nodes[toSplit[k]].patch].screenValues;
-          firstChild[toSplit[k]] = uint32_t(8 * k);
+          if (outcome[t] == Solved)
+          {
+            hits[hitIndex[t]] = rawHitOf(
+              tuples[t].pixel, nodes[tuples[t].node], &solution[4 * t], solution[4 * t + 3]);
+          }
         });
-      thrust::exclusive_scan(exec(), poolOffset, poolOffset + allowed + 1, poolOffset);
-      double* childPool = sized(this->ChildPool, size_t(readBack(poolOffset + allowed)));
+      this->HitCount += newHits;
+
+      double* childPool = sized(this->ChildPool, size_t(read[1]));
       Node* children = sized(this->Children, 8 * allowed);
       uint8_t* keep = sized(this->KeepFlags, 8 * allowed);
       // One thread per child (a parent's eight children in one thread left most of the GPU
@@ -990,10 +980,11 @@ struct Driver
       forEach(8 * allowed,
         [=] IGA_HD(size_t k)
         {
-          const Node& parent = nodes[toSplit[k / 8]];
+          const uint32_t n = toSplit[k / 8];
+          const Node& parent = nodes[n];
           const int c = int(k % 8);
           Node child = childOf(parent, c);
-          child.coeff = poolOffset[k / 8] + size_t(c) * shapes[parent.patch].screenValues;
+          child.coeff = childValues[n] + size_t(c) * shapes[parent.patch].screenValues;
           midpointChild<double, 3>(viewOf(parent, pool, shapes), c, childPool + child.coeff);
           const auto view = viewOf(child, childPool, shapes);
           child.info = analyzeNodeBounds(view, frame.isovalues[child.iso], frame.clip);
@@ -1006,13 +997,16 @@ struct Driver
         });
       report.subdividedPatches += allowed;
       this->trackMemory();
-      report.msSubdivision += ms(stage);
+      this->Stages.end(report.msSubdivision);
 
       // Compaction: failed tuples move to the kept children covering their pixel; solved and
-      // dropped tuples and unsplit explicit nodes leave.
-      stage = Clock::now();
+      // dropped tuples and unsplit explicit nodes leave. A child is used when it receives a
+      // tuple.
       uint32_t* newCounts = sized(this->Counts, tupleCount + 1);
       uint8_t* unresolved = raw(this->Unresolved);
+      uint8_t* used = sized(this->Used, 8 * allowed);
+      thrust::fill(exec(), used, used + 8 * allowed, uint8_t(0));
+      unsigned long long* unresolvedTuples = raw(this->UnresolvedTuples);
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
         {
@@ -1020,29 +1014,34 @@ struct Driver
           const uint8_t state = split[tuples[t].node];
           if (outcome[t] == Failed && state == Split)
           {
-            const size_t first = firstChild[tuples[t].node];
+            const size_t first = 8 * size_t(splitIndex[tuples[t].node]);
             for (size_t c = first; c < first + 8; ++c)
             {
-              count +=
-                keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame)
-                  ? 1
-                  : 0;
+              if (keep[c] &&
+                  mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
+              {
+                ++count;
+                used[c] = 1; // every writer writes 1
+              }
             }
           }
           else if (outcome[t] == Failed && state >= AtDepthCap)
           {
             unresolved[tuples[t].pixel] = 1;
+            countOne(&unresolvedTuples[state == AtDepthCap ? 0 : 1]);
           }
           newCounts[t] = count;
         });
-      report.unresolvedAtDepthCap += countIf(tupleCount, [=] IGA_HD(size_t t)
-        { return outcome[t] == Failed && split[tuples[t].node] == AtDepthCap; });
-      report.unresolvedAtBudget += countIf(tupleCount, [=] IGA_HD(size_t t)
-        { return outcome[t] == Failed && split[tuples[t].node] == OverBudget; });
-      const size_t nextCount = scanCounts(this->Counts, tupleCount);
+      thrust::exclusive_scan(exec(), newCounts, newCounts + tupleCount + 1, newCounts);
+      // The next nodes: implicit children that were kept, explicit children that received
+      // pixels, and deferred implicit nodes; stored contiguously.
+      forEach(8 * allowed,
+        [=] IGA_HD(size_t c) { used[c] = keep[c] && (children[c].implicit || used[c]) ? 1 : 0; });
+      size_t nextCount = 0;
+      this->NodeCount = this->gatherNodes(children, childPool, used, 8 * allowed, nodes, pool,
+        deferred, nodeCount, false, newCounts + tupleCount, &nextCount);
+      const uint32_t* newIndex = raw(this->Index);
       Tuple* next = sized(this->Next, nextCount);
-      uint8_t* used = sized(this->Used, 8 * allowed);
-      thrust::fill(exec(), used, used + 8 * allowed, uint8_t(0));
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
         {
@@ -1051,27 +1050,18 @@ struct Driver
           {
             return;
           }
-          const size_t first = firstChild[tuples[t].node];
+          const size_t first = 8 * size_t(splitIndex[tuples[t].node]);
           for (size_t c = first; c < first + 8; ++c)
           {
             if (keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
             {
-              next[write++] = { tuples[t].pixel, uint32_t(c) };
-              used[c] = 1;
+              next[write++] = { tuples[t].pixel, newIndex[c] };
             }
           }
         });
-      // The next nodes: implicit children that were kept, explicit children that received
-      // pixels, and deferred implicit nodes; stored contiguously.
-      forEach(8 * allowed,
-        [=] IGA_HD(size_t c) { used[c] = keep[c] && (children[c].implicit || used[c]) ? 1 : 0; });
-      this->NodeCount = this->gatherNodes(
-        children, childPool, used, 8 * allowed, nodes, pool, deferred, nodeCount, false);
-      const uint32_t* newIndex = raw(this->Index);
-      forEach(nextCount, [=] IGA_HD(size_t t) { next[t].node = newIndex[next[t].node]; });
       this->Tuples.swap(this->Next);
       tupleCount = nextCount;
-      report.msCompaction += ms(stage);
+      this->Stages.end(report.msCompaction);
       if (settings.progress)
       {
         settings.progress(report.iterations, tupleCount);
@@ -1132,9 +1122,30 @@ struct Driver
     out.height = settings.height;
     out.offsets.resize(pixels + 1);
     out.hits.resize(total);
-    download(kept, pixels + 1, out.offsets.data());
-    download(compact, total, out.hits.data());
+    this->downloadStaged(kept, pixels + 1, out.offsets.data(), threadCount(settings));
+    this->downloadStaged(compact, total, out.hits.data(), threadCount(settings));
     this->Report->downloadedBytes = (pixels + 1) * sizeof(uint32_t) + total * sizeof(Hit);
+  }
+
+  // ---- transfers ---------------------------------------------------------------------------
+
+  /// The page-locked staging area, as room for n values of T.
+  template<class T>
+  T* stage(size_t n)
+  {
+    this->Staging.resize((n * sizeof(T) + sizeof(double) - 1) / sizeof(double));
+    return reinterpret_cast<T*>(this->Staging.data());
+  }
+
+  /// Copies n device values to host memory through the staging area; the host's part of the
+  /// copy runs on `threads` threads.
+  template<class T>
+  void downloadStaged(const T* from, size_t n, T* to, int threads)
+  {
+    T* staged = this->stage<T>(n);
+    download(from, n, staged);
+    parallelFor(n, copyThreads(n * sizeof(T), threads),
+      [&](size_t begin, size_t end) { std::copy(staged + begin, staged + end, to + begin); });
   }
 
   FrameReport* Report = nullptr;
@@ -1174,13 +1185,18 @@ struct Driver
   Array<Node> Nodes, NextNodes, Children;
   Array<double> Pool, NextPool, ChildPool;
   Array<Tuple> Tuples, Next;
-  Array<uint32_t> Counts, Index, PixelStart, ToSplit, FirstChild, Taken;
+  Array<uint32_t> Counts, Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex;
+  Array<uint64_t> ChildBytes, ChildValues;
+  Array<uint64_t> Totals;                     ///< scan totals read back together
+  Array<unsigned long long> UnresolvedTuples; ///< at the depth cap, over the memory budget
+  StageTimer Stages;
   Array<uint64_t> Offsets;
   Array<uint32_t> PixelSolves;
   Array<uint8_t> Present, Outcomes, SplitFlags, Deferred, KeepFlags, Used;
   Array<double> Solution;
   Array<RawHit> Hits;
   Array<Hit> Shaded, Compact;
+  PinnedArray<double> Staging; ///< uploads and downloads go through it
 };
 
 } // namespace device

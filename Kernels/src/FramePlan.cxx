@@ -6,6 +6,7 @@
 #include "iga/Validation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -283,7 +284,11 @@ FramePlan planView(const View& view, const Settings& s, double attributeRange, F
 FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& s, FrameReport& report)
 {
-  FramePlan plan = planView(view, s, checkPatches(patches, s), report);
+  const auto start = std::chrono::steady_clock::now();
+  const double attributeRange = checkPatches(patches, s);
+  report.msInput =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  FramePlan plan = planView(view, s, attributeRange, report);
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
   const int colour = s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1;
   // Shading patches go where their sizes put them.

@@ -122,6 +122,9 @@ struct FrameReport
   /// CUDA: bytes copied back for the G-buffer (a copy to host memory: there is no CUDA-GL
   /// interop), the pixel offsets and the hits
   size_t downloadedBytes = 0;
+  /// Of msSetup: checking the input (and for CUDA copying it to the device and extracting NURBS
+  /// elements there); zero when the data version says the device copy is current.
+  double msInput = 0;
   double msSetup = 0, msSweepAndGroup = 0, msOverlap = 0, msSolution = 0, msSubdivision = 0,
          msCompaction = 0, msGBuffer = 0, msTotal = 0;
 };
