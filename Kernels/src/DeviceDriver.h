@@ -8,6 +8,7 @@
 #include "DeviceRuntime.h"
 #include "FramePlan.h"
 #include "ParallelFor.h"
+#include "iga/Validation.h"
 
 #include <thrust/binary_search.h>
 #include <thrust/copy.h>
@@ -25,6 +26,7 @@
 #include <chrono>
 #include <limits>
 #include <map>
+#include <stdexcept>
 
 namespace iga
 {
@@ -180,6 +182,28 @@ void pixelOffsets(const Record* records, size_t count, size_t pixelCount, uint32
     });
 }
 
+/// What the device's check of the world patches found.
+struct PatchSummary
+{
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  unsigned invalid = 0; ///< patches with a non-finite value or a non-positive weight
+
+  double range() const { return hi > lo ? hi - lo : 1.0; }
+};
+
+struct CombineSummaries
+{
+  IGA_HD PatchSummary operator()(const PatchSummary& a, const PatchSummary& b) const
+  {
+    PatchSummary c;
+    c.lo = a.lo < b.lo ? a.lo : b.lo;
+    c.hi = a.hi > b.hi ? a.hi : b.hi;
+    c.invalid = a.invalid + b.invalid;
+    return c;
+  }
+};
+
 enum SplitState : uint8_t
 {
   Keep = 0,
@@ -264,12 +288,17 @@ struct Driver
       return;
     }
     this->DataVersion = 0; // until the copy below is complete
-    this->AttributeRange = checkPatches(patches, settings);
+    // Shapes are checked here, control point values on the device; checkPatches names the
+    // first problem when there is one.
     std::vector<PatchShape> shapes(patches.size());
     size_t world = 0, screen = 0;
     for (size_t p = 0; p < patches.size(); ++p)
     {
       const auto v = patches[p].view();
+      if (!usableShape(v.degree, v.channels, settings))
+      {
+        throwFirstProblem(patches, settings);
+      }
       for (int d = 0; d < 3; ++d)
       {
         shapes[p].degree[d] = v.degree[d];
@@ -295,6 +324,12 @@ struct Driver
     this->setShapes(shapes, report);
     this->World.upload(staged, world);
     report.uploadedBytes += world * sizeof(double);
+    const PatchSummary summary = this->summarizePatches(settings.surfaceAttribute);
+    if (summary.invalid > 0)
+    {
+      throwFirstProblem(patches, settings);
+    }
+    this->AttributeRange = summary.range();
     this->ExtractionVersion = 0; // the device holds patches now, not extractions
     this->FromNurbs = false;
     this->SurfaceAttribute = settings.surfaceAttribute;
@@ -433,26 +468,48 @@ struct Driver
         extractElement<double, 3>(net + table.net, table.netSize, channels, table.degree, operators,
           first, world + shapes[e].world, scratch + 2 * shapes[e].world);
       });
-    // The surface attribute's range over the elements, as checkPatches computes it.
-    double* lo = sized(this->Solution, 2 * elementCount);
-    double* hi = lo + elementCount;
-    const int attribute = kFirstAttributeChannel + settings.surfaceAttribute;
-    forEach(elementCount,
-      [=] IGA_HD(size_t e)
-      {
-        const VolumeView<const double> element(
-          world + shapes[e].world, shapes[e].degree, shapes[e].channels);
-        rationalRange(element, attribute, kWeightChannel, lo[e], hi[e]);
-      });
-    const double infinity = std::numeric_limits<double>::infinity();
-    const double rangeLo =
-      thrust::reduce(exec(), lo, lo + elementCount, infinity, thrust::minimum<double>());
-    const double rangeHi =
-      thrust::reduce(exec(), hi, hi + elementCount, -infinity, thrust::maximum<double>());
-    this->AttributeRange = rangeHi > rangeLo ? rangeHi - rangeLo : 1.0;
+    // Elements of checked nets are valid: extraction takes convex combinations.
+    this->AttributeRange = this->summarizePatches(settings.surfaceAttribute).range();
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
     this->DataVersion = settings.dataVersion;
+  }
+
+  /// Over the world patches on the device: how many have an invalid control point, and the
+  /// surface attribute's range over the others, as checkPatches computes it.
+  PatchSummary summarizePatches(int surfaceAttribute)
+  {
+    const PatchShape* shapes = raw(this->Shapes);
+    const double* world = raw(this->World);
+    const int attribute = kFirstAttributeChannel + surfaceAttribute;
+    return thrust::transform_reduce(
+      exec(), thrust::counting_iterator<size_t>(0),
+      thrust::counting_iterator<size_t>(this->Shapes.size()),
+      [=] IGA_HD(size_t p)
+      {
+        const VolumeView<const double> patch(
+          world + shapes[p].world, shapes[p].degree, shapes[p].channels);
+        PatchSummary summary;
+        if (firstInvalidPoint(patch) >= 0)
+        {
+          summary.invalid = 1;
+        }
+        else
+        {
+          rationalRange(patch, attribute, kWeightChannel, summary.lo, summary.hi);
+        }
+        return summary;
+      },
+      PatchSummary(), CombineSummaries());
+  }
+
+  /// Throws checkPatches' message for the first bad patch.
+  [[noreturn]] static void throwFirstProblem(
+    const std::vector<BezierVolume<double>>& patches, const Settings& settings)
+  {
+    checkPatches(patches, settings);
+    // Not reached: the device tests the same conditions as the host.
+    throw std::invalid_argument("a patch failed the device's check of its control points");
   }
 
   /// The frame's preparation on the device: screen and shading patches of every patch, and the

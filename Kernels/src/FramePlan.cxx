@@ -33,10 +33,15 @@ size_t partsFor(size_t patches, int threads)
 
 /// Empty when control points of `channels` values hold the settings' surface and colour
 /// attributes; otherwise the problem, to follow the name of what has them.
+bool holdsAttributes(int channels, const Settings& s)
+{
+  return s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels &&
+         (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels);
+}
+
 std::string attributeProblem(int channels, const Settings& s)
 {
-  if (s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels &&
-      (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels))
+  if (holdsAttributes(channels, s))
   {
     return std::string();
   }
@@ -115,6 +120,18 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
     level.swap(straddling);
     pool.swap(straddlingPool);
   }
+}
+
+bool usableShape(const int* degree, int channels, const Settings& s)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    if (degree[d] < 1 || degree[d] > kMaxDegree)
+    {
+      return false;
+    }
+  }
+  return channels >= kFirstAttributeChannel && holdsAttributes(channels, s);
 }
 
 void checkAttributes(int channels, const Settings& s, const std::string& name)

@@ -40,6 +40,10 @@ void checkAttributes(int channels, const Settings& settings, const std::string& 
 /// the first bad patch and its problem. Runs on threadCount(settings) threads.
 double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& settings);
 
+/// Whether patches of these degrees and channels suit the settings: what checkPatches tests
+/// besides control point values, for drivers that test those on the device.
+bool usableShape(const int* degree, int channels, const Settings& settings);
+
 /// Checks NURBS volumes: one net per extraction, of the extraction's size, finite values and
 /// positive weights. Their Bézier elements are then valid too: extraction takes convex
 /// combinations of control points. Throws std::invalid_argument naming the volume and point.

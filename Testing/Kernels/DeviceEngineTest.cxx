@@ -23,7 +23,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -428,27 +432,67 @@ TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
   }
 }
 
-/// Bad input is rejected before any device work, with the CPU path's message.
+/// Bad input gets the CPU path's message, naming the first bad patch (the device tests control
+/// point values, the host the rest), and leaves the device ready for the next good frame.
 TEST(DeviceEngineCaps, BadInputIsRejected)
 {
-  const double position[3] = { 0, -4, 0 }, origin[3] = { 0, 0, 0 };
-  Scene s = scene("bad", iga::makeMarsdenSphere<double>(2), position, origin, 35, 16, 16, { 0.0 });
-  s.set.patches[0].view().point(5)[iga::kWeightChannel] = -1;
+  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  const Scene good =
+    scene("bad", iga::makeTwistedTube<double>(0.7), position, focal, 35, 48, 48, { 0.0 });
+  ASSERT_EQ(good.set.patches.size(), 8u);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::pair<std::string, std::function<void(Scene&)>>> breakages = {
+    { "negative weight",
+      [](Scene& s) { s.set.patches[2].view().point(5)[iga::kWeightChannel] = -1; } },
+    { "NaN after a zero weight",
+      [=](Scene& s)
+      {
+        s.set.patches[4].view().point(0)[0] = nan;
+        s.set.patches[1].view().point(7)[iga::kWeightChannel] = 0;
+      } },
+    { "NaN attribute",
+      [=](Scene& s) { s.set.patches[3].view().point(2)[iga::kFirstAttributeChannel] = nan; } },
+    { "missing colour attribute", [](Scene& s) { s.settings.colorAttribute = 4; } },
+  };
   GBuffer out;
   FrameReport report;
   std::string why;
-  try
+  for (const auto& breakage : breakages)
   {
-    if (!deviceRender(s, out, report, why))
+    SCOPED_TRACE(breakage.first);
+    Scene s = good;
+    s.settings.dataVersion = 5;
+    breakage.second(s);
+    std::string cpuMessage;
+    try
     {
-      GTEST_SKIP() << why;
+      iga::sst::render(s.set.patches,
+        iga::sst::makeView(s.camera, s.settings.width, s.settings.height), s.settings,
+        iga::sst::Method::SharedSubdivisionTree, out);
     }
-    FAIL() << "a negative weight was accepted";
+    catch (const std::invalid_argument& e)
+    {
+      cpuMessage = e.what();
+    }
+    ASSERT_NE(cpuMessage, "") << "the CPU path accepted the input";
+    try
+    {
+      if (!deviceRender(s, out, report, why))
+      {
+        GTEST_SKIP() << why;
+      }
+      ADD_FAILURE() << "accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_EQ(std::string(e.what()), cpuMessage);
+    }
   }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("patch 0"), std::string::npos) << e.what();
-  }
+  // The same data version, now with good data: drawn as the CPU draws it.
+  Scene s = good;
+  s.settings.dataVersion = 5;
+  ASSERT_TRUE(deviceRender(s, out, report, why));
+  expectMatchesTheCpuDriver(s, out, report);
 }
 
 } // namespace

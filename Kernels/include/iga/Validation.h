@@ -1,4 +1,5 @@
-// Checks of patch data before it reaches the numeric kernels (host only: messages are strings).
+// Checks of patch data before it reaches the numeric kernels. The messages are host strings; the
+// test of control point values also runs on the device (firstInvalidPoint).
 #pragma once
 
 #include "iga/BezierPatch.h"
@@ -7,6 +8,29 @@
 
 namespace iga
 {
+
+/// The first control point with a non-finite value or a non-positive weight, or -1.
+template<class T, int Dim>
+IGA_HD int firstInvalidPoint(const PatchView<const T, Dim>& patch)
+{
+  const int count = patch.pointCount();
+  for (int p = 0; p < count; ++p)
+  {
+    const T* point = patch.point(p);
+    for (int c = 0; c < patch.channels; ++c)
+    {
+      if (!isFinite(point[c]))
+      {
+        return p;
+      }
+    }
+    if (!(point[kWeightChannel] > T(0)))
+    {
+      return p;
+    }
+  }
+  return -1;
+}
 
 /// Empty when the patch (standard layout) is usable; otherwise one sentence naming the first
 /// problem: degree outside 1..kMaxDegree, too few channels, a non-finite value or a non-positive
@@ -27,25 +51,22 @@ std::string checkPatch(const PatchView<const T, Dim>& patch)
     return "control points have " + std::to_string(patch.channels) +
            " values, need at least 4 (w*x, w*y, w*z, w)";
   }
-  const int count = patch.pointCount();
-  for (int p = 0; p < count; ++p)
+  const int p = firstInvalidPoint(patch);
+  if (p < 0)
   {
-    const T* point = patch.point(p);
-    for (int c = 0; c < patch.channels; ++c)
+    return std::string();
+  }
+  const T* point = patch.point(p);
+  for (int c = 0; c < patch.channels; ++c)
+  {
+    if (!isFinite(point[c]))
     {
-      if (!isFinite(point[c]))
-      {
-        return "control point " + std::to_string(p) + " has a non-finite value in channel " +
-               std::to_string(c);
-      }
-    }
-    if (!(point[kWeightChannel] > T(0)))
-    {
-      return "control point " + std::to_string(p) + " has non-positive weight " +
-             std::to_string(point[kWeightChannel]);
+      return "control point " + std::to_string(p) + " has a non-finite value in channel " +
+             std::to_string(c);
     }
   }
-  return std::string();
+  return "control point " + std::to_string(p) + " has non-positive weight " +
+         std::to_string(point[kWeightChannel]);
 }
 
 } // namespace iga
