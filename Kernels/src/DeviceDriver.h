@@ -891,22 +891,32 @@ struct Driver
       this->Stages.end(report.msOverlap);
 
       // Solution stage: each pixel's tuples in order of nearest depth by one thread, so that in
-      // first-hit mode a hit drops the tuples behind it at once. The hits are appended once the
-      // subdivision stage has read their count back.
+      // first-hit mode a hit drops the tuples behind it at once; the thread of a pixel's first
+      // tuple takes its run. (A thread per pixel of the image cost more than the solutions in
+      // sparse frames: the kernel's register use lets few of those mostly idle threads run at
+      // once.) The hits are appended once the subdivision stage has read their count back.
       Tuple* tuples = raw(this->Tuples);
       uint8_t* outcome = sized(this->Outcomes, tupleCount);
       double* solution = sized(this->Solution, 4 * tupleCount);
       thrust::sort(exec(), tuples, tuples + tupleCount, TupleOrder{ nodes });
       {
-        uint32_t* start = sized(this->PixelStart, pixels + 1);
-        pixelOffsets(tuples, tupleCount, pixels, start);
         double* bestDepth = raw(this->BestDepth);
         uint32_t* certified = raw(this->PixelSolves);
-        forEach(pixels,
-          [=] IGA_HD(size_t pixel)
+        forEach(tupleCount,
+          [=] IGA_HD(size_t first)
           {
+            const uint32_t pixel = tuples[first].pixel;
+            if (first > 0 && tuples[first - 1].pixel == pixel)
+            {
+              return;
+            }
+            size_t end = first + 1;
+            while (end < tupleCount && tuples[end].pixel == pixel)
+            {
+              ++end;
+            }
             bestDepth[pixel] = solvePixelTuples(
-              tuples, start[pixel], start[pixel + 1], uint32_t(pixel), nodes,
+              tuples, uint32_t(first), uint32_t(end), pixel, nodes,
               [=](const Node& node) { return viewOf(node, pool, shapes); }, bestDepth[pixel], frame,
               outcome, solution, certified[pixel]);
           });
