@@ -335,6 +335,7 @@ struct Driver
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
     this->DataVersion = settings.dataVersion;
+    ++this->Uploads;
   }
 
   void setShapes(const std::vector<PatchShape>& shapes, FrameReport& report)
@@ -473,6 +474,7 @@ struct Driver
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
     this->DataVersion = settings.dataVersion;
+    ++this->Uploads;
   }
 
   /// Over the world patches on the device: how many have an invalid control point, and the
@@ -540,13 +542,19 @@ struct Driver
     const int surface = kFirstAttributeChannel + settings.surfaceAttribute;
     const int colour =
       settings.colorAttribute >= 0 ? kFirstAttributeChannel + settings.colorAttribute : -1;
+    // Shading patches do not depend on the view: made again only for new data.
+    const bool shade = this->ShadedUpload != this->Uploads;
+    this->ShadedUpload = this->Uploads;
     forEach(patchCount,
       [=] IGA_HD(size_t p)
       {
         const PatchShape& shape = shapes[p];
         const VolumeView<const double> patch(world + shape.world, shape.degree, shape.channels);
         makeScreenPatch<double>(patch, windowFromWorld, surface, screen + shape.screen);
-        makeShadingPatch(patch, surface, colour, shading + shape.screen);
+        if (shade)
+        {
+          makeShadingPatch(patch, surface, colour, shading + shape.screen);
+        }
       });
 
     // Roots: per (patch, isovalue), dropped (0), in front of the eye (1) or straddling it (2).
@@ -1224,6 +1232,8 @@ struct Driver
   size_t Peak = 0;
   uint64_t DataVersion = 0;       ///< of the world patches or nets on the device (0: none)
   uint64_t ExtractionVersion = 0; ///< of the extractions on the device (0: none)
+  uint64_t Uploads = 0;           ///< data changes so far (uploads or extractions)
+  uint64_t ShadedUpload = 0;      ///< the data change the shading patches were made for
   int Channels = 0;
   bool FromNurbs = false; ///< the world patches were extracted from NURBS volumes
   size_t NetValues = 0, WorldValues = 0;

@@ -319,15 +319,16 @@ TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
   EXPECT_LE(report.peakBytes, size_t(1) << 20);
 }
 
-/// With a data version the device keeps its copy of the patches: a camera move uploads only
-/// the isovalues, a new version (the tube twisted further) uploads the patches again, and every
-/// frame matches the CPU driver.
+/// With a data version the device keeps its copy of the patches (and its shading patches): a
+/// camera move uploads only the isovalues, a new colour attribute or a new version (the tube
+/// twisted further) uploads the patches again, and every frame matches the CPU driver.
 TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
 {
   const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
   Scene s = scene(
     "tube, version 1", iga::makeTwistedTube<double>(0.7), position, focal, 35, 64, 64, { 0.0 });
   s.settings.dataVersion = 1;
+  s.settings.colorAttribute = 1;
   GBuffer out;
   FrameReport report;
   std::string why;
@@ -347,6 +348,11 @@ TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
   s.camera = lookAt(s.set, moved, focal, 35);
   ASSERT_TRUE(deviceRender(s, out, report, why));
   EXPECT_EQ(report.uploadedBytes, sizeof(double)); // the one isovalue
+  expectMatchesTheCpuDriver(s, out, report);
+
+  s.settings.colorAttribute = 0;
+  ASSERT_TRUE(deviceRender(s, out, report, why));
+  EXPECT_GE(report.uploadedBytes, patchBytes);
   expectMatchesTheCpuDriver(s, out, report);
 
   s.set = iga::makeTwistedTube<double>(0.9);
