@@ -11,8 +11,9 @@
 //
 // --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
-// every frame) and the 800k-patch blade, with stage times and peak device memory, next to the
-// CPU engine at 1080p. Without a usable device it says why and measures nothing.
+// every frame), a deforming NURBS ball, and the 800k-patch blade (camera moves, and at 1080p
+// deforming), with stage times and peak device memory, next to the CPU engine at 1080p. Without a
+// usable device it says why and measures nothing.
 #include "iga/Datasets.h"
 #include "iga/sst/Engine.h"
 
@@ -250,6 +251,14 @@ bool gpuStudy(bool quick, std::vector<Measurement>& all,
       all.push_back(measure("gpu", "blade-" + std::to_string(large.patchCount()), big, 0.3, 2,
         size.first, size.second, 0, Method::SharedSubdivisionTree, 3, Backend::Cuda));
     }
+    // The same set deforming: two time steps in turn, a new data version every frame (the
+    // whole set is checked and sent again).
+    const auto flapped = iga::makeBlade<double>(large, 0.6);
+    const iga::Camera camera = frame(big);
+    all.push_back(measureFrames("gpu", "blade-" + std::to_string(large.patchCount()) + "-deforming",
+      0.3, 2, 1920, 1080, 0, Method::SharedSubdivisionTree, 3, Backend::Cuda, true,
+      [&](int r, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
+      { return iga::sst::render((r % 2 ? flapped : big).patches, camera, settings, m, out); }));
   }
   return true;
 }
