@@ -113,6 +113,16 @@ struct PatchShape
 
 static_assert(kScreenChannels == kShadeChannels, "screen and shading patches share offsets");
 
+inline bool sameShapes(const std::vector<PatchShape>& a, const std::vector<PatchShape>& b)
+{
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+    [](const PatchShape& x, const PatchShape& y)
+    {
+      return std::equal(x.degree, x.degree + 3, y.degree) && x.channels == y.channels &&
+             x.screenValues == y.screenValues && x.world == y.world && x.screen == y.screen;
+    });
+}
+
 /// A NURBS volume on the device: its net and its extraction operators, as offsets.
 struct VolumeTable
 {
@@ -338,16 +348,21 @@ struct Driver
     ++this->Uploads;
   }
 
+  /// Sends the patch shapes, unless the device holds the same (a deforming set keeps them).
   void setShapes(const std::vector<PatchShape>& shapes, FrameReport& report)
   {
-    this->HostShapes = shapes;
-    this->Shapes = shapes;
+    if (!sameShapes(shapes, this->HostShapes))
+    {
+      this->HostShapes.clear(); // until the copy below is complete
+      this->Shapes = shapes;
+      this->HostShapes = shapes;
+      report.uploadedBytes += shapes.size() * sizeof(PatchShape);
+    }
     this->ScreenValues = 0;
     for (const PatchShape& shape : shapes)
     {
       this->ScreenValues += size_t(shape.screenValues);
     }
-    report.uploadedBytes += shapes.size() * sizeof(PatchShape);
   }
 
   /// Copies NURBS volumes to the device and extracts their Bézier elements there: the
