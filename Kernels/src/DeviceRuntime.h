@@ -310,7 +310,7 @@ public:
   {
     this->Targets.clear();
 #if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
-    this->record();
+    this->record(0);
 #else
     this->Last = std::chrono::steady_clock::now();
 #endif
@@ -320,8 +320,8 @@ public:
   void end(double& ms)
   {
 #if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
-    this->record();
     this->Targets.push_back(&ms);
+    this->record(this->Targets.size()); // event k + 1 ends stage k
 #else
     const auto now = std::chrono::steady_clock::now();
     ms += std::chrono::duration<double, std::milli>(now - this->Last).count();
@@ -357,9 +357,8 @@ public:
   }
 
 private:
-  void record()
+  void record(size_t k)
   {
-    const size_t k = this->Targets.size();
     if (k == this->Events.size())
     {
       cudaEvent_t event;
