@@ -922,6 +922,7 @@ struct Driver
       uint8_t* outcome = sized(this->Outcomes, tupleCount);
       double* solution = sized(this->Solution, 4 * tupleCount);
       thrust::sort(exec(), tuples, tuples + tupleCount, TupleOrder{ nodes });
+      uint32_t* hitIndex = sized(this->HitIndex, tupleCount + 1);
       {
         double* bestDepth = raw(this->BestDepth);
         uint32_t* certified = raw(this->PixelSolves);
@@ -942,10 +943,12 @@ struct Driver
               tuples, uint32_t(first), uint32_t(end), pixel, nodes,
               [=](const Node& node) { return viewOf(node, pool, shapes); }, bestDepth[pixel], frame,
               outcome, solution, certified[pixel]);
+            for (size_t t = first; t < end; ++t)
+            {
+              hitIndex[t] = outcome[t] == Solved ? 1 : 0;
+            }
           });
       }
-      uint32_t* hitIndex = sized(this->HitIndex, tupleCount + 1);
-      forEach(tupleCount, [=] IGA_HD(size_t t) { hitIndex[t] = outcome[t] == Solved ? 1 : 0; });
       thrust::exclusive_scan(exec(), hitIndex, hitIndex + tupleCount + 1, hitIndex);
       this->Stages.end(report.msSolution);
 
@@ -1065,6 +1068,7 @@ struct Driver
       double* childPool = sized(this->ChildPool, size_t(read[1]));
       Node* children = sized(this->Children, 8 * allowed);
       uint8_t* keep = sized(this->KeepFlags, 8 * allowed);
+      uint8_t* used = sized(this->Used, 8 * allowed); // by the compaction stage
       // One thread per child (a parent's eight children in one thread left most of the GPU
       // idle).
       forEach(8 * allowed,
@@ -1079,6 +1083,7 @@ struct Driver
           const auto view = viewOf(child, childPool, shapes);
           child.info = analyzeNodeBounds(view, frame.isovalues[child.iso], frame.clip);
           keep[k] = worthKeeping(child.info, frame) ? 1 : 0;
+          used[k] = 0;
           if (child.implicit && keep[k])
           {
             analyzeNodeSolver(view, child.info);
@@ -1094,8 +1099,6 @@ struct Driver
       // tuple.
       uint32_t* newCounts = sized(this->Counts, tupleCount + 1);
       uint8_t* unresolved = raw(this->Unresolved);
-      uint8_t* used = sized(this->Used, 8 * allowed);
-      thrust::fill(exec(), used, used + 8 * allowed, uint8_t(0));
       unsigned long long* unresolvedTuples = raw(this->UnresolvedTuples);
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
