@@ -10,7 +10,6 @@
 #include "ParallelFor.h"
 #include "iga/Validation.h"
 
-#include <thrust/binary_search.h>
 #include <thrust/copy.h>
 #include <thrust/count.h>
 #include <thrust/execution_policy.h>
@@ -25,7 +24,6 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
-#include <map>
 #include <stdexcept>
 
 namespace iga
@@ -84,14 +82,6 @@ inline size_t scanCounts(Array<uint32_t>& counts, size_t n)
   uint32_t* c = raw(counts);
   thrust::exclusive_scan(exec(), c, c + n + 1, c);
   return readBack(c + n);
-}
-
-/// How many k in [0, n) satisfy pred(k).
-template<class Pred>
-size_t countIf(size_t n, Pred pred)
-{
-  return size_t(thrust::count_if(
-    exec(), thrust::counting_iterator<size_t>(0), thrust::counting_iterator<size_t>(n), pred));
 }
 
 /// Threads for a host copy of `bytes`: one per MiB at most, since starting a thread costs about

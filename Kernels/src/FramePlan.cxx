@@ -31,14 +31,15 @@ size_t partsFor(size_t patches, int threads)
   return std::min(patches, size_t(threads) * 8);
 }
 
-/// Empty when control points of `channels` values hold the settings' surface and colour
-/// attributes; otherwise the problem, to follow the name of what has them.
+/// Whether control points of `channels` values hold the settings' surface and colour attributes.
 bool holdsAttributes(int channels, const Settings& s)
 {
   return s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels &&
          (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels);
 }
 
+/// Empty when control points of `channels` values hold the settings' surface and colour
+/// attributes; otherwise the problem, to follow the name of what has them.
 std::string attributeProblem(int channels, const Settings& s)
 {
   if (holdsAttributes(channels, s))
