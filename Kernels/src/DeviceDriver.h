@@ -960,10 +960,9 @@ struct Driver
             split[tuples[t].node] = Split;
           }
         });
-      // Per node in order: whether it is to be split, and the running totals of its children's
-      // bytes and coefficients.
+      // Per node in order: whether it is to be split, and the running totals of split nodes and
+      // of their children's coefficients.
       uint32_t* splitIndex = sized(this->SplitIndex, nodeCount + 1);
-      uint64_t* childBytes = sized(this->ChildBytes, nodeCount);
       uint64_t* childValues = sized(this->ChildValues, nodeCount + 1);
       forEach(nodeCount,
         [=] IGA_HD(size_t n)
@@ -981,11 +980,9 @@ struct Driver
           const uint64_t values = uint64_t(8) * shapes[nodes[n].patch].screenValues;
           splitIndex[n] = splits ? 1 : 0;
           childValues[n] = splits ? values : 0;
-          childBytes[n] = splits ? values * sizeof(double) + 8 * sizeof(Node) : 0;
         });
       thrust::exclusive_scan(exec(), splitIndex, splitIndex + nodeCount + 1, splitIndex);
       thrust::exclusive_scan(exec(), childValues, childValues + nodeCount + 1, childValues);
-      thrust::inclusive_scan(exec(), childBytes, childBytes + nodeCount, childBytes);
       // Memory cap: split as many nodes as the budget allows, in order (the nodes before the
       // first whose children would pass it); implicit nodes beyond it become tuples in the next
       // iteration instead, explicit ones leave their pixels unresolved.
@@ -999,7 +996,10 @@ struct Driver
           while (lo < hi)
           {
             const size_t mid = (lo + hi) / 2;
-            if (childBytes[mid] <= room)
+            // The children's bytes of the split nodes up to mid, inclusive.
+            const uint64_t bytes = childValues[mid + 1] * sizeof(double) +
+                                   uint64_t(splitIndex[mid + 1]) * 8 * sizeof(Node);
+            if (bytes <= room)
             {
               lo = mid + 1;
             }
@@ -1271,7 +1271,7 @@ struct Driver
   Array<double> Pool, NextPool, ChildPool;
   Array<Tuple> Tuples, Next;
   Array<uint32_t> Counts, Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex;
-  Array<uint64_t> ChildBytes, ChildValues;
+  Array<uint64_t> ChildValues;
   Array<uint64_t> Totals;                     ///< scan totals read back together
   Array<unsigned long long> UnresolvedTuples; ///< at the depth cap, over the memory budget
   StageTimer Stages;
