@@ -91,6 +91,39 @@ inline int copyThreads(size_t bytes, int threads)
   return std::max(1, std::min(threads, int(bytes >> 20)));
 }
 
+/// Host arrays of doubles read as one sequence: the coefficients of the input patches or of
+/// the control nets, gathered into the staging area a chunk at a time.
+class HostSequence
+{
+public:
+  void append(const double* values, size_t count)
+  {
+    this->Parts.push_back(values);
+    this->Starts.push_back(this->Starts.back() + count);
+  }
+
+  size_t size() const { return this->Starts.back(); }
+
+  /// Copies values [first, last) of the sequence to `to`.
+  void copy(size_t first, size_t last, double* to) const
+  {
+    size_t part = size_t(std::upper_bound(this->Starts.begin(), this->Starts.end(), first) -
+                         this->Starts.begin()) -
+                  1;
+    for (size_t at = first; at < last; ++part)
+    {
+      const size_t end = std::min(last, this->Starts[part + 1]);
+      std::copy(this->Parts[part] + (at - this->Starts[part]),
+        this->Parts[part] + (end - this->Starts[part]), to + (at - first));
+      at = end;
+    }
+  }
+
+private:
+  std::vector<const double*> Parts;
+  std::vector<size_t> Starts{ 0 }; ///< of each part, then the total
+};
+
 /// What the driver knows of an input patch: its shape and where its data lie on the device.
 struct PatchShape
 {
@@ -222,6 +255,7 @@ struct Driver
   {
     const auto start = std::chrono::steady_clock::now();
     report.uploadedBytes = 0;
+    checkSettings(settings); // before the upload, which reads the transfer chunk
     this->uploadPatches(patches, settings, report);
     report.msInput =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -233,6 +267,7 @@ struct Driver
   {
     const auto start = std::chrono::steady_clock::now();
     report.uploadedBytes = 0;
+    checkSettings(settings); // before the upload, which reads the transfer chunk
     this->uploadNurbs(volumes, settings, report);
     report.msInput =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -310,19 +345,14 @@ struct Driver
       world += size_t(v.valueCount());
       screen += size_t(shapes[p].screenValues);
     }
-    // Gathered on all threads into page-locked memory, which the bus reads at full speed.
-    double* staged = this->stage<double>(world);
-    parallelFor(patches.size(), copyThreads(world * sizeof(double), threadCount(settings)),
-      [&](size_t begin, size_t end)
-      {
-        for (size_t p = begin; p < end; ++p)
-        {
-          const auto v = patches[p].view();
-          std::copy(v.coeffs, v.coeffs + v.valueCount(), staged + shapes[p].world);
-        }
-      });
+    HostSequence coefficients;
+    for (const BezierVolume<double>& patch : patches)
+    {
+      const auto v = patch.view();
+      coefficients.append(v.coeffs, size_t(v.valueCount()));
+    }
     this->setShapes(shapes, report);
-    this->World.upload(staged, world);
+    this->uploadStaged(coefficients, this->World, settings);
     report.uploadedBytes += world * sizeof(double);
     const PatchSummary summary = this->summarizePatches(settings.surfaceAttribute);
     if (summary.invalid > 0)
@@ -437,14 +467,12 @@ struct Driver
     }
     this->DataVersion = 0;
     checkAttributes(volumes.channels, settings, "volume 0");
-    double* nets = this->stage<double>(this->NetValues);
-    size_t at = 0;
+    HostSequence nets;
     for (const std::vector<double>* net : volumes.nets)
     {
-      std::copy(net->begin(), net->end(), nets + at);
-      at += net->size();
+      nets.append(net->data(), net->size());
     }
-    this->Nets.upload(nets, this->NetValues);
+    this->uploadStaged(nets, this->Nets, settings);
     report.uploadedBytes += this->NetValues * sizeof(double);
 
     // Extraction, one element per thread; a scratch block of twice its size each.
@@ -1205,30 +1233,58 @@ struct Driver
     out.height = settings.height;
     out.offsets.resize(pixels + 1);
     out.hits.resize(total);
-    this->downloadStaged(kept, pixels + 1, out.offsets.data(), threadCount(settings));
-    this->downloadStaged(compact, total, out.hits.data(), threadCount(settings));
+    this->downloadStaged(kept, pixels + 1, out.offsets.data(), settings);
+    this->downloadStaged(compact, total, out.hits.data(), settings);
     this->Report->downloadedBytes = (pixels + 1) * sizeof(uint32_t) + total * sizeof(Hit);
   }
 
   // ---- transfers ---------------------------------------------------------------------------
 
-  /// The page-locked staging area, as room for n values of T.
+  /// The page-locked staging area, as room for the chunks of a transfer of n values of T:
+  /// transfers larger than Settings::transferChunkBytes go a chunk at a time, so that the
+  /// page-locked memory kept between frames stays bounded.
   template<class T>
-  T* stage(size_t n)
+  std::pair<T*, size_t> stage(size_t n, const Settings& settings)
   {
-    this->Staging.resize((n * sizeof(T) + sizeof(double) - 1) / sizeof(double));
-    return reinterpret_cast<T*>(this->Staging.data());
+    const size_t chunk = std::min(n, std::max<size_t>(1, settings.transferChunkBytes / sizeof(T)));
+    this->Staging.resize((chunk * sizeof(T) + sizeof(double) - 1) / sizeof(double));
+    return { reinterpret_cast<T*>(this->Staging.data()), chunk };
   }
 
-  /// Copies n device values to host memory through the staging area; the host's part of the
-  /// copy runs on `threads` threads.
-  template<class T>
-  void downloadStaged(const T* from, size_t n, T* to, int threads)
+  /// Copies a host sequence to a device array through the staging area: each chunk is
+  /// gathered on several host threads into page-locked memory, which the bus reads at full
+  /// speed.
+  void uploadStaged(const HostSequence& from, Array<double>& to, const Settings& settings)
   {
-    T* staged = this->stage<T>(n);
-    download(from, n, staged);
-    parallelFor(n, copyThreads(n * sizeof(T), threads),
-      [&](size_t begin, size_t end) { std::copy(staged + begin, staged + end, to + begin); });
+    const size_t n = from.size();
+    to.resize(n);
+    const auto [staged, chunk] = this->stage<double>(n, settings);
+    const int threads = copyThreads(chunk * sizeof(double), threadCount(settings));
+    for (size_t first = 0; first < n; first += chunk)
+    {
+      const size_t count = std::min(chunk, n - first);
+      parallelFor(count, threads,
+        [&, staged = staged](size_t begin, size_t end)
+        { from.copy(first + begin, first + end, staged + begin); });
+      copyToDevice(raw(to) + first, staged, count * sizeof(double));
+    }
+  }
+
+  /// Copies n device values to host memory through the staging area, a chunk at a time; the
+  /// host's part of each copy runs on several threads.
+  template<class T>
+  void downloadStaged(const T* from, size_t n, T* to, const Settings& settings)
+  {
+    const auto [staged, chunk] = this->stage<T>(n, settings);
+    const int threads = copyThreads(chunk * sizeof(T), threadCount(settings));
+    for (size_t first = 0; first < n; first += chunk)
+    {
+      const size_t count = std::min(chunk, n - first);
+      download(from + first, count, staged);
+      parallelFor(count, threads,
+        [&, staged = staged](size_t begin, size_t end)
+        { std::copy(staged + begin, staged + end, to + first + begin); });
+    }
   }
 
   FrameReport* Report = nullptr;
@@ -1281,7 +1337,7 @@ struct Driver
   Array<double> Solution;
   Array<RawHit> Hits;
   Array<Hit> Shaded, Compact;
-  PinnedArray<double> Staging; ///< uploads and downloads go through it
+  PinnedArray<double> Staging; ///< uploads and downloads pass through it, a chunk at a time
 };
 
 } // namespace device

@@ -235,7 +235,7 @@ void checkNurbsVolumes(const NurbsVolumes& volumes)
   }
 }
 
-FramePlan planView(const View& view, const Settings& s, double attributeRange, FrameReport& report)
+void checkSettings(const Settings& s)
 {
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
   {
@@ -257,12 +257,22 @@ FramePlan planView(const View& view, const Settings& s, double attributeRange, F
   {
     throw std::invalid_argument("maximum subdivision depth must lie in 0..40");
   }
+  if (s.transferChunkBytes < 4096)
+  {
+    throw std::invalid_argument(
+      "transfer chunk of " + std::to_string(s.transferChunkBytes) + " bytes is below 4096");
+  }
   if (s.clipPlanes.size() > size_t(kMaxClipPlanes))
   {
     throw std::invalid_argument("at most " + std::to_string(kMaxClipPlanes) +
                                 " clipping planes are supported, got " +
                                 std::to_string(s.clipPlanes.size()));
   }
+}
+
+FramePlan planView(const View& view, const Settings& s, double attributeRange, FrameReport& report)
+{
+  checkSettings(s);
   FramePlan plan;
   plan.threads = threadCount(s);
   report.threads = plan.threads;

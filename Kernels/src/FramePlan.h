@@ -49,6 +49,10 @@ bool usableShape(const int* degree, int channels, const Settings& settings);
 /// combinations of control points. Throws std::invalid_argument naming the volume and point.
 void checkNurbsVolumes(const NurbsVolumes& volumes);
 
+/// Throws std::invalid_argument for bad settings (image size, isovalues, depth cap, transfer
+/// chunk, clipping plane count).
+void checkSettings(const Settings& settings);
+
 /// The plan's view part (frame constants, window matrix, clipping planes), without roots.
 /// Throws std::invalid_argument for bad settings.
 FramePlan planView(

@@ -363,6 +363,77 @@ TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
   expectMatchesTheCpuDriver(s, out, report);
 }
 
+/// Transfers larger than the staging buffer go a chunk at a time: with 4 KiB chunks the patches
+/// (12 KiB), the ball's net (5 KiB) and the G-buffer (16 KiB of offsets, 45 KiB of hits)
+/// cross in several chunks, and the frames still match the CPU driver's. A smaller chunk is
+/// refused before anything is copied.
+TEST(DeviceEngineCaps, TransfersGoInChunks)
+{
+  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  Scene s = scene(
+    "tube, 4 KiB chunks", iga::makeTwistedTube<double>(0.7), position, focal, 35, 64, 64, { 0.0 });
+  s.settings.colorAttribute = 1;
+  s.settings.transferChunkBytes = 4096;
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  if (!deviceRender(s, out, report, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  EXPECT_GT(report.uploadedBytes, 2 * s.settings.transferChunkBytes);
+  EXPECT_GT(out.hits.size() * sizeof(iga::sst::Hit), 10 * s.settings.transferChunkBytes);
+  expectMatchesTheCpuDriver(s, out, report);
+
+  const NurbsBall ball(1.0);
+  Scene n{ "NURBS ball, 4 KiB chunks", { iga::sst::extractElements(ball.volumes(0)), { "ball" } },
+    {}, s.settings };
+  const double origin[3] = { 0, 0, 0 };
+  n.camera = lookAt(n.set, position, origin, 35);
+  n.settings.colorAttribute = -1;
+  ASSERT_GT(ball.patch.net.size() * sizeof(double), n.settings.transferChunkBytes);
+  ASSERT_TRUE(deviceRenderNurbs(ball.volumes(4), n.camera, n.settings, out, report, why));
+  expectMatchesTheCpuDriver(n, out, report);
+
+  s.settings.transferChunkBytes = 4095;
+  try
+  {
+    deviceRender(s, out, report, why);
+    ADD_FAILURE() << "a 4095-byte chunk was accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_STREQ(e.what(), "transfer chunk of 4095 bytes is below 4096");
+  }
+}
+
+#ifdef IGAVIEW_DEVICE_LOGIC
+/// Host arrays read as one sequence: every range of the parts' concatenation, across empty
+/// parts and part boundaries.
+TEST(DeviceEngineCaps, HostSequenceCopiesAnyRange)
+{
+  const std::vector<std::vector<double>> parts = { { 1, 2, 3 }, {}, { 4, 5, 6, 7, 8 }, { 9 }, {} };
+  iga::sst::device::HostSequence sequence;
+  for (const auto& part : parts)
+  {
+    sequence.append(part.data(), part.size());
+  }
+  ASSERT_EQ(sequence.size(), 9u);
+  for (size_t first = 0; first <= 9; ++first)
+  {
+    for (size_t last = first; last <= 9; ++last)
+    {
+      std::vector<double> copied(last - first, -1);
+      sequence.copy(first, last, copied.data());
+      for (size_t k = first; k < last; ++k)
+      {
+        EXPECT_EQ(copied[k - first], double(k + 1)) << first << ".." << last;
+      }
+    }
+  }
+}
+#endif
+
 /// NURBS volumes extracted on the device draw what their host-extracted elements draw; a moved
 /// net (new data version, same extraction version) is all a deforming frame sends, and a camera
 /// move sends only the isovalues.

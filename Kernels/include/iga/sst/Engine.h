@@ -49,7 +49,10 @@ struct Settings
   std::vector<std::array<double, 4>> clipPlanes;
   int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
   size_t memoryBudgetBytes = size_t(2) << 30; ///< cap on subdivision storage
-  int threads = 0;                            ///< 0: all hardware threads (CPU backend)
+  /// CUDA: size of the page-locked host buffer that uploads and the G-buffer pass through, a
+  /// chunk at a time (kept between frames); at least 4096.
+  size_t transferChunkBytes = size_t(64) << 20;
+  int threads = 0; ///< 0: all hardware threads (CPU backend)
   Backend backend = Backend::Automatic;
   /// Names the patches' content for drivers that keep a copy of it (CUDA): a frame with the
   /// same non-zero version as the previous one reuses that copy (no checks, no upload), so a
