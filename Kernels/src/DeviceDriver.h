@@ -76,12 +76,17 @@ T readBack(const T* where)
   return value;
 }
 
-/// Exclusive scan of uint32 counts in place with one extra slot at the end; returns the total.
-inline size_t scanCounts(Array<uint32_t>& counts, size_t n)
+/// Exclusive scan of counts in place with one extra slot at the end; returns the total, which
+/// the 32-bit indices of pairs, tuples and hits must reach (checkIndexable). Counts are 64-bit
+/// where the total could pass 2^32, so that the check sees it unwrapped.
+template<class Count>
+size_t scanCounts(Array<Count>& counts, size_t n)
 {
-  uint32_t* c = raw(counts);
+  Count* c = raw(counts);
   thrust::exclusive_scan(exec(), c, c + n + 1, c);
-  return readBack(c + n);
+  const size_t total = size_t(readBack(c + n));
+  checkIndexable(total);
+  return total;
 }
 
 /// Threads for a host copy of `bytes`: one per MiB at most, since starting a thread costs about
@@ -636,7 +641,7 @@ struct Driver
     {
       node.coeff += this->ScreenValues; // their coefficients follow the screen patches
     }
-    uint32_t* counts = sized(this->Counts, rootCount + 1);
+    uint64_t* counts = sized(this->Counts, rootCount + 1);
     forEach(rootCount, [=] IGA_HD(size_t r) { counts[r] = state[r] == 1 ? 1 : 0; });
     partCounts.push_back(0); // the scan below reads one past the last
     this->Index = partCounts;
@@ -698,7 +703,7 @@ struct Driver
     const size_t nodeCount = this->InitialNodes.size();
     const Node* nodes = raw(this->InitialNodes);
     const FrameConstants frame = this->Frame;
-    uint32_t* counts = sized(this->Counts, nodeCount + 1);
+    uint64_t* counts = sized(this->Counts, nodeCount + 1);
     forEach(nodeCount, [=] IGA_HD(size_t n)
       { counts[n] = coveredPixelCount(nodes[n].info.box, frame.width, frame.height); });
     const size_t total = scanCounts(this->Counts, nodeCount);
@@ -763,7 +768,7 @@ struct Driver
   /// wait as the count, into `alsoReadValue`.
   size_t gatherNodes(const Node* first, const double* firstPool, const uint8_t* firstTake,
     size_t firstCount, const Node* second, const double* secondPool, const uint8_t* secondTake,
-    size_t secondCount, bool asRound, const uint32_t* alsoRead = nullptr,
+    size_t secondCount, bool asRound, const uint64_t* alsoRead = nullptr,
     size_t* alsoReadValue = nullptr)
   {
     const size_t count = firstCount + secondCount;
@@ -884,7 +889,7 @@ struct Driver
         // Candidates: the covered pixels of the ready nodes, one thread each; those the round
         // takes become tuples, in node and row order.
         const double* best = raw(this->BestDepth);
-        uint32_t* counts = sized(this->Counts, nodeCount + 1);
+        uint64_t* counts = sized(this->Counts, nodeCount + 1);
         forEach(nodeCount,
           [=] IGA_HD(size_t n)
           {
@@ -902,7 +907,8 @@ struct Driver
               coveredPixel(nodes[n].info.box, frame.width, frame.height, uint32_t(k - counts[n]));
             taken[k] = roundTakesPixel(nodes[n], best[p], items, cursor[p], ends[p], frame) ? 1 : 0;
           });
-        const size_t added = scanCounts(this->Taken, candidates);
+        const size_t added = scanCounts(this->Taken, candidates); // at most the candidates
+        checkIndexable(tupleCount + added);
         this->Tuples.resize(tupleCount + added);
         Tuple* tuples = raw(this->Tuples) + tupleCount;
         forEach(candidates,
@@ -1115,7 +1121,7 @@ struct Driver
       // Compaction: failed tuples move to the kept children covering their pixel; solved and
       // dropped tuples and unsplit explicit nodes leave. A child is used when it receives a
       // tuple.
-      uint32_t* newCounts = sized(this->Counts, tupleCount + 1);
+      uint64_t* newCounts = sized(this->Counts, tupleCount + 1);
       uint8_t* unresolved = raw(this->Unresolved);
       unsigned long long* unresolvedTuples = raw(this->UnresolvedTuples);
       forEach(tupleCount,
@@ -1151,12 +1157,13 @@ struct Driver
       size_t nextCount = 0;
       this->NodeCount = this->gatherNodes(children, childPool, used, 8 * allowed, nodes, pool,
         deferred, nodeCount, false, newCounts + tupleCount, &nextCount);
+      checkIndexable(nextCount);
       const uint32_t* newIndex = raw(this->Index);
       Tuple* next = sized(this->Next, nextCount);
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
         {
-          uint32_t write = newCounts[t];
+          size_t write = newCounts[t];
           if (newCounts[t + 1] == write)
           {
             return;
@@ -1210,7 +1217,7 @@ struct Driver
           shadingPool + shape.screen, shape.degree, kShadeChannels);
         shaded[h] = shadeHit(shading, raws[h], viewer);
       });
-    uint32_t* kept = sized(this->Counts, pixels + 1);
+    uint32_t* kept = sized(this->KeptOffsets, pixels + 1);
     const double footprint = view.pixelFootprint;
     const bool firstHit = settings.firstHitOnly;
     forEach(pixels,
@@ -1219,7 +1226,7 @@ struct Driver
         kept[p] = uint32_t(mergePixelHits(shaded + offsets[p], int(offsets[p + 1] - offsets[p]),
           footprint, viewer.parallel, firstHit));
       });
-    const size_t total = scanCounts(this->Counts, pixels);
+    const size_t total = scanCounts(this->KeptOffsets, pixels); // at most the hit count
     Hit* compact = sized(this->Compact, total);
     forEach(pixels,
       [=] IGA_HD(size_t p)
@@ -1326,7 +1333,8 @@ struct Driver
   Array<Node> Nodes, NextNodes, Children;
   Array<double> Pool, NextPool, ChildPool;
   Array<Tuple> Tuples, Next;
-  Array<uint32_t> Counts, Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex;
+  Array<uint64_t> Counts; ///< per owner, then scanned into where its items start
+  Array<uint32_t> Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex, KeptOffsets;
   Array<uint64_t> ChildValues;
   Array<uint64_t> Totals;                     ///< scan totals read back together
   Array<unsigned long long> UnresolvedTuples; ///< at the depth cap, over the memory budget

@@ -85,7 +85,8 @@ double millisecondsSince(Clock::time_point start)
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-/// Exclusive prefix sum in place; returns the total.
+/// Exclusive prefix sum in place into 32-bit offsets; returns the total, which they must
+/// index.
 template<class Counts>
 size_t exclusiveScan(Counts& counts)
 {
@@ -96,6 +97,7 @@ size_t exclusiveScan(Counts& counts)
     c = static_cast<uint32_t>(total);
     total += n;
   }
+  checkIndexable(total);
   return total;
 }
 
@@ -414,7 +416,9 @@ private:
           }
         });
       const size_t existing = tuples.size();
-      tuples.resize(existing + exclusiveScan(readyCounts));
+      const size_t added = exclusiveScan(readyCounts);
+      checkIndexable(existing + added);
+      tuples.resize(existing + added);
       parallelFor(ready.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {

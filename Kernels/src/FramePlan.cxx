@@ -235,6 +235,16 @@ void checkNurbsVolumes(const NurbsVolumes& volumes)
   }
 }
 
+void checkIndexable(size_t count)
+{
+  if (count > std::numeric_limits<uint32_t>::max())
+  {
+    throw std::length_error("the frame needs " + std::to_string(count) +
+                            " (pixel, patch) pairs, more than the engine's 32-bit indices "
+                            "allow (4294967295): lower the resolution or draw fewer patches");
+  }
+}
+
 void checkSettings(const Settings& s)
 {
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)

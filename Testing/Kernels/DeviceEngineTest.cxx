@@ -25,6 +25,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -404,6 +405,55 @@ TEST(DeviceEngineCaps, TransfersGoInChunks)
   catch (const std::invalid_argument& e)
   {
     EXPECT_STREQ(e.what(), "transfer chunk of 4095 bytes is below 4096");
+  }
+}
+
+/// Pairs, tuples and hits have 32-bit indices in both drivers. 2200 slabs each covering the
+/// whole 1920 x 1080 image make 4 561 920 000 (pixel, patch) pairs: both refuse the frame with
+/// the same message, before allocating for the pairs, where a wrapped count would have
+/// indexed out of bounds.
+TEST(DeviceEngineCaps, FrameBeyond32BitIndicesIsRefused)
+{
+  iga::Polynomial3<double> field(1, 0, 0);
+  field.at(1, 0, 0) = 1; // every slab holds the plane x = 0
+  const int degrees[3] = { 1, 1, 1 };
+  iga::VolumeSet<double> slabs;
+  slabs.attributeNames = { "x" };
+  for (int k = 0; k < 2200; ++k)
+  {
+    const double lo[3] = { -100, 1 + 0.01 * k, -100 }, hi[3] = { 100, 1.005 + 0.01 * k, 100 };
+    slabs.patches.push_back(iga::makePolynomialVolume(field, lo, hi, degrees));
+  }
+  const double position[3] = { 0, 0, 0 }, focal[3] = { 0, 1, 0 };
+  const Scene s = scene("slabs", std::move(slabs), position, focal, 40, 1920, 1080, { 0.0 });
+  const std::string expected = "the frame needs 4561920000 (pixel, patch) pairs, more than the "
+                               "engine's 32-bit indices allow (4294967295): lower the resolution "
+                               "or draw fewer patches";
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  try
+  {
+    if (!deviceRender(s, out, report, why))
+    {
+      GTEST_SKIP() << why;
+    }
+    ADD_FAILURE() << "the device accepted the frame";
+  }
+  catch (const std::length_error& e)
+  {
+    EXPECT_EQ(e.what(), expected);
+  }
+  Settings cpu = s.settings;
+  cpu.backend = iga::sst::Backend::Cpu;
+  try
+  {
+    iga::sst::render(s.set.patches, s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
+    ADD_FAILURE() << "the CPU accepted the frame";
+  }
+  catch (const std::length_error& e)
+  {
+    EXPECT_EQ(e.what(), expected);
   }
 }
 

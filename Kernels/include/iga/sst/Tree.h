@@ -125,7 +125,7 @@ IGA_HD void forEachCoveredPixel(const Box3<double>& box, int width, int height, 
 
 /// The owner of item k when owner n's items start at starts[n] (an exclusive scan of counts,
 /// n in [0, owners), starts[owners] the total): the last n with starts[n] <= k.
-IGA_HD inline uint32_t ownerOf(const uint32_t* starts, size_t owners, size_t k)
+IGA_HD inline uint32_t ownerOf(const uint64_t* starts, size_t owners, size_t k)
 {
   size_t lo = 0, hi = owners; // starts[lo] <= k < starts[hi]
   while (hi - lo > 1)
