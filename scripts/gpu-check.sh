@@ -3,6 +3,10 @@
 # CUDA, run the GPU tests (CUDA engine against the CPU engine) and the GPU benchmark.
 # GoogleTest sources must be in .deps/googletest (git-ignored; copy /usr/src/googletest there
 # and pass .deps through the device tool's `carry`). Results go to $OUT (or ./gpu-results).
+# Where the CUDA toolkit has them, compute-sanitizer then checks the GPU tests for memory errors
+# and Nsight Systems profiles the deforming 10k blade (kernel and transfer summaries), in the
+# same call: the device machine is given back after half a minute idle, and a fresh one
+# rebuilds.
 #
 #   mkdir -p .deps && cp -r /usr/src/googletest .deps/     # once, on the development machine
 #   scripts/gpu-check.sh [--quick]
@@ -17,3 +21,20 @@ cmake -S "$root/Kernels" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
 cmake --build "$build" -j "$(nproc)" > "$out/build.log" 2>&1 || { tail -50 "$out/build.log"; exit 1; }
 (cd "$build" && ctest -L "gpu|engine" --output-on-failure) 2>&1 | tee "$out/ctest.log"
 "$build/igaBenchmark" --gpu "$@" --json "$out/benchmark-gpu.json" 2>&1 | tee "$out/benchmark.log"
+
+export PATH="$PATH:/usr/local/cuda/bin"
+if command -v compute-sanitizer > /dev/null; then
+  status=0
+  compute-sanitizer --tool memcheck --error-exitcode 99 "$build/Testing/igaCudaEngineTests" \
+    > "$out/memcheck.log" 2>&1 || status=$?
+  echo "compute-sanitizer memcheck: exit $status" | tee -a "$out/memcheck.log"
+else
+  echo "compute-sanitizer: not installed" > "$out/memcheck.log"
+fi
+if command -v nsys > /dev/null; then
+  nsys profile --force-overwrite true --stats=true -o "$out/blade-10k" \
+    "$build/igaBenchmark" --gpu --only blade-10008-deforming --json "$out/profiled.json" \
+    > "$out/nsys.log" 2>&1 || echo "nsys: exit $?" >> "$out/nsys.log"
+else
+  echo "nsys: not installed" > "$out/nsys.log"
+fi

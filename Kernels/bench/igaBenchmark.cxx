@@ -2,7 +2,7 @@
 // machines without VTK. Prints a table on stderr and one JSON document on stdout (or --json FILE).
 //
 //   igaBenchmark [--quick] [--json FILE]
-//   igaBenchmark --gpu [--quick] [--json FILE]
+//   igaBenchmark --gpu [--quick] [--only NAME] [--json FILE]
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
 // peak memory over resolutions 256^2..2048^2 (fig. 11); 1 vs 2 threads; the 512^2 tri-quadratic
@@ -13,7 +13,8 @@
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
 // every frame), a deforming NURBS ball, and the 800k-patch blade (camera moves, and at 1080p
 // deforming), with stage times and peak device memory, next to the CPU engine at 1080p. Without a
-// usable device it says why and measures nothing.
+// usable device it says why and measures nothing. --only NAME keeps the datasets whose names
+// contain NAME (a profiler's run: one dataset, not the whole study).
 #include "iga/Datasets.h"
 #include "iga/sst/Engine.h"
 
@@ -153,9 +154,10 @@ std::string json(
 }
 
 /// The CUDA engine's study (see the header). Returns false, with the reason, without a GPU.
-bool gpuStudy(bool quick, std::vector<Measurement>& all,
+bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all,
   std::vector<std::pair<std::string, double>>& ratios, std::string& why)
 {
+  auto wanted = [&](const std::string& dataset) { return dataset.find(only) != std::string::npos; };
   using iga::sst::Backend;
   using iga::sst::Method;
   const auto probe = iga::makeMarsdenSphere<double>(2);
@@ -185,6 +187,10 @@ bool gpuStudy(bool quick, std::vector<Measurement>& all,
   const std::vector<std::pair<int, int>> sizes = { { 1920, 1080 }, { 3840, 2160 } };
   for (const auto& c : cases)
   {
+    if (!wanted(c.name))
+    {
+      continue;
+    }
     for (const auto& size : sizes)
     {
       all.push_back(measure("gpu", c.name, c.set, c.isovalue, c.degree, size.first, size.second, 0,
@@ -196,10 +202,18 @@ bool gpuStudy(bool quick, std::vector<Measurement>& all,
   auto flapping = [&](int r) { return iga::makeBlade<double>(small, 0.1 * (r % 10)); };
   const auto blade = flapping(0);
   const std::string smallName = "blade-" + std::to_string(small.patchCount()) + "-deforming";
-  for (const auto& size : sizes)
+  if (wanted(smallName))
   {
-    all.push_back(measure("gpu", smallName, blade, 0.3, 2, size.first, size.second, 0,
-      Method::SharedSubdivisionTree, reps, Backend::Cuda, flapping));
+    for (const auto& size : sizes)
+    {
+      all.push_back(measure("gpu", smallName, blade, 0.3, 2, size.first, size.second, 0,
+        Method::SharedSubdivisionTree, reps, Backend::Cuda, flapping));
+    }
+    const Measurement gpu1080 = all[all.size() - 2];
+    const Measurement cpu1080 = measure("gpu", smallName, blade, 0.3, 2, 1920, 1080, 0,
+      Method::SharedSubdivisionTree, 1, Backend::Cpu, flapping);
+    all.push_back(cpu1080);
+    ratios.emplace_back("cpuOverGpu_" + smallName + "_1080p", cpu1080.ms / gpu1080.ms);
   }
   // A deforming NURBS volume of about 10k tri-quadratic elements, handed over as its nets (each
   // frame uploads only the moved net; the GPU extracts the elements, as for the VTK mapper's
@@ -227,8 +241,13 @@ bool gpuStudy(bool quick, std::vector<Measurement>& all,
   const iga::Camera ballCamera = frame(ballElements);
   for (bool nets : { true, false })
   {
-    all.push_back(measureFrames("gpu", ballName + (nets ? "-nets" : "-elements"), 0.0, 2, 1920,
-      1080, 0, Method::SharedSubdivisionTree, reps, Backend::Cuda, true,
+    const std::string name = ballName + (nets ? "-nets" : "-elements");
+    if (!wanted(name))
+    {
+      continue;
+    }
+    all.push_back(measureFrames("gpu", name, 0.0, 2, 1920, 1080, 0, Method::SharedSubdivisionTree,
+      reps, Backend::Cuda, true,
       [&](int r, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
       {
         const iga::sst::View view = iga::sst::makeView(ballCamera, 1920, 1080);
@@ -237,26 +256,22 @@ bool gpuStudy(bool quick, std::vector<Measurement>& all,
                         iga::sst::extractElements(ballVolumes(r)), view, settings, m, out);
       }));
   }
-  const Measurement gpu1080 = all[all.size() - 4];
-  const Measurement cpu1080 = measure("gpu", smallName, blade, 0.3, 2, 1920, 1080, 0,
-    Method::SharedSubdivisionTree, 1, Backend::Cpu, flapping);
-  all.push_back(cpu1080);
-  ratios.emplace_back("cpuOverGpu_" + smallName + "_1080p", cpu1080.ms / gpu1080.ms);
-  if (!quick)
+  const iga::BladeLayout large = iga::bladeLayout(800000);
+  const std::string largeName = "blade-" + std::to_string(large.patchCount());
+  if (!quick && wanted(largeName))
   {
-    const iga::BladeLayout large = iga::bladeLayout(800000);
     const auto big = iga::makeBlade<double>(large, 0.5);
     for (const auto& size : sizes)
     {
-      all.push_back(measure("gpu", "blade-" + std::to_string(large.patchCount()), big, 0.3, 2,
-        size.first, size.second, 0, Method::SharedSubdivisionTree, 3, Backend::Cuda));
+      all.push_back(measure("gpu", largeName, big, 0.3, 2, size.first, size.second, 0,
+        Method::SharedSubdivisionTree, 3, Backend::Cuda));
     }
     // The same set deforming: two time steps in turn, a new data version every frame (the
     // whole set is checked and sent again).
     const auto flapped = iga::makeBlade<double>(large, 0.6);
     const iga::Camera camera = frame(big);
-    all.push_back(measureFrames("gpu", "blade-" + std::to_string(large.patchCount()) + "-deforming",
-      0.3, 2, 1920, 1080, 0, Method::SharedSubdivisionTree, 3, Backend::Cuda, true,
+    all.push_back(measureFrames("gpu", largeName + "-deforming", 0.3, 2, 1920, 1080, 0,
+      Method::SharedSubdivisionTree, 3, Backend::Cuda, true,
       [&](int r, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
       { return iga::sst::render((r % 2 ? flapped : big).patches, camera, settings, m, out); }));
   }
@@ -268,7 +283,7 @@ bool gpuStudy(bool quick, std::vector<Measurement>& all,
 int main(int argc, char** argv)
 {
   bool quick = false, gpu = false;
-  std::string jsonFile;
+  std::string jsonFile, only;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--quick"))
@@ -277,9 +292,11 @@ int main(int argc, char** argv)
       gpu = true;
     else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
       jsonFile = argv[++i];
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+      only = argv[++i];
     else
     {
-      std::fprintf(stderr, "usage: igaBenchmark [--gpu] [--quick] [--json FILE]\n");
+      std::fprintf(stderr, "usage: igaBenchmark [--gpu [--only NAME]] [--quick] [--json FILE]\n");
       return 1;
     }
   }
@@ -308,7 +325,7 @@ int main(int argc, char** argv)
   if (gpu)
   {
     std::string why;
-    if (!gpuStudy(quick, all, ratios, why))
+    if (!gpuStudy(quick, only, all, ratios, why))
     {
       std::fprintf(stderr, "igaBenchmark --gpu: %s; nothing measured\n", why.c_str());
       return emit("{\n  \"skipped\": \"" + why + "\"\n}\n");
