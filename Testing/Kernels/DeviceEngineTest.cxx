@@ -73,6 +73,15 @@ Scene scene(const std::string& name, iga::VolumeSet<double> set, const double* p
   return s;
 }
 
+/// The twisted tube coloured by its second attribute, drawn by several tests.
+Scene colouredTube(const std::string& name)
+{
+  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  Scene s = scene(name, iga::makeTwistedTube<double>(0.7), position, focal, 35, 64, 64, { 0.0 });
+  s.settings.colorAttribute = 1;
+  return s;
+}
+
 std::vector<Scene> scenes()
 {
   std::vector<Scene> all;
@@ -89,12 +98,8 @@ std::vector<Scene> scenes()
       "teardrop, all hits", iga::makeTeardrop<double>(1.2), position, focal, 40, 48, 40, { 0.0 }));
     all.back().settings.firstHitOnly = false;
   }
-  {
-    const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
-    all.push_back(scene("twisted tube, two isovalues, colour", iga::makeTwistedTube<double>(0.7),
-      position, focal, 35, 64, 64, { 0.0, 0.3 }));
-    all.back().settings.colorAttribute = 1;
-  }
+  all.push_back(colouredTube("twisted tube, two isovalues, colour"));
+  all.back().settings.isovalues.push_back(0.3);
   {
     const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 };
     all.push_back(scene("tube with a collapsed axis", iga::makeTube<double>(0.0, 0.0), position,
@@ -326,11 +331,8 @@ TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
 /// CPU driver.
 TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
 {
-  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
-  Scene s = scene(
-    "tube, version 1", iga::makeTwistedTube<double>(0.7), position, focal, 35, 64, 64, { 0.0 });
+  Scene s = colouredTube("tube, version 1");
   s.settings.dataVersion = 1;
-  s.settings.colorAttribute = 1;
   GBuffer out;
   FrameReport report;
   std::string why;
@@ -347,7 +349,7 @@ TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
   expectMatchesTheCpuDriver(s, out, report);
 
   const double moved[3] = { -2.5, -3.8, 2.2 };
-  s.camera = lookAt(s.set, moved, focal, 35);
+  s.camera = lookAt(s.set, moved, s.camera.focalPoint, 35);
   ASSERT_TRUE(deviceRender(s, out, report, why));
   EXPECT_EQ(report.uploadedBytes, sizeof(double)); // the one isovalue
   expectMatchesTheCpuDriver(s, out, report);
@@ -370,10 +372,7 @@ TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
 /// refused before anything is copied.
 TEST(DeviceEngineCaps, TransfersGoInChunks)
 {
-  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
-  Scene s = scene(
-    "tube, 4 KiB chunks", iga::makeTwistedTube<double>(0.7), position, focal, 35, 64, 64, { 0.0 });
-  s.settings.colorAttribute = 1;
+  Scene s = colouredTube("tube, 4 KiB chunks");
   s.settings.transferChunkBytes = 4096;
   GBuffer out;
   FrameReport report;
@@ -390,7 +389,7 @@ TEST(DeviceEngineCaps, TransfersGoInChunks)
   Scene n{ "NURBS ball, 4 KiB chunks", { iga::sst::extractElements(ball.volumes(0)), { "ball" } },
     {}, s.settings };
   const double origin[3] = { 0, 0, 0 };
-  n.camera = lookAt(n.set, position, origin, 35);
+  n.camera = lookAt(n.set, s.camera.position, origin, 35);
   n.settings.colorAttribute = -1;
   ASSERT_GT(ball.patch.net.size() * sizeof(double), n.settings.transferChunkBytes);
   ASSERT_TRUE(deviceRenderNurbs(ball.volumes(4), n.camera, n.settings, out, report, why));
