@@ -77,7 +77,7 @@ T readBack(const T* where)
 }
 
 /// Exclusive scan of counts in place with one extra slot at the end; returns the total, which
-/// the 32-bit indices of pairs, tuples and hits must reach (checkIndexable). Counts are 64-bit
+/// the 32-bit indices of pairs and tuples must reach (checkIndexable). Counts are 64-bit
 /// where the total could pass 2^32, so that the check sees it unwrapped.
 template<class Count>
 size_t scanCounts(Array<Count>& counts, size_t n)
@@ -1076,6 +1076,7 @@ struct Driver
       download(totals, 3, read);
       const size_t allowed = size_t(read[0]), newHits = size_t(read[2]);
 
+      checkIndexable(this->HitCount + newHits, "hits");
       this->Hits.resize(this->HitCount + newHits);
       RawHit* hits = raw(this->Hits) + this->HitCount;
       forEach(tupleCount,
@@ -1089,6 +1090,7 @@ struct Driver
         });
       this->HitCount += newHits;
 
+      checkIndexable(8 * allowed + nodeCount, "nodes"); // gatherNodes indexes them
       double* childPool = sized(this->ChildPool, size_t(read[1]));
       Node* children = sized(this->Children, 8 * allowed);
       uint8_t* keep = sized(this->KeepFlags, 8 * allowed);

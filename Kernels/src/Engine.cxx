@@ -559,7 +559,7 @@ private:
         }
       }
       toSplit.resize(allowed);
-      Array<uint32_t> poolOffset(toSplit.size() + 1, 0);
+      Array<size_t> poolOffset(toSplit.size() + 1, 0); // doubles: past 2^32 with a large budget
       for (size_t k = 0; k < toSplit.size(); ++k)
       {
         poolOffset[k + 1] = poolOffset[k] + 8 * this->valueCount(nodes[toSplit[k]].patch);
@@ -945,6 +945,7 @@ private:
   void fillGBuffer(GBuffer& out)
   {
     // Group by pixel, shade, sort front to back and merge duplicates.
+    checkIndexable(this->Hits.size(), "hits");
     Array<uint32_t> runs;
     groupByPixel(this->Hits, this->PixelCount, runs);
     const size_t runCount = runs.size() - 1;

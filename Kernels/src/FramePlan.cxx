@@ -235,12 +235,12 @@ void checkNurbsVolumes(const NurbsVolumes& volumes)
   }
 }
 
-void checkIndexable(size_t count)
+void checkIndexable(size_t count, const char* what)
 {
   if (count > std::numeric_limits<uint32_t>::max())
   {
-    throw std::length_error("the frame needs " + std::to_string(count) +
-                            " (pixel, patch) pairs, more than the engine's 32-bit indices "
+    throw std::length_error("the frame needs " + std::to_string(count) + " " + what +
+                            ", more than the engine's 32-bit indices "
                             "allow (4294967295): lower the resolution or draw fewer patches");
   }
 }

@@ -49,9 +49,10 @@ bool usableShape(const int* degree, int channels, const Settings& settings);
 /// combinations of control points. Throws std::invalid_argument naming the volume and point.
 void checkNurbsVolumes(const NurbsVolumes& volumes);
 
-/// Both drivers index (pixel, patch) pairs, tuples and hits with 32 bits: throws
-/// std::length_error, naming the count, when a frame needs more than 2^32 - 1.
-void checkIndexable(size_t count);
+/// Both drivers index (pixel, patch) pairs, tuples, nodes and hits with 32 bits: throws
+/// std::length_error, naming the count and what it counts, when a frame needs more than
+/// 2^32 - 1.
+void checkIndexable(size_t count, const char* what = "(pixel, patch) pairs");
 
 /// Throws std::invalid_argument for bad settings (image size, isovalues, depth cap, transfer
 /// chunk, clipping plane count).
