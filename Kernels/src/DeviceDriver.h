@@ -258,34 +258,30 @@ struct Driver
   void render(const std::vector<BezierVolume<double>>& patches, const View& view,
     const Settings& settings, GBuffer& out, FrameReport& report)
   {
-    const auto start = std::chrono::steady_clock::now();
-    report.uploadedBytes = 0;
-    checkSettings(settings); // before the upload, which reads the transfer chunk
-    this->uploadPatches(patches, settings, report);
-    report.msInput =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    this->draw(view, settings, out, report, start);
+    this->draw(
+      [&] { this->uploadPatches(patches, settings, report); }, view, settings, out, report);
   }
 
   void renderNurbs(const NurbsVolumes& volumes, const View& view, const Settings& settings,
     GBuffer& out, FrameReport& report)
   {
-    const auto start = std::chrono::steady_clock::now();
-    report.uploadedBytes = 0;
-    checkSettings(settings); // before the upload, which reads the transfer chunk
-    this->uploadNurbs(volumes, settings, report);
-    report.msInput =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    this->draw(view, settings, out, report, start);
+    this->draw([&] { this->uploadNurbs(volumes, settings, report); }, view, settings, out, report);
   }
 
-  /// The frame proper, once the world patches are on the device.
-  void draw(const View& view, const Settings& settings, GBuffer& out, FrameReport& report,
-    std::chrono::steady_clock::time_point start)
+  /// A frame: `upload` puts the world patches on the device (or finds them there), then the
+  /// frame proper.
+  template<class Upload>
+  void draw(
+    Upload upload, const View& view, const Settings& settings, GBuffer& out, FrameReport& report)
   {
     using Clock = std::chrono::steady_clock;
     auto ms = [](Clock::time_point t)
     { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    const Clock::time_point start = Clock::now();
+    report.uploadedBytes = 0;
+    checkSettings(settings); // before the upload, which reads the transfer chunk
+    upload();
+    report.msInput = ms(start);
     this->prepareFrame(view, settings, report);
     this->Report = &report;
     this->Settings_ = &settings;
@@ -1249,15 +1245,21 @@ struct Driver
 
   // ---- transfers ---------------------------------------------------------------------------
 
-  /// The page-locked staging area, as room for the chunks of a transfer of n values of T:
-  /// transfers larger than Settings::transferChunkBytes go a chunk at a time, so that the
-  /// page-locked memory kept between frames stays bounded.
-  template<class T>
-  std::pair<T*, size_t> stage(size_t n, const Settings& settings)
+  /// Runs step(first, count, staged, threads) over [0, n) a chunk at a time, `staged` the
+  /// page-locked staging area holding one chunk of T and `threads` the host threads for its
+  /// part of the copy. Transfers larger than Settings::transferChunkBytes go in several chunks,
+  /// so that the page-locked memory kept between frames stays bounded.
+  template<class T, class Step>
+  void inChunks(size_t n, const Settings& settings, Step step)
   {
     const size_t chunk = std::min(n, std::max<size_t>(1, settings.transferChunkBytes / sizeof(T)));
     this->Staging.resize((chunk * sizeof(T) + sizeof(double) - 1) / sizeof(double));
-    return { reinterpret_cast<T*>(this->Staging.data()), chunk };
+    T* staged = reinterpret_cast<T*>(this->Staging.data());
+    const int threads = copyThreads(chunk * sizeof(T), threadCount(settings));
+    for (size_t first = 0; first < n; first += chunk)
+    {
+      step(first, std::min(chunk, n - first), staged, threads);
+    }
   }
 
   /// Copies a host sequence to a device array through the staging area: each chunk is
@@ -1265,35 +1267,28 @@ struct Driver
   /// speed.
   void uploadStaged(const HostSequence& from, Array<double>& to, const Settings& settings)
   {
-    const size_t n = from.size();
-    to.resize(n);
-    const auto [staged, chunk] = this->stage<double>(n, settings);
-    const int threads = copyThreads(chunk * sizeof(double), threadCount(settings));
-    for (size_t first = 0; first < n; first += chunk)
-    {
-      const size_t count = std::min(chunk, n - first);
-      parallelFor(count, threads,
-        [&, staged = staged](size_t begin, size_t end)
-        { from.copy(first + begin, first + end, staged + begin); });
-      copyToDevice(raw(to) + first, staged, count * sizeof(double));
-    }
+    to.resize(from.size());
+    this->inChunks<double>(from.size(), settings,
+      [&](size_t first, size_t count, double* staged, int threads)
+      {
+        parallelFor(count, threads,
+          [&](size_t begin, size_t end) { from.copy(first + begin, first + end, staged + begin); });
+        copyToDevice(raw(to) + first, staged, count * sizeof(double));
+      });
   }
 
-  /// Copies n device values to host memory through the staging area, a chunk at a time; the
-  /// host's part of each copy runs on several threads.
+  /// Copies n device values to host memory through the staging area.
   template<class T>
   void downloadStaged(const T* from, size_t n, T* to, const Settings& settings)
   {
-    const auto [staged, chunk] = this->stage<T>(n, settings);
-    const int threads = copyThreads(chunk * sizeof(T), threadCount(settings));
-    for (size_t first = 0; first < n; first += chunk)
-    {
-      const size_t count = std::min(chunk, n - first);
-      download(from + first, count, staged);
-      parallelFor(count, threads,
-        [&, staged = staged](size_t begin, size_t end)
-        { std::copy(staged + begin, staged + end, to + first + begin); });
-    }
+    this->inChunks<T>(n, settings,
+      [&](size_t first, size_t count, T* staged, int threads)
+      {
+        download(from + first, count, staged);
+        parallelFor(count, threads,
+          [&](size_t begin, size_t end)
+          { std::copy(staged + begin, staged + end, to + first + begin); });
+      });
   }
 
   FrameReport* Report = nullptr;
