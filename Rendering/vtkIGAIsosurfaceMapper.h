@@ -138,7 +138,8 @@ public:
   ///@}
 
   ///@{
-  /// Cap on the engine's subdivision storage in MiB (default 2048).
+  /// Cap on the engine's subdivision storage in MiB (default 2048), and on its sweep's (pixel,
+  /// patch) pairs at 20 bytes a pair: a frame needing more is drawn in bands of rows.
   vtkSetClampMacro(MemoryBudgetMB, int, 16, 1048576);
   vtkGetMacro(MemoryBudgetMB, int);
   ///@}

@@ -134,7 +134,7 @@ std::string json(
         << ", \"height\": " << m.height << ", \"threads\": " << m.threads << ", \"ms\": " << m.ms
         << ", \"peakMB\": " << m.peakMB << ", \"coveredPixels\": " << m.covered
         << ", \"newtonSolves\": " << m.newtonSolves << ", \"subdividedPatches\": " << m.subdivided
-        << ", \"unresolvedPixels\": " << m.unresolved
+        << ", \"unresolvedPixels\": " << m.unresolved << ", \"bands\": " << r.bands
         << ", \"uploadedMB\": " << r.uploadedBytes / 1048576.0
         << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
         << ", \"stagesMs\": {\"setup\": " << r.msSetup << ", \"input\": " << r.msInput

@@ -292,9 +292,16 @@ struct Driver
     report.msSetup = ms(start);
 
     this->Stages.begin();
-    this->sweepAndGroup();
-    this->Stages.end(report.msSweepAndGroup);
-    this->sharedSubdivisionTrees();
+    const std::vector<int> bands = this->rowBandsOfFrame(settings);
+    report.bands = int(bands.size()) - 1;
+    for (size_t b = 0; b + 1 < bands.size(); ++b)
+    {
+      this->Frame.rowBegin = bands[b];
+      this->Frame.rowEnd = bands[b + 1];
+      this->sweepAndGroup();
+      this->Stages.end(report.msSweepAndGroup);
+      this->sharedSubdivisionTrees();
+    }
     this->Stages.finish();
     const Clock::time_point stage = Clock::now();
     this->fillGBuffer(view, settings, out);
@@ -693,15 +700,34 @@ struct Driver
 
   // ---- sweep and group ---------------------------------------------------------------------
 
-  /// Per pixel, the initial nodes whose boxes cover it, sorted by nearest depth.
+  /// The bands of rows the frame is drawn in (rowBands), from the initial nodes' boxes.
+  std::vector<int> rowBandsOfFrame(const Settings& settings)
+  {
+    const Node* nodes = raw(this->InitialNodes);
+    const FrameConstants frame = this->Frame;
+    const size_t rows = size_t(frame.height) + 1;
+    unsigned long long* differences = sized(this->RowPairs, rows);
+    thrust::fill(exec(), differences, differences + rows, 0ull);
+    forEach(this->InitialNodes.size(),
+      [=] IGA_HD(size_t n)
+      {
+        addRowPairs(nodes[n].info.box, frame,
+          [=](int row, uint64_t value) { addAtomically(differences + row, value); });
+      });
+    std::vector<unsigned long long> read(rows);
+    download(differences, rows, read.data());
+    return rowBands(std::vector<uint64_t>(read.begin(), read.end()).data(), settings);
+  }
+
+  /// Per pixel of the pass, the initial nodes whose boxes cover it, sorted by nearest depth.
   void sweepAndGroup()
   {
     const size_t nodeCount = this->InitialNodes.size();
     const Node* nodes = raw(this->InitialNodes);
     const FrameConstants frame = this->Frame;
     uint64_t* counts = sized(this->Counts, nodeCount + 1);
-    forEach(nodeCount, [=] IGA_HD(size_t n)
-      { counts[n] = coveredPixelCount(nodes[n].info.box, frame.width, frame.height); });
+    forEach(
+      nodeCount, [=] IGA_HD(size_t n) { counts[n] = coveredPixelCount(nodes[n].info.box, frame); });
     const size_t total = scanCounts(this->Counts, nodeCount);
     Tuple* items = sized(this->Items, total);
     // One thread per (pixel, node) pair.
@@ -709,9 +735,7 @@ struct Driver
       [=] IGA_HD(size_t k)
       {
         const uint32_t n = ownerOf(counts, nodeCount, k);
-        items[k] = { uint32_t(coveredPixel(
-                       nodes[n].info.box, frame.width, frame.height, uint32_t(k - counts[n]))),
-          n };
+        items[k] = { uint32_t(coveredPixel(nodes[n].info.box, frame, uint32_t(k - counts[n]))), n };
       });
     thrust::sort(exec(), items, items + total, TupleOrder{ nodes });
     pixelOffsets(items, total, this->PixelCount, sized(this->ItemOffsets, this->PixelCount + 1));
@@ -890,7 +914,7 @@ struct Driver
           [=] IGA_HD(size_t n)
           {
             counts[n] = nodes[n].implicit && readyForTuples(nodes[n], frame)
-                          ? coveredPixelCount(nodes[n].info.box, frame.width, frame.height)
+                          ? coveredPixelCount(nodes[n].info.box, frame)
                           : 0;
           });
         const size_t candidates = scanCounts(this->Counts, nodeCount);
@@ -899,8 +923,7 @@ struct Driver
           [=] IGA_HD(size_t k)
           {
             const uint32_t n = ownerOf(counts, nodeCount, k);
-            const size_t p =
-              coveredPixel(nodes[n].info.box, frame.width, frame.height, uint32_t(k - counts[n]));
+            const size_t p = coveredPixel(nodes[n].info.box, frame, uint32_t(k - counts[n]));
             taken[k] = roundTakesPixel(nodes[n], best[p], items, cursor[p], ends[p], frame) ? 1 : 0;
           });
         const size_t added = scanCounts(this->Taken, candidates); // at most the candidates
@@ -913,9 +936,9 @@ struct Driver
             if (taken[k + 1] != taken[k])
             {
               const uint32_t n = ownerOf(counts, nodeCount, k);
-              tuples[taken[k]] = { uint32_t(coveredPixel(nodes[n].info.box, frame.width,
-                                     frame.height, uint32_t(k - counts[n]))),
-                n };
+              tuples[taken[k]] = {
+                uint32_t(coveredPixel(nodes[n].info.box, frame, uint32_t(k - counts[n]))), n
+              };
             }
           });
         forEach(nodeCount,
@@ -999,8 +1022,7 @@ struct Driver
         {
           if (nodes[n].implicit)
           {
-            split[n] =
-              coveredPixelCount(nodes[n].info.box, frame.width, frame.height) > 0 ? Split : Keep;
+            split[n] = coveredPixelCount(nodes[n].info.box, frame) > 0 ? Split : Keep;
           }
           if (split[n] == Split && nodes[n].level >= frame.maxSubdivisionDepth)
           {
@@ -1143,7 +1165,7 @@ struct Driver
           else if (outcome[t] == Failed && state >= AtDepthCap)
           {
             unresolved[tuples[t].pixel] = 1;
-            countOne(&unresolvedTuples[state == AtDepthCap ? 0 : 1]);
+            addAtomically(&unresolvedTuples[state == AtDepthCap ? 0 : 1], 1);
           }
           newCounts[t] = count;
         });
@@ -1334,6 +1356,7 @@ struct Driver
   Array<uint32_t> Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex, KeptOffsets;
   Array<uint64_t> ChildValues;
   Array<uint64_t> Totals;                     ///< scan totals read back together
+  Array<unsigned long long> RowPairs;         ///< the sweep's pairs per row, as differences
   Array<unsigned long long> UnresolvedTuples; ///< at the depth cap, over the memory budget
   StageTimer Stages;
   Array<uint64_t> Offsets;

@@ -286,13 +286,13 @@ inline auto exec()
 }
 #endif
 
-/// Adds one to a device counter from any device thread.
-IGA_HD inline void countOne(unsigned long long* counter)
+/// Adds to a device counter from any device thread.
+IGA_HD inline void addAtomically(unsigned long long* counter, unsigned long long value)
 {
 #ifdef __CUDA_ARCH__
-  atomicAdd(counter, 1ull);
+  atomicAdd(counter, value);
 #else
-  ++*counter; // Thrust's host system runs a kernel's threads one after another
+  *counter += value; // Thrust's host system runs a kernel's threads one after another
 #endif
 }
 

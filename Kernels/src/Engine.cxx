@@ -185,22 +185,29 @@ public:
     const Clock::time_point start = Clock::now();
     this->setup();
     this->Report.msSetup = millisecondsSince(start);
-    Clock::time_point stage = Clock::now();
-    this->sweepAndGroup();
-    this->Report.msSweepAndGroup = millisecondsSince(stage);
-    switch (method)
+    const std::vector<int> bands = rowBands(this->rowPairDifferences().data(), this->Config);
+    this->Report.bands = int(bands.size()) - 1;
+    for (size_t b = 0; b + 1 < bands.size(); ++b)
     {
-      case Method::SharedSubdivisionTree:
-        this->sharedSubdivisionTrees();
-        break;
-      case Method::BasicScheme:
-        this->basicScheme();
-        break;
-      case Method::BruteForce:
-        this->bruteForce();
-        break;
+      this->Plan.frame.rowBegin = bands[b];
+      this->Plan.frame.rowEnd = bands[b + 1];
+      const Clock::time_point stage = Clock::now();
+      this->sweepAndGroup();
+      this->Report.msSweepAndGroup += millisecondsSince(stage);
+      switch (method)
+      {
+        case Method::SharedSubdivisionTree:
+          this->sharedSubdivisionTrees();
+          break;
+        case Method::BasicScheme:
+          this->basicScheme();
+          break;
+        case Method::BruteForce:
+          this->bruteForce();
+          break;
+      }
     }
-    stage = Clock::now();
+    const Clock::time_point stage = Clock::now();
     this->fillGBuffer(out);
     this->Report.msGBuffer = millisecondsSince(stage);
     for (uint8_t flag : this->Unresolved)
@@ -241,10 +248,30 @@ private:
       pool.data() + node.coeff, this->Patches[node.patch].view().degree, kScreenChannels);
   }
 
+  /// The pass's pixels (its band of rows): [passFirstPixel, + passPixelCount).
+  size_t passFirstPixel() const { return size_t(this->Plan.frame.rowBegin) * this->Config.width; }
+  size_t passPixelCount() const
+  {
+    return size_t(this->Plan.frame.rowEnd - this->Plan.frame.rowBegin) * this->Config.width;
+  }
+
   // ---- sweep and group ---------------------------------------------------------------------
 
-  /// Per pixel, the initial nodes whose boxes cover it, sorted by nearest depth: the work items
-  /// of SAG. Stored as one array with per-pixel offsets; the pixels that have any are listed.
+  /// The sweep's (pixel, initial node) pairs per image row, as differences (addRowPairs).
+  std::vector<uint64_t> rowPairDifferences() const
+  {
+    std::vector<uint64_t> differences(size_t(this->Config.height) + 1, 0);
+    for (const Node& node : this->Plan.initialNodes)
+    {
+      addRowPairs(node.info.box, this->Plan.frame,
+        [&](int row, uint64_t value) { differences[row] += value; });
+    }
+    return differences;
+  }
+
+  /// Per pixel of the pass, the initial nodes whose boxes cover it, sorted by nearest depth: the
+  /// work items of SAG. Stored as one array with per-pixel offsets; the pixels that have any are
+  /// listed.
   void sweepAndGroup()
   {
     // (pixel, initial node) pairs, grouped by pixel with the nodes in order.
@@ -252,8 +279,7 @@ private:
     Array<uint32_t> pairStart(initial.size() + 1, 0);
     for (size_t n = 0; n < initial.size(); ++n)
     {
-      pairStart[n] =
-        coveredPixelCount(initial[n].info.box, this->Config.width, this->Config.height);
+      pairStart[n] = coveredPixelCount(initial[n].info.box, this->Plan.frame);
     }
     Array<Tuple> pairs(exclusiveScan(pairStart));
     parallelFor(initial.size(), this->Plan.threads,
@@ -262,7 +288,7 @@ private:
         for (size_t n = begin; n < end; ++n)
         {
           size_t write = pairStart[n];
-          forEachCoveredPixel(initial[n].info.box, this->Config.width, this->Config.height,
+          forEachCoveredPixel(initial[n].info.box, this->Plan.frame,
             [&](size_t p) {
               pairs[write++] = { uint32_t(p), uint32_t(n) };
             });
@@ -397,7 +423,7 @@ private:
       Array<uint32_t> readyCounts(ready.size() + 1, 0);
       auto forCoveredPixels = [&](const Node& node, auto fn)
       {
-        forEachCoveredPixel(node.info.box, this->Config.width, this->Config.height,
+        forEachCoveredPixel(node.info.box, this->Plan.frame,
           [&](size_t p)
           {
             if (roundTakesPixel(node, this->BestDepth[p], this->Items.data(), this->GroupBegin[p],
@@ -514,9 +540,7 @@ private:
       {
         if (nodes[n].implicit)
         {
-          split[n] =
-            coveredPixelCount(nodes[n].info.box, this->Config.width, this->Config.height) > 0 ? 1
-                                                                                              : 0;
+          split[n] = coveredPixelCount(nodes[n].info.box, this->Plan.frame) > 0 ? 1 : 0;
         }
         if (split[n] && nodes[n].level >= this->Config.maxSubdivisionDepth)
         {
@@ -745,18 +769,20 @@ private:
   void basicScheme()
   {
     const Clock::time_point stage = Clock::now();
-    std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
-    std::vector<size_t> peak(this->PixelCount, 0);
+    const size_t first = this->passFirstPixel(), count = this->passPixelCount();
+    std::vector<std::vector<RawHit>> perPixel(count);
+    std::vector<size_t> peak(count, 0);
     std::atomic<size_t> solves{ 0 }, splits{ 0 }, capped{ 0 };
-    parallelFor(this->PixelCount, this->Plan.threads,
+    parallelFor(count, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
         // The arena holds exactly the stacked nodes' coefficient blocks, in stack order.
         std::vector<Node> stack;
         std::vector<double> arena, current, children;
         size_t localSolves = 0, localSplits = 0;
-        for (size_t p = begin; p < end; ++p)
+        for (size_t k = begin; k < end; ++k)
         {
+          const size_t p = first + k;
           const int i = int(p % this->Config.width), j = int(p / this->Config.width);
           double best = kInfinity;
           for (uint32_t item = this->ItemOffsets[p]; item < this->ItemOffsets[p + 1]; ++item)
@@ -790,7 +816,7 @@ private:
                 this->Plan.frame.clip);
               if (result == TupleOutcome::Hit)
               {
-                perPixel[p].push_back(rawHitOf(uint32_t(p), node, u, ndc));
+                perPixel[k].push_back(rawHitOf(uint32_t(p), node, u, ndc));
                 best = std::min(best, ndc);
               }
               if (result != TupleOutcome::Undecided)
@@ -821,23 +847,24 @@ private:
                   stack.push_back(child);
                 }
               }
-              peak[p] = std::max(peak[p], bytesOf(arena) + bytesOf(stack) + bytesOf(children));
+              peak[k] = std::max(peak[k], bytesOf(arena) + bytesOf(stack) + bytesOf(children));
             }
           }
         }
         solves += localSolves;
         splits += localSplits;
       });
-    this->Report.newtonSolves = solves;
-    this->Report.subdividedPatches = splits;
-    this->Report.unresolvedAtDepthCap = capped;
+    this->Report.newtonSolves += solves;
+    this->Report.subdividedPatches += splits;
+    this->Report.unresolvedAtDepthCap += capped;
     for (auto& hits : perPixel)
     {
       this->Hits.insert(this->Hits.end(), hits.begin(), hits.end());
     }
     this->trackMemory(
-      this->baseBytes() + *std::max_element(peak.begin(), peak.end()) * size_t(this->Plan.threads));
-    this->Report.msSolution = millisecondsSince(stage);
+      this->baseBytes() +
+      (count ? *std::max_element(peak.begin(), peak.end()) : 0) * size_t(this->Plan.threads));
+    this->Report.msSolution += millisecondsSince(stage);
   }
 
   // ---- brute force -------------------------------------------------------------------------
@@ -891,14 +918,16 @@ private:
       leafOffsets[n + 1] = uint32_t(leaves.size());
     }
     this->trackMemory(this->baseBytes() + bytesOf(leafPool) + bytesOf(leaves));
-    std::vector<std::vector<RawHit>> perPixel(this->PixelCount);
+    const size_t first = this->passFirstPixel(), count = this->passPixelCount();
+    std::vector<std::vector<RawHit>> perPixel(count);
     std::atomic<size_t> solves{ 0 };
-    parallelFor(this->PixelCount, this->Plan.threads,
+    parallelFor(count, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
         size_t local = 0;
-        for (size_t p = begin; p < end; ++p)
+        for (size_t k = begin; k < end; ++k)
         {
+          const size_t p = first + k;
           const int i = int(p % this->Config.width), j = int(p / this->Config.width);
           for (uint32_t item = this->ItemOffsets[p]; item < this->ItemOffsets[p + 1]; ++item)
           {
@@ -924,7 +953,7 @@ private:
                       this->Config.isovalues[leaf.iso], this->Plan.frame.tolerance, start, u, ndc,
                       this->Plan.frame.clip) == TupleOutcome::Hit)
                 {
-                  perPixel[p].push_back(rawHitOf(uint32_t(p), leaf, u, ndc));
+                  perPixel[k].push_back(rawHitOf(uint32_t(p), leaf, u, ndc));
                 }
               }
             }
@@ -932,12 +961,12 @@ private:
         }
         solves += local;
       });
-    this->Report.newtonSolves = solves;
+    this->Report.newtonSolves += solves;
     for (auto& hits : perPixel)
     {
       this->Hits.insert(this->Hits.end(), hits.begin(), hits.end());
     }
-    this->Report.msSolution = millisecondsSince(stage);
+    this->Report.msSolution += millisecondsSince(stage);
   }
 
   // ---- G-buffer ----------------------------------------------------------------------------

@@ -245,6 +245,41 @@ void checkIndexable(size_t count, const char* what)
   }
 }
 
+std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& s)
+{
+  const bool budgetBinds =
+    s.memoryBudgetBytes / kBytesPerSweepPair < std::numeric_limits<uint32_t>::max();
+  const uint64_t limit =
+    budgetBinds ? s.memoryBudgetBytes / kBytesPerSweepPair : std::numeric_limits<uint32_t>::max();
+  std::vector<int> starts = { 0 };
+  uint64_t rowPairs = 0, bandPairs = 0;
+  for (int row = 0; row < s.height; ++row)
+  {
+    rowPairs += rowDifferences[row];
+    if (rowPairs > limit)
+    {
+      const std::string bound = budgetBinds ? "at " + std::to_string(kBytesPerSweepPair) +
+                                                " bytes a pair within the memory budget of " +
+                                                std::to_string(s.memoryBudgetBytes) + " bytes"
+                                            : "the engine's 32-bit indices";
+      throw std::length_error(
+        "image row " + std::to_string(row) + " needs " + std::to_string(rowPairs) +
+        " (pixel, patch) pairs, more than one pass over the image may take (" +
+        std::to_string(limit) + ", " + bound +
+        "): " + (budgetBinds ? "raise the memory budget, " : "") +
+        "lower the resolution or draw fewer patches");
+    }
+    if (bandPairs + rowPairs > limit)
+    {
+      starts.push_back(row);
+      bandPairs = 0;
+    }
+    bandPairs += rowPairs;
+  }
+  starts.push_back(s.height);
+  return starts;
+}
+
 void checkSettings(const Settings& s)
 {
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
@@ -313,6 +348,8 @@ FramePlan planView(const View& view, const Settings& s, double attributeRange, F
   }
   plan.frame.width = s.width;
   plan.frame.height = s.height;
+  plan.frame.rowBegin = 0;
+  plan.frame.rowEnd = s.height;
   plan.frame.firstHitOnly = s.firstHitOnly;
   plan.frame.maxSubdivisionDepth = s.maxSubdivisionDepth;
   plan.frame.isovalues = s.isovalues.data();

@@ -54,6 +54,17 @@ void checkNurbsVolumes(const NurbsVolumes& volumes);
 /// 2^32 - 1.
 void checkIndexable(size_t count, const char* what = "(pixel, patch) pairs");
 
+/// Bytes a (pixel, node) pair of the sweep takes at its peak in either driver: the pair, the
+/// grouping's scratch copy (sort) and the work item it becomes.
+constexpr size_t kBytesPerSweepPair = 20;
+
+/// The bands of rows a frame is drawn in, as their starts followed by the image height: as few
+/// as keep every band's (pixel, node) pairs within the 32-bit indices and, at
+/// kBytesPerSweepPair, within the memory budget. `rowDifferences` (height + 1 entries, see
+/// addRowPairs) counts the pairs per row. Throws std::length_error naming a row that alone
+/// needs more.
+std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& settings);
+
 /// Throws std::invalid_argument for bad settings (image size, isovalues, depth cap, transfer
 /// chunk, clipping plane count).
 void checkSettings(const Settings& settings);

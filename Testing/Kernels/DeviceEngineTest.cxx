@@ -407,27 +407,32 @@ TEST(DeviceEngineCaps, TransfersGoInChunks)
   }
 }
 
-/// Pairs, tuples and hits have 32-bit indices in both drivers. 2200 slabs each covering the
-/// whole 1920 x 1080 image make 4 561 920 000 (pixel, patch) pairs: both refuse the frame with
-/// the same message, before allocating for the pairs, where a wrapped count would have
-/// indexed out of bounds.
-TEST(DeviceEngineCaps, FrameBeyond32BitIndicesIsRefused)
+/// `count` slabs one behind the other along +y from y = 1, `spacing` apart and half as thick,
+/// `halfWidth` wide in x and z, seen by a camera at the origin looking along +y. Each holds the
+/// plane through its middle (the isovalue 0 of y minus that middle), facing the camera: every
+/// slab covers the whole image, and every pixel's first hit lies on the nearest slab's plane.
+Scene slabStack(int count, double spacing, double halfWidth, int width, int height)
 {
-  iga::Polynomial3<double> field(1, 0, 0);
-  field.at(1, 0, 0) = 1; // every slab holds the plane x = 0
   const int degrees[3] = { 1, 1, 1 };
   iga::VolumeSet<double> slabs;
-  slabs.attributeNames = { "x" };
-  for (int k = 0; k < 2200; ++k)
+  slabs.attributeNames = { "y" };
+  for (int k = 0; k < count; ++k)
   {
-    const double lo[3] = { -100, 1 + 0.01 * k, -100 }, hi[3] = { 100, 1.005 + 0.01 * k, 100 };
+    const double y = 1 + spacing * k;
+    iga::Polynomial3<double> field(0, 1, 0);
+    field.at(0, 1, 0) = 1;
+    field.at(0, 0, 0) = -(y + 0.25 * spacing);
+    const double lo[3] = { -halfWidth, y, -halfWidth };
+    const double hi[3] = { halfWidth, y + 0.5 * spacing, halfWidth };
     slabs.patches.push_back(iga::makePolynomialVolume(field, lo, hi, degrees));
   }
   const double position[3] = { 0, 0, 0 }, focal[3] = { 0, 1, 0 };
-  const Scene s = scene("slabs", std::move(slabs), position, focal, 40, 1920, 1080, { 0.0 });
-  const std::string expected = "the frame needs 4561920000 (pixel, patch) pairs, more than the "
-                               "engine's 32-bit indices allow (4294967295): lower the resolution "
-                               "or draw fewer patches";
+  return scene("slabs", std::move(slabs), position, focal, 40, width, height, { 0.0 });
+}
+
+/// Both drivers refuse the scene's frame with exactly this message.
+void expectRefused(const Scene& s, const std::string& expected)
+{
   GBuffer out;
   Settings cpu = s.settings;
   cpu.backend = iga::sst::Backend::Cpu;
@@ -454,6 +459,77 @@ TEST(DeviceEngineCaps, FrameBeyond32BitIndicesIsRefused)
   {
     EXPECT_EQ(e.what(), expected);
   }
+}
+
+/// 48 slabs over a 160 x 120 image make 7 680 (pixel, patch) pairs a row. A memory budget of
+/// 2 MiB (20 bytes a pair) takes 13 rows a pass: the frame is drawn in 10 bands of rows, with
+/// the same G-buffer as in one pass, by the shared subdivision trees and the basic scheme on
+/// CPU threads and by the device driver.
+TEST(DeviceEngineCaps, ManyPairsAreDrawnInBands)
+{
+  Scene s = slabStack(48, 0.01, 100, 160, 120);
+  const size_t budget = size_t(2) << 20;
+  const size_t rowsPerBand = budget / 20 / (48 * 160);
+  FrameReport bandedReport;
+  for (auto method : { iga::sst::Method::BasicScheme, iga::sst::Method::SharedSubdivisionTree })
+  {
+    SCOPED_TRACE(iga::sst::methodName(method));
+    Settings cpu = s.settings;
+    cpu.backend = iga::sst::Backend::Cpu;
+    GBuffer whole, banded;
+    const FrameReport wholeReport = iga::sst::render(s.set.patches, s.camera, cpu, method, whole);
+    EXPECT_EQ(wholeReport.bands, 1);
+    cpu.memoryBudgetBytes = budget;
+    bandedReport = iga::sst::render(s.set.patches, s.camera, cpu, method, banded);
+    EXPECT_EQ(bandedReport.bands, int((120 + rowsPerBand - 1) / rowsPerBand));
+    EXPECT_EQ(bandedReport.unresolvedPixels, 0u);
+    EXPECT_EQ(bandedReport.newtonSolves, wholeReport.newtonSolves) << "each pixel in one band";
+    ASSERT_EQ(banded.offsets, whole.offsets);
+    ASSERT_EQ(banded.hits.size(), size_t(160 * 120)) << "one hit a pixel";
+    for (size_t h = 0; h < banded.hits.size(); ++h)
+    {
+      EXPECT_EQ(banded.hits[h].patch, 0);
+      EXPECT_NEAR(banded.hits[h].position[1], 1.0025, 1e-9);
+      EXPECT_EQ(banded.hits[h].ndcDepth, whole.hits[h].ndcDepth);
+      for (int d = 0; d < 3; ++d)
+      {
+        EXPECT_EQ(banded.hits[h].position[d], whole.hits[h].position[d]);
+      }
+    }
+  }
+  s.settings.memoryBudgetBytes = budget;
+  GBuffer device;
+  FrameReport deviceReport;
+  std::string why;
+  if (!deviceRender(s, device, deviceReport, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  EXPECT_EQ(deviceReport.bands, bandedReport.bands);
+  expectMatchesTheCpuDriver(s, device, deviceReport);
+}
+
+/// A row alone beyond what a pass may take is refused, before its pairs are allocated: here
+/// the budget's 3 276 pairs against the slabs' 7 680.
+TEST(DeviceEngineCaps, RowBeyondTheBudgetIsRefused)
+{
+  Scene s = slabStack(48, 0.01, 100, 160, 120);
+  s.settings.memoryBudgetBytes = 64 * 1024;
+  expectRefused(s, "image row 0 needs 7680 (pixel, patch) pairs, more than one pass over the image "
+                   "may take (3276, at 20 bytes a pair within the memory budget of 65536 bytes): "
+                   "raise the memory budget, lower the resolution or draw fewer patches");
+}
+
+/// Pairs have 32-bit indices in both drivers, whatever the budget: 262 144 slabs over a row of
+/// 16 384 pixels make 2^32 pairs, one too many. Refused where a wrapped count would have
+/// indexed out of bounds.
+TEST(DeviceEngineCaps, RowBeyond32BitIndicesIsRefused)
+{
+  Scene s = slabStack(262144, 1e-5, 1e5, 16384, 1);
+  s.settings.memoryBudgetBytes = size_t(1) << 40;
+  expectRefused(s, "image row 0 needs 4294967296 (pixel, patch) pairs, more than one pass over the "
+                   "image may take (4294967295, the engine's 32-bit indices): lower the resolution "
+                   "or draw fewer patches");
 }
 
 #ifdef IGAVIEW_DEVICE_LOGIC

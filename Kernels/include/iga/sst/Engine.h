@@ -48,7 +48,9 @@ struct Settings
   /// for every plane (vtkPlane's normal side); at most kMaxClipPlanes. Cut exactly at each hit.
   std::vector<std::array<double, 4>> clipPlanes;
   int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
-  size_t memoryBudgetBytes = size_t(2) << 30; ///< cap on subdivision storage
+  /// Cap on the subdivision's storage, and on the sweep's (pixel, patch) pairs at 20 bytes a
+  /// pair: a frame that needs more pairs is drawn in several passes over bands of rows.
+  size_t memoryBudgetBytes = size_t(2) << 30;
   /// CUDA: size of the page-locked host buffer that uploads and the G-buffer pass through, a
   /// chunk at a time (kept between frames); at least 4096.
   size_t transferChunkBytes = size_t(64) << 20;
@@ -110,7 +112,8 @@ struct FrameReport
   /// CPU (why), empty otherwise.
   std::string notice;
   int threads = 0;
-  int iterations = 0;          ///< solution/subdivision rounds
+  int iterations = 0; ///< solution/subdivision rounds
+  int bands = 0;      ///< passes over bands of rows: 1 unless the sweep's pairs exceed a pass
   size_t unresolvedPixels = 0; ///< pixels with work left when a cap was hit
   /// (pixel, sub-patch) pairs given up at each cap (a pixel may count more than once).
   size_t unresolvedAtDepthCap = 0;

@@ -51,6 +51,10 @@ struct FrameConstants
 {
   int width;
   int height;
+  /// Rows [rowBegin, rowEnd) drawn in this pass: the whole image unless the frame's (pixel,
+  /// node) pairs need several passes over bands of rows (rowBands).
+  int rowBegin;
+  int rowEnd;
   bool firstHitOnly;
   int maxSubdivisionDepth;
   double tolerance[3];     ///< Newton's acceptance window (pixels, pixels, attribute)
@@ -78,48 +82,68 @@ IGA_HD inline Node childOf(const Node& parent, int child)
   return node;
 }
 
-/// Pixel ranges [i0, i1] x [j0, j1] whose centres the box covers (empty when i0 > i1).
-IGA_HD inline void pixelRange(const Box3<double>& box, int width, int height, int* range)
+/// Pixel ranges [i0, i1] x [j0, j1] whose centres the box covers within columns [0, width) and
+/// rows [rowBegin, rowEnd) (empty when i0 > i1 or j0 > j1).
+IGA_HD inline void pixelRange(
+  const Box3<double>& box, int width, int rowBegin, int rowEnd, int* range)
 {
   const double i0 = ceil(box.lo[0] - 0.5 - 1e-6), i1 = floor(box.hi[0] - 0.5 + 1e-6);
   const double j0 = ceil(box.lo[1] - 0.5 - 1e-6), j1 = floor(box.hi[1] - 0.5 + 1e-6);
   range[0] = i0 > 0 ? int(i0) : 0;
   range[1] = i1 < width - 1 ? int(i1) : width - 1;
-  range[2] = j0 > 0 ? int(j0) : 0;
-  range[3] = j1 < height - 1 ? int(j1) : height - 1;
+  range[2] = j0 > rowBegin ? int(j0) : rowBegin;
+  range[3] = j1 < rowEnd - 1 ? int(j1) : rowEnd - 1;
 }
 
-/// The pixels whose centres the box covers: the pixel range, a rectangle (boxCoversPixel's
-/// wider margin holds for all of it). How many, and the k-th row by row, so that a GPU can give
-/// every (pixel, box) pair its own thread: a box over a million pixels is not one thread's work.
-IGA_HD inline uint32_t coveredPixelCount(const Box3<double>& box, int width, int height)
+/// The pixels of the frame's pass (its band of rows) whose centres the box covers: the pixel
+/// range, a rectangle (boxCoversPixel's wider margin holds for all of it). How many, and the
+/// k-th row by row, so that a GPU can give every (pixel, box) pair its own thread: a box over
+/// a million pixels is not one thread's work.
+IGA_HD inline uint32_t coveredPixelCount(const Box3<double>& box, const FrameConstants& frame)
 {
   int range[4];
-  pixelRange(box, width, height, range);
+  pixelRange(box, frame.width, frame.rowBegin, frame.rowEnd, range);
   return range[0] <= range[1] && range[2] <= range[3]
            ? uint32_t(range[1] - range[0] + 1) * uint32_t(range[3] - range[2] + 1)
            : 0;
 }
-IGA_HD inline size_t coveredPixel(const Box3<double>& box, int width, int height, uint32_t k)
+IGA_HD inline size_t coveredPixel(const Box3<double>& box, const FrameConstants& frame, uint32_t k)
 {
   int range[4];
-  pixelRange(box, width, height, range);
+  pixelRange(box, frame.width, frame.rowBegin, frame.rowEnd, range);
   const uint32_t columns = uint32_t(range[1] - range[0] + 1);
-  return size_t(range[2] + int(k / columns)) * width + size_t(range[0] + int(k % columns));
+  return size_t(range[2] + int(k / columns)) * frame.width + size_t(range[0] + int(k % columns));
 }
 
-/// Calls fn(pixel index) for every pixel whose centre the box covers, row by row.
+/// Calls fn(pixel index) for every pixel of the frame's pass whose centre the box covers, row
+/// by row.
 template<class Fn>
-IGA_HD void forEachCoveredPixel(const Box3<double>& box, int width, int height, Fn&& fn)
+IGA_HD void forEachCoveredPixel(const Box3<double>& box, const FrameConstants& frame, Fn&& fn)
 {
   int range[4];
-  pixelRange(box, width, height, range);
+  pixelRange(box, frame.width, frame.rowBegin, frame.rowEnd, range);
   for (int j = range[2]; j <= range[3]; ++j)
   {
     for (int i = range[0]; i <= range[1]; ++i)
     {
-      fn(size_t(j) * width + i);
+      fn(size_t(j) * frame.width + i);
     }
+  }
+}
+
+/// Counts a box's covered pixels of the whole image per row as differences over height + 1
+/// entries, whose running sums are the rows' counts: add(row, value) adds modulo 2^64, the
+/// covered columns at the box's first row and their negation past its last.
+template<class Add>
+IGA_HD void addRowPairs(const Box3<double>& box, const FrameConstants& frame, Add&& add)
+{
+  int range[4];
+  pixelRange(box, frame.width, 0, frame.height, range);
+  if (range[0] <= range[1] && range[2] <= range[3])
+  {
+    const uint64_t columns = uint64_t(range[1] - range[0] + 1);
+    add(range[2], columns);
+    add(range[3] + 1, ~columns + 1);
   }
 }
 
