@@ -300,6 +300,11 @@ int main(int argc, char** argv)
       return 1;
     }
   }
+  if (!only.empty() && !gpu)
+  {
+    std::fprintf(stderr, "igaBenchmark: --only selects datasets of the GPU study; add --gpu\n");
+    return 1;
+  }
   const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
   const int reps = quick ? 1 : 5;
   std::vector<Measurement> all;

@@ -407,6 +407,35 @@ TEST(DeviceEngineCaps, TransfersGoInChunks)
   }
 }
 
+/// Chunks of 2 MiB are gathered and emptied on two host threads (one per MiB): the 10k-patch
+/// blade's 10 MB of coefficients go up in several chunks, the 1080p G-buffer's 8 MB of pixel
+/// offsets come back in several, and the frame still equals the CPU driver's.
+TEST(DeviceEngineCaps, LargeChunksAreCopiedOnSeveralThreads)
+{
+  auto blade = iga::makeBlade<double>(iga::bladeLayout(10000), 0.0);
+  double bounds[6];
+  iga::sst::patchBounds(blade.patches, bounds);
+  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
+  Scene s{ "blade, 2 MiB chunks", std::move(blade), iga::frameBounds(bounds, direction, up, 30),
+    {} };
+  s.settings.width = 1920;
+  s.settings.height = 1080;
+  s.settings.isovalues = { 0.3 };
+  s.settings.surfaceAttribute = 0;
+  s.settings.threads = 2;
+  s.settings.transferChunkBytes = size_t(2) << 20;
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  if (!deviceRender(s, out, report, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  EXPECT_GT(report.uploadedBytes, 4 * s.settings.transferChunkBytes);
+  EXPECT_GT(out.offsets.size() * sizeof(uint32_t), 3 * s.settings.transferChunkBytes);
+  expectMatchesTheCpuDriver(s, out, report);
+}
+
 /// `count` slabs one behind the other along +y from y = 1, `spacing` apart and half as thick,
 /// `halfWidth` wide in x and z, seen by a camera at the origin looking along +y. Each holds the
 /// plane through its middle (the isovalue 0 of y minus that middle), facing the camera: every
