@@ -1258,11 +1258,40 @@ struct Driver
       });
     out.width = settings.width;
     out.height = settings.height;
-    out.offsets.resize(pixels + 1);
+    this->downloadOffsets(kept, settings, out.offsets);
     out.hits.resize(total);
-    this->downloadStaged(kept, pixels + 1, out.offsets.data(), settings);
     this->downloadStaged(compact, total, out.hits.data(), settings);
-    this->Report->downloadedBytes = (pixels + 1) * sizeof(uint32_t) + total * sizeof(Hit);
+    this->Report->downloadedBytes += total * sizeof(Hit);
+  }
+
+  /// Brings the per-pixel offsets of the kept hits (`kept`, pixels + 1 entries) to the host.
+  /// A frame covering less than half the image sends only its covered pixels and their offsets
+  /// (8 bytes a covered pixel instead of 4 a pixel: a sparse 1080p frame sends kilobytes, not
+  /// 8 MB), and the host expands them on its threads.
+  void downloadOffsets(
+    const uint32_t* kept, const Settings& settings, std::vector<uint32_t>& offsets)
+  {
+    const size_t pixels = this->PixelCount;
+    uint32_t* covered = sized(this->CoveredPixels, pixels);
+    const size_t coveredCount = thrust::copy_if(exec(), thrust::counting_iterator<uint32_t>(0),
+                                  thrust::counting_iterator<uint32_t>(uint32_t(pixels)), covered,
+                                  [=] IGA_HD(uint32_t p) { return kept[p + 1] > kept[p]; }) -
+                                covered;
+    if (2 * coveredCount >= pixels)
+    {
+      offsets.resize(pixels + 1);
+      this->downloadStaged(kept, pixels + 1, offsets.data(), settings);
+      this->Report->downloadedBytes = (pixels + 1) * sizeof(uint32_t);
+      return;
+    }
+    uint32_t* starts = sized(this->CoveredStarts, coveredCount + 1);
+    forEach(coveredCount + 1,
+      [=] IGA_HD(size_t k) { starts[k] = kept[k < coveredCount ? covered[k] : pixels]; });
+    std::vector<uint32_t> hostCovered(coveredCount), hostStarts(coveredCount + 1);
+    this->downloadStaged(covered, coveredCount, hostCovered.data(), settings);
+    this->downloadStaged(starts, coveredCount + 1, hostStarts.data(), settings);
+    offsetsFromRuns(hostCovered, hostStarts, pixels, threadCount(settings), offsets);
+    this->Report->downloadedBytes = (2 * coveredCount + 1) * sizeof(uint32_t);
   }
 
   // ---- transfers ---------------------------------------------------------------------------
@@ -1354,6 +1383,7 @@ struct Driver
   Array<Tuple> Tuples, Next;
   Array<uint64_t> Counts; ///< per owner, then scanned into where its items start
   Array<uint32_t> Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex, KeptOffsets;
+  Array<uint32_t> CoveredPixels, CoveredStarts; ///< G-buffer of a sparse frame, sent back
   Array<uint64_t> ChildValues;
   Array<uint64_t> Totals;                     ///< scan totals read back together
   Array<unsigned long long> RowPairs;         ///< the sweep's pairs per row, as differences

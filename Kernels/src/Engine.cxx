@@ -141,27 +141,6 @@ void groupByPixel(Array<Item>& items, size_t pixelCount, Array<uint32_t>& runs)
   runs.push_back(uint32_t(items.size()));
 }
 
-/// Per-pixel offsets from runs (`pixels[r]`, ascending, starts at `starts[r]`; `starts` has one
-/// entry more, the end): every pixel gets the start of the first run at or after it, the end
-/// past the last run. The one pass over all pixels, on all threads.
-template<class Offsets>
-void offsetsFromRuns(const Array<uint32_t>& pixels, const Array<uint32_t>& starts,
-  size_t pixelCount, int threads, Offsets& offsets)
-{
-  offsets.resize(pixelCount + 1);
-  const size_t runCount = pixels.size();
-  parallelFor(runCount + 1, threads,
-    [&](size_t begin, size_t end)
-    {
-      for (size_t r = begin; r < end; ++r)
-      {
-        const size_t from = r == 0 ? 0 : size_t(pixels[r - 1]) + 1;
-        const size_t to = r < runCount ? size_t(pixels[r]) : pixelCount;
-        std::fill(offsets.begin() + from, offsets.begin() + to + 1, starts[r]);
-      }
-    });
-}
-
 template<class V>
 size_t bytesOf(const V& v)
 {

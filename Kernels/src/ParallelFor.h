@@ -1,4 +1,5 @@
-// Host loops over CPU threads, shared by the CPU driver and the frame preparation.
+// Host loops over CPU threads, shared by the CPU driver, the frame preparation and the device
+// driver's host side.
 #pragma once
 
 #include <algorithm>
@@ -62,6 +63,27 @@ void parallelParts(size_t n, size_t parts, int threads, Fn&& fn)
       for (size_t k = first; k < last; ++k)
       {
         fn(k, n * k / parts, n * (k + 1) / parts);
+      }
+    });
+}
+
+/// Per-pixel offsets from runs (`pixels[r]`, ascending, starts at `starts[r]`; `starts` has one
+/// entry more, the end): every pixel gets the start of the first run at or after it, the end
+/// past the last run. The one pass over all pixels, on all threads.
+template<class Pixels, class Starts, class Offsets>
+void offsetsFromRuns(
+  const Pixels& pixels, const Starts& starts, size_t pixelCount, int threads, Offsets& offsets)
+{
+  offsets.resize(pixelCount + 1);
+  const size_t runCount = pixels.size();
+  parallelFor(runCount + 1, threads,
+    [&](size_t begin, size_t end)
+    {
+      for (size_t r = begin; r < end; ++r)
+      {
+        const size_t from = r == 0 ? 0 : size_t(pixels[r - 1]) + 1;
+        const size_t to = r < runCount ? size_t(pixels[r]) : pixelCount;
+        std::fill(offsets.begin() + from, offsets.begin() + to + 1, starts[r]);
       }
     });
 }
