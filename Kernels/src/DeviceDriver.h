@@ -330,7 +330,11 @@ struct Driver
     {
       return;
     }
-    this->DataVersion = 0; // until the copy below is complete
+    // Until the copy below is complete the device holds neither these patches nor the elements
+    // of NURBS volumes it may have held: the copy overwrites their shapes and coefficients.
+    this->DataVersion = 0;
+    this->ExtractionVersion = 0;
+    this->FromNurbs = false;
     // Shapes are checked here, control point values on the device; checkPatches names the
     // first problem when there is one.
     std::vector<PatchShape> shapes(patches.size());
@@ -368,8 +372,6 @@ struct Driver
       throwFirstProblem(patches, settings);
     }
     this->AttributeRange = summary.range();
-    this->ExtractionVersion = 0; // the device holds patches now, not extractions
-    this->FromNurbs = false;
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
     this->DataVersion = settings.dataVersion;

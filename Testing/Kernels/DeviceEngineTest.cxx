@@ -138,14 +138,23 @@ std::vector<Scene> scenes()
   return all;
 }
 
+#ifdef IGAVIEW_DEVICE_LOGIC
+/// The driver of every logic-test frame: it persists across frames and serves both entry points
+/// (patches and NURBS volumes), as the CUDA engine does.
+iga::sst::device::Driver& logicDriver()
+{
+  static iga::sst::device::Driver driver;
+  return driver;
+}
+#endif
+
 bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string& skipped)
 {
   const iga::sst::View view = iga::sst::makeView(s.camera, s.settings.width, s.settings.height);
 #ifdef IGAVIEW_DEVICE_LOGIC
   (void)skipped;
-  static iga::sst::device::Driver driver; // persists across frames, as in the CUDA engine
   report = FrameReport();
-  driver.render(s.set.patches, view, s.settings, out, report);
+  logicDriver().render(s.set.patches, view, s.settings, out, report);
   return true;
 #else
   if (!iga::sst::cuda::usable(skipped))
@@ -190,9 +199,8 @@ bool deviceRenderNurbs(const iga::sst::NurbsVolumes& volumes, const iga::Camera&
   const iga::sst::View view = iga::sst::makeView(camera, settings.width, settings.height);
 #ifdef IGAVIEW_DEVICE_LOGIC
   (void)skipped;
-  static iga::sst::device::Driver driver;
   report = FrameReport();
-  driver.renderNurbs(volumes, view, settings, out, report);
+  logicDriver().renderNurbs(volumes, view, settings, out, report);
   return true;
 #else
   if (!iga::sst::cuda::usable(skipped))
@@ -628,6 +636,37 @@ TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
   s.camera = lookAt(s.set, moved, origin, 35);
   ASSERT_TRUE(deviceRenderNurbs(stretched.volumes(3), s.camera, s.settings, out, report, why));
   EXPECT_EQ(report.uploadedBytes, sizeof(double));
+  expectMatchesTheCpuDriver(s, out, report);
+}
+
+/// Patches that fail the device's check after they replaced a NURBS volume's elements there
+/// leave no stale copy: the same NURBS versions afterwards are extracted again, not read with
+/// the patches' shapes.
+TEST(DeviceEngineCaps, RejectedPatchesReplaceTheNurbsCopy)
+{
+  const NurbsBall ball(1.0);
+  Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {} };
+  const double position[3] = { 2.8, -3.6, 2.2 }, origin[3] = { 0, 0, 0 };
+  s.camera = lookAt(s.set, position, origin, 35);
+  s.settings.width = 72;
+  s.settings.height = 64;
+  s.settings.isovalues = { 0.0 };
+  s.settings.dataVersion = 11;
+  GBuffer out;
+  FrameReport report;
+  std::string why;
+  if (!deviceRenderNurbs(ball.volumes(12), s.camera, s.settings, out, report, why))
+  {
+    GTEST_SKIP() << why;
+  }
+  expectMatchesTheCpuDriver(s, out, report);
+
+  Scene bad = colouredTube("tube with a NaN");
+  bad.set.patches[6].view().point(3)[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(deviceRender(bad, out, report, why), std::invalid_argument);
+
+  ASSERT_TRUE(deviceRenderNurbs(ball.volumes(12), s.camera, s.settings, out, report, why));
+  EXPECT_GT(report.uploadedBytes, ball.patch.net.size() * sizeof(double)) << "extracted again";
   expectMatchesTheCpuDriver(s, out, report);
 }
 
