@@ -34,6 +34,14 @@ std::unique_ptr<device::Driver>& engine()
   return driver;
 }
 
+/// Why the GPU can no longer be used in this process, empty while it can: a kernel fault
+/// leaves the context failing every call until the process ends. Guarded by engineMutex().
+std::string& contextFailure()
+{
+  static std::string why;
+  return why;
+}
+
 } // namespace
 
 bool usable(std::string& why)
@@ -50,12 +58,33 @@ bool usable(std::string& why)
     }
     return count > 0 ? std::string() : std::string("no CUDA device present");
   }();
-  why = problem;
-  return problem.empty();
+  std::lock_guard<std::mutex> lock(engineMutex());
+  why = problem.empty() ? contextFailure() : problem;
+  return why.empty();
 }
 
 namespace
 {
+
+/// After a CUDA error in a frame. When the context survived (out of memory, a launch the device
+/// refused), the engine is dropped and its memory given back: its arrays may be in any state.
+/// When it did not (a kernel fault: every later call fails with the same error), the engine is
+/// abandoned, since freeing into a failed context is pointless, and the GPU is not used again.
+void recover(const std::string& what)
+{
+  cudaGetLastError(); // clears an error that did not break the context
+  const bool intact = cudaDeviceSynchronize() == cudaSuccess && cudaGetLastError() == cudaSuccess;
+  if (intact)
+  {
+    engine().reset();
+    device::temporaryPool().trim();
+  }
+  else
+  {
+    engine().release();
+    contextFailure() = "the CUDA context failed earlier (" + what + ")";
+  }
+}
 
 /// Runs `frame` on the process's engine; CUDA errors become Failure.
 template<class Frame>
@@ -69,25 +98,16 @@ void guarded(Frame frame)
       engine().reset(new device::Driver());
     }
     frame(*engine());
-    const cudaError_t status = cudaDeviceSynchronize();
-    if (status != cudaSuccess)
-    {
-      throw Failure(cudaGetErrorString(status));
-    }
+    device::check(cudaDeviceSynchronize(), "end of frame");
   }
   catch (const thrust::system_error& e)
   {
-    // Its arrays may be in any state: start afresh next frame. After a sticky error freeing
-    // them could throw from a destructor, so they are abandoned instead.
-    engine().release();
-    cudaGetLastError();
+    recover(e.what());
     throw Failure(e.what());
   }
   catch (const std::bad_alloc&)
   {
-    engine().reset(); // the context is intact: give the memory back
-    device::temporaryPool().trim();
-    cudaGetLastError();
+    recover("out of device memory");
     throw Failure("out of device memory");
   }
 }

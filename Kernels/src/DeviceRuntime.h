@@ -13,7 +13,6 @@
 #include <cuda_runtime.h>
 #include <thrust/system/cuda/error.h>
 #include <thrust/system/cuda/execution_policy.h>
-#include <thrust/system/cuda/memory.h>
 #include <thrust/system_error.h>
 #endif
 
@@ -43,15 +42,32 @@ inline void check(cudaError_t status, const char* what)
   }
 }
 
-/// Device memory; throws std::bad_alloc when the device has none left.
-inline void* allocateDevice(size_t bytes)
+/// Throws std::bad_alloc when an allocation found no memory left, thrust::system_error for any
+/// other failure: after a kernel fault every call fails with the fault's error, which is not
+/// an out-of-memory error and must not be treated as one.
+inline void checkAllocation(cudaError_t status, const char* what)
 {
-  return thrust::cuda::malloc<char>(bytes).get();
+  if (status == cudaErrorMemoryAllocation)
+  {
+    cudaGetLastError();
+    throw std::bad_alloc();
+  }
+  check(status, what);
 }
 
+/// Device memory.
+inline void* allocateDevice(size_t bytes)
+{
+  void* block = nullptr;
+  checkAllocation(cudaMalloc(&block, bytes), "device allocation");
+  return block;
+}
+
+/// Its status is ignored: it runs in destructors, and after a kernel fault the memory goes with
+/// the context anyway.
 inline void freeDevice(void* block)
 {
-  thrust::cuda::free(thrust::cuda::pointer<char>(static_cast<char*>(block)));
+  cudaFree(block);
 }
 
 /// Device-to-device copy, ordered on the default stream (no host synchronisation).
@@ -76,11 +92,7 @@ inline void copyToHost(void* to, const void* from, size_t bytes)
 inline void* allocatePinned(size_t bytes)
 {
   void* block = nullptr;
-  if (cudaMallocHost(&block, bytes) != cudaSuccess)
-  {
-    cudaGetLastError();
-    throw std::bad_alloc();
-  }
+  checkAllocation(cudaMallocHost(&block, bytes), "page-locked allocation");
   return block;
 }
 
