@@ -170,6 +170,17 @@ bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string
 #endif
 }
 
+/// Runs a device frame (a call that returns false, saying why in `why`, where no GPU is usable)
+/// or skips the test, visibly: GTEST_SKIP has to run in the test's own body.
+#define FRAME_OR_SKIP(frame, why)                                                                  \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(frame))                                                                                  \
+    {                                                                                              \
+      GTEST_SKIP() << (why);                                                                       \
+    }                                                                                              \
+  } while (false)
+
 /// The rational B-spline ball of iga::makeNurbsBall on 3 x 3 x 3 elements.
 struct NurbsBall
 {
@@ -308,10 +319,7 @@ TEST_P(DeviceEngine, MatchesTheCpuDriver)
   GBuffer device;
   FrameReport deviceReport;
   std::string why;
-  if (!deviceRender(s, device, deviceReport, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRender(s, device, deviceReport, why), why);
   expectMatchesTheCpuDriver(s, device, deviceReport);
 }
 
@@ -327,10 +335,7 @@ TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
   GBuffer out;
   FrameReport report;
   std::string why;
-  if (!deviceRender(s, out, report, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRender(s, out, report, why), why);
   EXPECT_GT(report.unresolvedAtBudget, 0u);
   EXPECT_GT(report.unresolvedPixels, 0u);
   EXPECT_LE(report.peakBytes, size_t(1) << 20);
@@ -347,10 +352,7 @@ TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
   GBuffer out;
   FrameReport report;
   std::string why;
-  if (!deviceRender(s, out, report, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRender(s, out, report, why), why);
   size_t patchBytes = 0;
   for (const auto& patch : s.set.patches)
   {
@@ -388,10 +390,7 @@ TEST(DeviceEngineCaps, TransfersGoInChunks)
   GBuffer out;
   FrameReport report;
   std::string why;
-  if (!deviceRender(s, out, report, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRender(s, out, report, why), why);
   EXPECT_GT(report.uploadedBytes, 2 * s.settings.transferChunkBytes);
   EXPECT_GT(out.hits.size() * sizeof(iga::sst::Hit), 10 * s.settings.transferChunkBytes);
   expectMatchesTheCpuDriver(s, out, report);
@@ -438,10 +437,7 @@ TEST(DeviceEngineCaps, LargeChunksAreCopiedOnSeveralThreads)
   GBuffer out;
   FrameReport report;
   std::string why;
-  if (!deviceRender(s, out, report, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRender(s, out, report, why), why);
   EXPECT_GT(report.uploadedBytes, 4 * s.settings.transferChunkBytes);
   EXPECT_GT(out.offsets.size() * sizeof(uint32_t), 3 * s.settings.transferChunkBytes);
   expectMatchesTheCpuDriver(s, out, report);
@@ -489,10 +485,7 @@ void expectRefused(const Scene& s, const std::string& expected)
   std::string why;
   try
   {
-    if (!deviceRender(s, out, report, why))
-    {
-      GTEST_SKIP() << why;
-    }
+    FRAME_OR_SKIP(deviceRender(s, out, report, why), why);
     ADD_FAILURE() << "the device accepted the frame";
   }
   catch (const std::length_error& e)
@@ -541,10 +534,7 @@ TEST(DeviceEngineCaps, ManyPairsAreDrawnInBands)
   GBuffer device;
   FrameReport deviceReport;
   std::string why;
-  if (!deviceRender(s, device, deviceReport, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRender(s, device, deviceReport, why), why);
   EXPECT_EQ(deviceReport.bands, bandedReport.bands);
   expectMatchesTheCpuDriver(s, device, deviceReport);
 }
@@ -599,27 +589,31 @@ TEST(DeviceEngineCaps, HostSequenceCopiesAnyRange)
 }
 #endif
 
+/// The ball's host-extracted elements as a scene, for the CPU driver's reference frames.
+Scene ballScene(const NurbsBall& ball, uint64_t dataVersion)
+{
+  Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {} };
+  const double position[3] = { 2.8, -3.6, 2.2 }, origin[3] = { 0, 0, 0 };
+  s.camera = lookAt(s.set, position, origin, 35);
+  s.settings.width = 72;
+  s.settings.height = 64;
+  s.settings.isovalues = { 0.0 };
+  s.settings.dataVersion = dataVersion;
+  return s;
+}
+
 /// NURBS volumes extracted on the device draw what their host-extracted elements draw; a moved
 /// net (new data version, same extraction version) is all a deforming frame sends, and a camera
 /// move sends only the isovalues.
 TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
 {
   const NurbsBall ball(1.0), stretched(1.15);
-  Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {} };
+  Scene s = ballScene(ball, 7);
   ASSERT_EQ(s.set.patches.size(), 27u);
-  const double position[3] = { 2.8, -3.6, 2.2 }, origin[3] = { 0, 0, 0 };
-  s.camera = lookAt(s.set, position, origin, 35);
-  s.settings.width = 72;
-  s.settings.height = 64;
-  s.settings.isovalues = { 0.0 };
-  s.settings.dataVersion = 7;
   GBuffer out;
   FrameReport report;
   std::string why;
-  if (!deviceRenderNurbs(ball.volumes(3), s.camera, s.settings, out, report, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRenderNurbs(ball.volumes(3), s.camera, s.settings, out, report, why), why);
   expectMatchesTheCpuDriver(s, out, report);
   const size_t netBytes = ball.patch.net.size() * sizeof(double);
   EXPECT_GT(report.uploadedBytes, netBytes); // extraction operators too
@@ -632,7 +626,7 @@ TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
   expectMatchesTheCpuDriver(s, out, report);
 
   // The camera moves: nothing but the isovalue.
-  const double moved[3] = { -3.0, -2.9, 1.4 };
+  const double moved[3] = { -3.0, -2.9, 1.4 }, origin[3] = { 0, 0, 0 };
   s.camera = lookAt(s.set, moved, origin, 35);
   ASSERT_TRUE(deviceRenderNurbs(stretched.volumes(3), s.camera, s.settings, out, report, why));
   EXPECT_EQ(report.uploadedBytes, sizeof(double));
@@ -645,20 +639,11 @@ TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
 TEST(DeviceEngineCaps, RejectedPatchesReplaceTheNurbsCopy)
 {
   const NurbsBall ball(1.0);
-  Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {} };
-  const double position[3] = { 2.8, -3.6, 2.2 }, origin[3] = { 0, 0, 0 };
-  s.camera = lookAt(s.set, position, origin, 35);
-  s.settings.width = 72;
-  s.settings.height = 64;
-  s.settings.isovalues = { 0.0 };
-  s.settings.dataVersion = 11;
+  const Scene s = ballScene(ball, 11);
   GBuffer out;
   FrameReport report;
   std::string why;
-  if (!deviceRenderNurbs(ball.volumes(12), s.camera, s.settings, out, report, why))
-  {
-    GTEST_SKIP() << why;
-  }
+  FRAME_OR_SKIP(deviceRenderNurbs(ball.volumes(12), s.camera, s.settings, out, report, why), why);
   expectMatchesTheCpuDriver(s, out, report);
 
   Scene bad = colouredTube("tube with a NaN");
@@ -751,10 +736,7 @@ TEST(DeviceEngineCaps, BadInputIsRejected)
     ASSERT_NE(cpuMessage, "") << "the CPU path accepted the input";
     try
     {
-      if (!deviceRender(s, out, report, why))
-      {
-        GTEST_SKIP() << why;
-      }
+      FRAME_OR_SKIP(deviceRender(s, out, report, why), why);
       ADD_FAILURE() << "accepted";
     }
     catch (const std::invalid_argument& e)
