@@ -1,7 +1,8 @@
 // The device driver of the shared-subdivision-tree engine against the CPU driver, scene by scene
 // (the CPU engine's test scenes: spheres of degrees 2..5, the teardrop in all-hits mode, the
-// tube with two isovalues and a colour attribute, the collapsed cylinder axis, a camera inside
-// the patch, clipping planes, a folded volume, the depth and memory caps).
+// tube with two isovalues and a colour attribute, the exact rational cylinder drawn from its
+// second attribute, the collapsed cylinder axis, a camera inside the patch, clipping planes, a
+// folded volume, the depth and memory caps).
 //
 // Built twice from this source:
 // - igaDeviceLogicTests (IGAVIEW_DEVICE_LOGIC): the driver compiled by g++ for Thrust's host
@@ -100,6 +101,13 @@ std::vector<Scene> scenes()
   }
   all.push_back(colouredTube("twisted tube, two isovalues, colour"));
   all.back().settings.isovalues.push_back(0.3);
+  {
+    const double position[3] = { 2.6, -3.1, 3.4 }, focal[3] = { 0, 0, 1 };
+    all.push_back(scene("exact rational cylinder, radius attribute, height colour",
+      iga::makeTube<double>(0.5, 0.0), position, focal, 35, 72, 64, { 0.75 }));
+    all.back().settings.surfaceAttribute = 1;
+    all.back().settings.colorAttribute = 2;
+  }
   {
     const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 };
     all.push_back(scene("tube with a collapsed axis", iga::makeTube<double>(0.0, 0.0), position,
@@ -323,7 +331,7 @@ TEST_P(DeviceEngine, MatchesTheCpuDriver)
   expectMatchesTheCpuDriver(s, device, deviceReport);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, DeviceEngine, ::testing::Range(0, 11));
+INSTANTIATE_TEST_SUITE_P(Scenes, DeviceEngine, ::testing::Range(0, int(scenes().size())));
 
 /// A budget far below the frame's needs leaves pixels unresolved and bounds the working set.
 TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
