@@ -247,29 +247,20 @@ void checkIndexable(size_t count, const char* what)
 
 std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& s)
 {
-  const bool budgetBinds =
-    s.memoryBudgetBytes / kBytesPerSweepPair < std::numeric_limits<uint32_t>::max();
-  const uint64_t limit =
-    budgetBinds ? s.memoryBudgetBytes / kBytesPerSweepPair : std::numeric_limits<uint32_t>::max();
+  const uint64_t limit = std::min<uint64_t>(
+    s.memoryBudgetBytes / kBytesPerSweepPair, std::numeric_limits<uint32_t>::max());
   std::vector<int> starts = { 0 };
   uint64_t rowPairs = 0, bandPairs = 0;
   for (int row = 0; row < s.height; ++row)
   {
     rowPairs += rowDifferences[row];
-    if (rowPairs > limit)
+    if (rowPairs > std::numeric_limits<uint32_t>::max())
     {
-      const std::string bound = budgetBinds ? "at " + std::to_string(kBytesPerSweepPair) +
-                                                " bytes a pair within the memory budget of " +
-                                                std::to_string(s.memoryBudgetBytes) + " bytes"
-                                            : "the engine's 32-bit indices";
-      throw std::length_error(
-        "image row " + std::to_string(row) + " needs " + std::to_string(rowPairs) +
-        " (pixel, patch) pairs, more than one pass over the image may take (" +
-        std::to_string(limit) + ", " + bound +
-        "): " + (budgetBinds ? "raise the memory budget, " : "") +
-        "lower the resolution or draw fewer patches");
+      checkIndexable(
+        rowPairs, ("(pixel, patch) pairs in image row " + std::to_string(row)).c_str());
     }
-    if (bandPairs + rowPairs > limit)
+    // A row over the budget alone is a band of its own: rows are not split.
+    if (bandPairs > 0 && bandPairs + rowPairs > limit)
     {
       starts.push_back(row);
       bandPairs = 0;

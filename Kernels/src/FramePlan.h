@@ -60,9 +60,9 @@ constexpr size_t kBytesPerSweepPair = 20;
 
 /// The bands of rows a frame is drawn in, as their starts followed by the image height: as few
 /// as keep every band's (pixel, node) pairs within the 32-bit indices and, at
-/// kBytesPerSweepPair, within the memory budget. `rowDifferences` (height + 1 entries, see
-/// addRowPairs) counts the pairs per row. Throws std::length_error naming a row that alone
-/// needs more.
+/// kBytesPerSweepPair, within the memory budget, except that a row over the budget is a band of
+/// its own. `rowDifferences` (height + 1 entries, see addRowPairs) counts the pairs per row.
+/// Throws std::length_error (checkIndexable) for a row beyond the 32-bit indices.
 std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& settings);
 
 /// Throws std::invalid_argument for bad settings (image size, isovalues, depth cap, transfer
