@@ -107,8 +107,9 @@ void guarded(Frame frame)
   }
   catch (const std::bad_alloc&)
   {
-    recover("out of device memory");
-    throw Failure("out of device memory");
+    // Device, page-locked or host memory: std::bad_alloc does not say which.
+    recover("out of memory");
+    throw Failure("out of memory");
   }
 }
 

@@ -194,15 +194,18 @@ struct HitPixelOrder
   IGA_HD bool operator()(const RawHit& a, const RawHit& b) const { return a.pixel < b.pixel; }
 };
 
-/// Writes per-pixel start offsets (pixelCount + 1 entries) of records sorted by pixel: per
-/// pixel, a binary search for its first record. (Filling the gaps between records, one thread a
-/// record, left a sparse frame's last thread two million pixels to write: 50 ms at 1080p.)
+/// Writes the start offsets of pixels [first, first + pixelCount] (one past the last: the end)
+/// into offsets[first ...], for records sorted by pixel, all of them in that range: per pixel, a
+/// binary search for its first record. (Filling the gaps between records, one thread a record,
+/// left a sparse frame's last thread two million pixels to write: 50 ms at 1080p.)
 template<class Record>
-void pixelOffsets(const Record* records, size_t count, size_t pixelCount, uint32_t* offsets)
+void pixelOffsets(
+  const Record* records, size_t count, size_t first, size_t pixelCount, uint32_t* offsets)
 {
   forEach(pixelCount + 1,
-    [=] IGA_HD(size_t p)
+    [=] IGA_HD(size_t k)
     {
+      const size_t p = first + k;
       size_t lo = 0, hi = count;
       while (lo < hi)
       {
@@ -740,7 +743,8 @@ struct Driver
         items[k] = { uint32_t(coveredPixel(nodes[n].info.box, frame, uint32_t(k - counts[n]))), n };
       });
     thrust::sort(exec(), items, items + total, TupleOrder{ nodes });
-    pixelOffsets(items, total, this->PixelCount, sized(this->ItemOffsets, this->PixelCount + 1));
+    pixelOffsets(items, total, this->passFirstPixel(), this->passPixelCount(),
+      sized(this->ItemOffsets, this->PixelCount + 1));
     uint32_t* itemNodes = sized(this->ItemNodes, total);
     forEach(total, [=] IGA_HD(size_t k) { itemNodes[k] = items[k].node; });
     this->trackMemory();
@@ -748,27 +752,41 @@ struct Driver
 
   // ---- shared subdivision trees ------------------------------------------------------------
 
+  /// The pass's pixels (its band of rows): [passFirstPixel, + passPixelCount). Per-pixel arrays
+  /// span the image; each pass reads and writes its own pixels only.
+  size_t passFirstPixel() const { return size_t(this->Frame.rowBegin) * this->Frame.width; }
+  size_t passPixelCount() const
+  {
+    return size_t(this->Frame.rowEnd - this->Frame.rowBegin) * this->Frame.width;
+  }
+
   void sharedSubdivisionTrees()
   {
+    const size_t first = this->passFirstPixel(), count = this->passPixelCount();
     const size_t pixels = this->PixelCount;
+    const uint32_t* offsets = raw(this->ItemOffsets);
     thrust::copy(
-      exec(), this->ItemOffsets.begin(), this->ItemOffsets.end() - 1, sized(this->Cursor, pixels));
+      exec(), offsets + first, offsets + first + count, sized(this->Cursor, pixels) + first);
     sized(this->Ends, pixels);
-    uint32_t* certified = sized(this->PixelSolves, pixels);
-    thrust::fill(exec(), certified, certified + pixels, uint32_t(0));
+    uint32_t* certified = sized(this->PixelSolves, pixels) + first;
+    thrust::fill(exec(), certified, certified + count, uint32_t(0));
     for (;;)
     {
       const Node* initial = raw(this->InitialNodes);
       const uint32_t* items = raw(this->ItemNodes);
-      const uint32_t* offsets = raw(this->ItemOffsets);
       const uint32_t* cursor = raw(this->Cursor);
       const double* best = raw(this->BestDepth);
       uint32_t* ends = raw(this->Ends);
       const bool firstHit = this->Frame.firstHitOnly;
-      forEach(pixels, [=] IGA_HD(size_t p)
-        { ends[p] = groupEnd(initial, items, cursor[p], offsets[p + 1], best[p], firstHit); });
+      forEach(count,
+        [=] IGA_HD(size_t k)
+        {
+          const size_t p = first + k;
+          ends[p] = groupEnd(initial, items, cursor[p], offsets[p + 1], best[p], firstHit);
+        });
       const size_t total = thrust::transform_reduce(
-        exec(), thrust::counting_iterator<size_t>(0), thrust::counting_iterator<size_t>(pixels),
+        exec(), thrust::counting_iterator<size_t>(first),
+        thrust::counting_iterator<size_t>(first + count),
         [=] IGA_HD(size_t p) { return size_t(ends[p] - cursor[p]); }, size_t(0),
         thrust::plus<size_t>());
       this->Stages.end(this->Report->msSweepAndGroup);
@@ -781,7 +799,7 @@ struct Driver
       sized(this->Ends, pixels);
     }
     this->Report->newtonSolves +=
-      thrust::reduce(exec(), certified, certified + pixels, size_t(0), thrust::plus<size_t>());
+      thrust::reduce(exec(), certified, certified + count, size_t(0), thrust::plus<size_t>());
   }
 
   /// Gathers the nodes flagged in `take` (with their coefficients) into Nodes and Pool, in
@@ -869,7 +887,6 @@ struct Driver
     FrameReport& report = *this->Report;
     const Settings& settings = *this->Settings_;
     const FrameConstants frame = this->Frame;
-    const size_t pixels = this->PixelCount;
     const PatchShape* shapes = raw(this->Shapes);
     const bool firstHit = frame.firstHitOnly;
     uint64_t* totals = raw(this->Totals);
@@ -882,9 +899,11 @@ struct Driver
       const uint32_t* items = raw(this->ItemNodes);
       const uint32_t* cursor = raw(this->Cursor);
       const uint32_t* ends = raw(this->Ends);
-      forEach(pixels,
-        [=] IGA_HD(size_t p)
+      const size_t first = this->passFirstPixel();
+      forEach(this->passPixelCount(),
+        [=] IGA_HD(size_t pass)
         {
+          const size_t p = first + pass;
           for (uint32_t k = cursor[p]; k < ends[p]; ++k)
           {
             present[items[k]] = 1;
@@ -1219,7 +1238,7 @@ struct Driver
     RawHit* raws = raw(this->Hits);
     thrust::stable_sort(exec(), raws, raws + hitCount, HitPixelOrder());
     uint32_t* offsets = sized(this->PixelStart, pixels + 1);
-    pixelOffsets(raws, hitCount, pixels, offsets);
+    pixelOffsets(raws, hitCount, 0, pixels, offsets);
     ShadingView viewer{};
     for (int d = 0; d < 3; ++d)
     {
@@ -1292,7 +1311,8 @@ struct Driver
     std::vector<uint32_t> hostCovered(coveredCount), hostStarts(coveredCount + 1);
     this->downloadStaged(covered, coveredCount, hostCovered.data(), settings);
     this->downloadStaged(starts, coveredCount + 1, hostStarts.data(), settings);
-    offsetsFromRuns(hostCovered, hostStarts, pixels, threadCount(settings), offsets);
+    offsets.resize(pixels + 1);
+    offsetsFromRuns(hostCovered, hostStarts, 0, pixels, threadCount(settings), offsets);
     this->Report->downloadedBytes = (2 * coveredCount + 1) * sizeof(uint32_t);
   }
 

@@ -206,6 +206,9 @@ private:
     this->PixelCount = size_t(this->Config.width) * this->Config.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, kInfinity);
+    // Empty groups: a pass sets those of its pixels with work items, and reads no others.
+    this->GroupBegin.assign(this->PixelCount, 0);
+    this->GroupEnd.assign(this->PixelCount, 0);
   }
 
   VolumeView<const double> shadingView(int patch) const
@@ -296,8 +299,9 @@ private:
             });
         }
       });
-    offsetsFromRuns(
-      this->ActivePixels, runs, this->PixelCount, this->Plan.threads, this->ItemOffsets);
+    this->ItemOffsets.resize(this->PixelCount + 1);
+    offsetsFromRuns(this->ActivePixels, runs, this->passFirstPixel(), this->passPixelCount(),
+      this->Plan.threads, this->ItemOffsets);
     this->trackMemory(bytesOf(this->Items) + bytesOf(this->ItemOffsets) +
                       bytesOf(this->Plan.initialPool) + bytesOf(pairs));
   }
@@ -309,8 +313,6 @@ private:
     // GroupBegin/GroupEnd hold each pixel's group of the round, empty for pixels without work;
     // only the pixels with work left are visited.
     Array<uint32_t> active = this->ActivePixels;
-    this->GroupBegin.assign(this->PixelCount, 0);
-    this->GroupEnd.assign(this->PixelCount, 0);
     for (uint32_t p : active)
     {
       this->GroupEnd[p] = this->ItemOffsets[p];
@@ -850,12 +852,11 @@ private:
 
   /// Uniform subdivision of every initial node to a fixed depth and Newton from nine starts in
   /// every leaf covering the pixel, without certificates: slow, independent of the tree logic.
-  void bruteForce()
+  /// Brute force's leaves: every initial node subdivided uniformly bruteForceLevels times, the
+  /// parts in front of the eye that may show surface kept.
+  void makeLeaves()
   {
-    const Clock::time_point stage = Clock::now();
-    std::vector<Node> leaves;
-    std::vector<double> leafPool;
-    std::vector<uint32_t> leafOffsets(this->Plan.initialNodes.size() + 1, 0);
+    this->LeafOffsets.assign(this->Plan.initialNodes.size() + 1, 0);
     for (size_t n = 0; n < this->Plan.initialNodes.size(); ++n)
     {
       std::vector<Node> level = { this->Plan.initialNodes[n] };
@@ -888,14 +889,26 @@ private:
       }
       for (auto& leaf : level)
       {
-        const size_t offset = leafPool.size();
-        leafPool.insert(
-          leafPool.end(), pool.begin() + leaf.coeff, pool.begin() + leaf.coeff + count);
+        const size_t offset = this->LeafPool.size();
+        this->LeafPool.insert(
+          this->LeafPool.end(), pool.begin() + leaf.coeff, pool.begin() + leaf.coeff + count);
         leaf.coeff = offset;
-        leaves.push_back(leaf);
+        this->Leaves.push_back(leaf);
       }
-      leafOffsets[n + 1] = uint32_t(leaves.size());
+      this->LeafOffsets[n + 1] = uint32_t(this->Leaves.size());
     }
+  }
+
+  void bruteForce()
+  {
+    const Clock::time_point stage = Clock::now();
+    if (this->LeafOffsets.empty()) // the leaves serve every band
+    {
+      this->makeLeaves();
+    }
+    const std::vector<Node>& leaves = this->Leaves;
+    const std::vector<double>& leafPool = this->LeafPool;
+    const std::vector<uint32_t>& leafOffsets = this->LeafOffsets;
     this->trackMemory(this->baseBytes() + bytesOf(leafPool) + bytesOf(leaves));
     const size_t first = this->passFirstPixel(), count = this->passPixelCount();
     std::vector<std::vector<RawHit>> perPixel(count);
@@ -986,7 +999,8 @@ private:
     out.width = this->Config.width;
     out.height = this->Config.height;
     out.hits.resize(exclusiveScan(keptCount)); // now where each run's kept hits go
-    offsetsFromRuns(runPixels, keptCount, this->PixelCount, this->Plan.threads, out.offsets);
+    out.offsets.resize(this->PixelCount + 1);
+    offsetsFromRuns(runPixels, keptCount, 0, this->PixelCount, this->Plan.threads, out.offsets);
     parallelFor(runCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
@@ -1005,6 +1019,9 @@ private:
   FrameReport& Report;
   FramePlan Plan;
   size_t PixelCount = 0;
+  std::vector<Node> Leaves; ///< brute force
+  std::vector<double> LeafPool;
+  std::vector<uint32_t> LeafOffsets;
   Array<uint32_t> ItemOffsets;
   Array<uint32_t> Items;
   Array<double> BestDepth;

@@ -67,22 +67,22 @@ void parallelParts(size_t n, size_t parts, int threads, Fn&& fn)
     });
 }
 
-/// Per-pixel offsets from runs (`pixels[r]`, ascending, starts at `starts[r]`; `starts` has one
-/// entry more, the end): every pixel gets the start of the first run at or after it, the end
-/// past the last run. The one pass over all pixels, on all threads.
+/// Per-pixel offsets from runs over pixels [first, first + pixelCount) (`pixels[r]`, ascending,
+/// in that range, starts at `starts[r]`; `starts` has one entry more, the end): each of those
+/// pixels gets the start of the first run at or after it, offsets[first + pixelCount] the end.
+/// The one pass over those pixels, on all threads; `offsets` is indexed by pixel.
 template<class Pixels, class Starts, class Offsets>
-void offsetsFromRuns(
-  const Pixels& pixels, const Starts& starts, size_t pixelCount, int threads, Offsets& offsets)
+void offsetsFromRuns(const Pixels& pixels, const Starts& starts, size_t first, size_t pixelCount,
+  int threads, Offsets& offsets)
 {
-  offsets.resize(pixelCount + 1);
   const size_t runCount = pixels.size();
   parallelFor(runCount + 1, threads,
     [&](size_t begin, size_t end)
     {
       for (size_t r = begin; r < end; ++r)
       {
-        const size_t from = r == 0 ? 0 : size_t(pixels[r - 1]) + 1;
-        const size_t to = r < runCount ? size_t(pixels[r]) : pixelCount;
+        const size_t from = r == 0 ? first : size_t(pixels[r - 1]) + 1;
+        const size_t to = r < runCount ? size_t(pixels[r]) : first + pixelCount;
         std::fill(offsets.begin() + from, offsets.begin() + to + 1, starts[r]);
       }
     });
