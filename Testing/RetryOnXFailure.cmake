@@ -1,7 +1,8 @@
 # Runs a command and fails as it does, except that a run that failed because the X server
 # refused the render window's connection ("bad X server connection", seen intermittently under
 # xvfb here when tests run in parallel, with no relation to the code under test) is run again,
-# up to 3 times. The command is COMMAND (a ;-list) or, when this script serves as a test
+# up to 5 times, after a pause that grows (1, 2, 3, 4 s): three immediate retries once failed
+# in a row. The command is COMMAND (a ;-list) or, when this script serves as a test
 # executable's CROSSCOMPILING_EMULATOR, the arguments after the script. Its output goes to
 # standard output (gtest_discover_tests reads the test list from there).
 if(NOT DEFINED COMMAND)
@@ -10,13 +11,14 @@ if(NOT DEFINED COMMAND)
     list(APPEND COMMAND "${CMAKE_ARGV${i}}")
   endforeach()
 endif()
-foreach(attempt RANGE 1 3)
+foreach(attempt RANGE 1 5)
   execute_process(COMMAND ${COMMAND} RESULT_VARIABLE result OUTPUT_VARIABLE out
     ERROR_VARIABLE out)
-  if(result EQUAL 0 OR NOT out MATCHES "bad X server connection")
+  if(result EQUAL 0 OR NOT out MATCHES "bad X server connection" OR attempt EQUAL 5)
     break()
   endif()
   message(STATUS "attempt ${attempt}: the X server refused a connection; running again")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E sleep ${attempt})
 endforeach()
 execute_process(COMMAND ${CMAKE_COMMAND} -E echo "${out}")
 if(NOT result EQUAL 0)
