@@ -295,16 +295,13 @@ struct Driver
     report.msSetup = ms(start);
 
     this->Stages.begin();
-    const std::vector<int> bands = this->rowBandsOfFrame(settings);
-    report.bands = int(bands.size()) - 1;
-    for (size_t b = 0; b + 1 < bands.size(); ++b)
-    {
-      this->Frame.rowBegin = bands[b];
-      this->Frame.rowEnd = bands[b + 1];
-      this->sweepAndGroup();
-      this->Stages.end(report.msSweepAndGroup);
-      this->sharedSubdivisionTrees();
-    }
+    report.bands = drawInBands(this->rowBandsOfFrame(settings), this->Frame,
+      [&]
+      {
+        this->sweepAndGroup();
+        this->Stages.end(report.msSweepAndGroup);
+        this->sharedSubdivisionTrees();
+      });
     this->Stages.finish();
     const Clock::time_point stage = Clock::now();
     this->fillGBuffer(view, settings, out);
@@ -743,7 +740,7 @@ struct Driver
         items[k] = { uint32_t(coveredPixel(nodes[n].info.box, frame, uint32_t(k - counts[n]))), n };
       });
     thrust::sort(exec(), items, items + total, TupleOrder{ nodes });
-    pixelOffsets(items, total, this->passFirstPixel(), this->passPixelCount(),
+    pixelOffsets(items, total, passFirstPixel(this->Frame), passPixelCount(this->Frame),
       sized(this->ItemOffsets, this->PixelCount + 1));
     uint32_t* itemNodes = sized(this->ItemNodes, total);
     forEach(total, [=] IGA_HD(size_t k) { itemNodes[k] = items[k].node; });
@@ -752,17 +749,9 @@ struct Driver
 
   // ---- shared subdivision trees ------------------------------------------------------------
 
-  /// The pass's pixels (its band of rows): [passFirstPixel, + passPixelCount). Per-pixel arrays
-  /// span the image; each pass reads and writes its own pixels only.
-  size_t passFirstPixel() const { return size_t(this->Frame.rowBegin) * this->Frame.width; }
-  size_t passPixelCount() const
-  {
-    return size_t(this->Frame.rowEnd - this->Frame.rowBegin) * this->Frame.width;
-  }
-
   void sharedSubdivisionTrees()
   {
-    const size_t first = this->passFirstPixel(), count = this->passPixelCount();
+    const size_t first = passFirstPixel(this->Frame), count = passPixelCount(this->Frame);
     const size_t pixels = this->PixelCount;
     const uint32_t* offsets = raw(this->ItemOffsets);
     thrust::copy(
@@ -899,8 +888,8 @@ struct Driver
       const uint32_t* items = raw(this->ItemNodes);
       const uint32_t* cursor = raw(this->Cursor);
       const uint32_t* ends = raw(this->Ends);
-      const size_t first = this->passFirstPixel();
-      forEach(this->passPixelCount(),
+      const size_t first = passFirstPixel(this->Frame);
+      forEach(passPixelCount(this->Frame),
         [=] IGA_HD(size_t pass)
         {
           const size_t p = first + pass;
@@ -1279,17 +1268,17 @@ struct Driver
       });
     out.width = settings.width;
     out.height = settings.height;
-    this->downloadOffsets(kept, settings, out.offsets);
+    const size_t offsetBytes = this->downloadOffsets(kept, settings, out.offsets);
     out.hits.resize(total);
     this->downloadStaged(compact, total, out.hits.data(), settings);
-    this->Report->downloadedBytes += total * sizeof(Hit);
+    this->Report->downloadedBytes = offsetBytes + total * sizeof(Hit);
   }
 
   /// Brings the per-pixel offsets of the kept hits (`kept`, pixels + 1 entries) to the host.
   /// A frame covering less than half the image sends only its covered pixels and their offsets
   /// (8 bytes a covered pixel instead of 4 a pixel: a sparse 1080p frame sends kilobytes, not
-  /// 8 MB), and the host expands them on its threads.
-  void downloadOffsets(
+  /// 8 MB), and the host expands them on its threads. Returns the bytes sent.
+  size_t downloadOffsets(
     const uint32_t* kept, const Settings& settings, std::vector<uint32_t>& offsets)
   {
     const size_t pixels = this->PixelCount;
@@ -1302,8 +1291,7 @@ struct Driver
     {
       offsets.resize(pixels + 1);
       this->downloadStaged(kept, pixels + 1, offsets.data(), settings);
-      this->Report->downloadedBytes = (pixels + 1) * sizeof(uint32_t);
-      return;
+      return (pixels + 1) * sizeof(uint32_t);
     }
     uint32_t* starts = sized(this->CoveredStarts, coveredCount + 1);
     forEach(coveredCount + 1,
@@ -1313,7 +1301,7 @@ struct Driver
     this->downloadStaged(starts, coveredCount + 1, hostStarts.data(), settings);
     offsets.resize(pixels + 1);
     offsetsFromRuns(hostCovered, hostStarts, 0, pixels, threadCount(settings), offsets);
-    this->Report->downloadedBytes = (2 * coveredCount + 1) * sizeof(uint32_t);
+    return (2 * coveredCount + 1) * sizeof(uint32_t);
   }
 
   // ---- transfers ---------------------------------------------------------------------------

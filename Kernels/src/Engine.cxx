@@ -164,28 +164,26 @@ public:
     const Clock::time_point start = Clock::now();
     this->setup();
     this->Report.msSetup = millisecondsSince(start);
-    const std::vector<int> bands = rowBands(this->rowPairDifferences().data(), this->Config);
-    this->Report.bands = int(bands.size()) - 1;
-    for (size_t b = 0; b + 1 < bands.size(); ++b)
-    {
-      this->Plan.frame.rowBegin = bands[b];
-      this->Plan.frame.rowEnd = bands[b + 1];
-      const Clock::time_point stage = Clock::now();
-      this->sweepAndGroup();
-      this->Report.msSweepAndGroup += millisecondsSince(stage);
-      switch (method)
-      {
-        case Method::SharedSubdivisionTree:
-          this->sharedSubdivisionTrees();
-          break;
-        case Method::BasicScheme:
-          this->basicScheme();
-          break;
-        case Method::BruteForce:
-          this->bruteForce();
-          break;
-      }
-    }
+    this->Report.bands =
+      drawInBands(rowBands(this->rowPairDifferences().data(), this->Config), this->Plan.frame,
+        [&]
+        {
+          const Clock::time_point stage = Clock::now();
+          this->sweepAndGroup();
+          this->Report.msSweepAndGroup += millisecondsSince(stage);
+          switch (method)
+          {
+            case Method::SharedSubdivisionTree:
+              this->sharedSubdivisionTrees();
+              break;
+            case Method::BasicScheme:
+              this->basicScheme();
+              break;
+            case Method::BruteForce:
+              this->bruteForce();
+              break;
+          }
+        });
     const Clock::time_point stage = Clock::now();
     this->fillGBuffer(out);
     this->Report.msGBuffer = millisecondsSince(stage);
@@ -228,13 +226,6 @@ private:
   {
     return VolumeView<const double>(
       pool.data() + node.coeff, this->Patches[node.patch].view().degree, kScreenChannels);
-  }
-
-  /// The pass's pixels (its band of rows): [passFirstPixel, + passPixelCount).
-  size_t passFirstPixel() const { return size_t(this->Plan.frame.rowBegin) * this->Config.width; }
-  size_t passPixelCount() const
-  {
-    return size_t(this->Plan.frame.rowEnd - this->Plan.frame.rowBegin) * this->Config.width;
   }
 
   // ---- sweep and group ---------------------------------------------------------------------
@@ -300,8 +291,8 @@ private:
         }
       });
     this->ItemOffsets.resize(this->PixelCount + 1);
-    offsetsFromRuns(this->ActivePixels, runs, this->passFirstPixel(), this->passPixelCount(),
-      this->Plan.threads, this->ItemOffsets);
+    offsetsFromRuns(this->ActivePixels, runs, passFirstPixel(this->Plan.frame),
+      passPixelCount(this->Plan.frame), this->Plan.threads, this->ItemOffsets);
     this->trackMemory(bytesOf(this->Items) + bytesOf(this->ItemOffsets) +
                       bytesOf(this->Plan.initialPool) + bytesOf(pairs));
   }
@@ -750,7 +741,7 @@ private:
   void basicScheme()
   {
     const Clock::time_point stage = Clock::now();
-    const size_t first = this->passFirstPixel(), count = this->passPixelCount();
+    const size_t first = passFirstPixel(this->Plan.frame), count = passPixelCount(this->Plan.frame);
     std::vector<std::vector<RawHit>> perPixel(count);
     std::vector<size_t> peak(count, 0);
     std::atomic<size_t> solves{ 0 }, splits{ 0 }, capped{ 0 };
@@ -850,8 +841,6 @@ private:
 
   // ---- brute force -------------------------------------------------------------------------
 
-  /// Uniform subdivision of every initial node to a fixed depth and Newton from nine starts in
-  /// every leaf covering the pixel, without certificates: slow, independent of the tree logic.
   /// Brute force's leaves: every initial node subdivided uniformly bruteForceLevels times, the
   /// parts in front of the eye that may show surface kept.
   void makeLeaves()
@@ -899,6 +888,8 @@ private:
     }
   }
 
+  /// Uniform subdivision of every initial node to a fixed depth and Newton from nine starts in
+  /// every leaf covering the pixel, without certificates: slow, independent of the tree logic.
   void bruteForce()
   {
     const Clock::time_point stage = Clock::now();
@@ -910,7 +901,7 @@ private:
     const std::vector<double>& leafPool = this->LeafPool;
     const std::vector<uint32_t>& leafOffsets = this->LeafOffsets;
     this->trackMemory(this->baseBytes() + bytesOf(leafPool) + bytesOf(leaves));
-    const size_t first = this->passFirstPixel(), count = this->passPixelCount();
+    const size_t first = passFirstPixel(this->Plan.frame), count = passPixelCount(this->Plan.frame);
     std::vector<std::vector<RawHit>> perPixel(count);
     std::atomic<size_t> solves{ 0 };
     parallelFor(count, this->Plan.threads,

@@ -65,6 +65,20 @@ constexpr size_t kBytesPerSweepPair = 20;
 /// Throws std::length_error (checkIndexable) for a row beyond the 32-bit indices.
 std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& settings);
 
+/// Runs pass() once per band of `bands` (rowBands) with the frame's rows set to it; returns the
+/// number of bands.
+template<class Pass>
+int drawInBands(const std::vector<int>& bands, FrameConstants& frame, Pass pass)
+{
+  for (size_t b = 0; b + 1 < bands.size(); ++b)
+  {
+    frame.rowBegin = bands[b];
+    frame.rowEnd = bands[b + 1];
+    pass();
+  }
+  return int(bands.size()) - 1;
+}
+
 /// Throws std::invalid_argument for bad settings (image size, isovalues, depth cap, transfer
 /// chunk, clipping plane count).
 void checkSettings(const Settings& settings);

@@ -62,6 +62,17 @@ struct FrameConstants
   const double* isovalues; ///< in the driver's memory (host or device)
 };
 
+/// The pixels of the frame's pass (its band of rows): [passFirstPixel, + passPixelCount).
+/// Per-pixel arrays span the image; each pass reads and writes its own pixels only.
+IGA_HD inline size_t passFirstPixel(const FrameConstants& frame)
+{
+  return size_t(frame.rowBegin) * size_t(frame.width);
+}
+IGA_HD inline size_t passPixelCount(const FrameConstants& frame)
+{
+  return size_t(frame.rowEnd - frame.rowBegin) * size_t(frame.width);
+}
+
 /// A root node: the whole input patch for one isovalue.
 IGA_HD inline Node rootNode(int patch, int iso)
 {
