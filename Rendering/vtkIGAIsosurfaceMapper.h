@@ -138,8 +138,10 @@ public:
   ///@}
 
   ///@{
-  /// Cap on the engine's subdivision storage in MiB (default 2048), and on its sweep's (pixel,
-  /// patch) pairs at 20 bytes a pair: a frame needing more is drawn in bands of rows.
+  /// Cap on the engine's working set in MiB (default 2048) besides its per-pixel arrays, copy
+  /// of the data and hits (iga::sst::Settings::memoryBudgetBytes): a frame with more (pixel,
+  /// patch) pairs than a pass takes is drawn in bands of rows, and pixels whose subdivision
+  /// would pass it are left unresolved.
   vtkSetClampMacro(MemoryBudgetMB, int, 16, 1048576);
   vtkGetMacro(MemoryBudgetMB, int);
   ///@}

@@ -132,10 +132,11 @@ std::string json(
         << "\", \"method\": \"" << m.method << "\", \"backend\": \"" << m.backend
         << "\", \"degree\": " << m.degree << ", \"width\": " << m.width
         << ", \"height\": " << m.height << ", \"threads\": " << m.threads << ", \"ms\": " << m.ms
-        << ", \"peakMB\": " << m.peakMB << ", \"coveredPixels\": " << m.covered
-        << ", \"newtonSolves\": " << m.newtonSolves << ", \"subdividedPatches\": " << m.subdivided
-        << ", \"unresolvedPixels\": " << m.unresolved << ", \"bands\": " << r.bands
-        << ", \"uploadedMB\": " << r.uploadedBytes / 1048576.0
+        << ", \"peakMB\": " << m.peakMB
+        << ", \"peakBudgetedMB\": " << r.peakBudgetedBytes / 1048576.0
+        << ", \"coveredPixels\": " << m.covered << ", \"newtonSolves\": " << m.newtonSolves
+        << ", \"subdividedPatches\": " << m.subdivided << ", \"unresolvedPixels\": " << m.unresolved
+        << ", \"bands\": " << r.bands << ", \"uploadedMB\": " << r.uploadedBytes / 1048576.0
         << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
         << ", \"stagesMs\": {\"setup\": " << r.msSetup << ", \"input\": " << r.msInput
         << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution

@@ -289,9 +289,10 @@ struct Driver
     this->Report = &report;
     this->Settings_ = &settings;
     this->Peak = 0;
+    this->PeakBudgeted = 0;
     unsigned long long* unresolvedTuples = sized(this->UnresolvedTuples, 2);
     thrust::fill(exec(), unresolvedTuples, unresolvedTuples + 2, 0ull);
-    sized(this->Totals, 4);
+    sized(this->Totals, 6);
     report.msSetup = ms(start);
 
     this->Stages.begin();
@@ -313,6 +314,7 @@ struct Driver
     report.unresolvedAtDepthCap = size_t(tallies[0]);
     report.unresolvedAtBudget = size_t(tallies[1]);
     report.peakBytes = this->Peak;
+    report.peakBudgetedBytes = this->PeakBudgeted;
     report.msTotal = ms(start);
   }
 
@@ -687,18 +689,71 @@ struct Driver
                             parts.initialPool.size() * sizeof(double);
   }
 
-  size_t arrayBytes() const
+  template<class T>
+  static size_t bytesOf(const Array<T>& v)
   {
-    return this->Nodes.size() * sizeof(Node) + this->Pool.size() * sizeof(double) +
-           this->Children.size() * sizeof(Node) + this->ChildPool.size() * sizeof(double) +
-           this->Tuples.size() * sizeof(Tuple) + this->Next.size() * sizeof(Tuple) +
-           this->Solution.size() * sizeof(double) + this->Hits.size() * sizeof(RawHit) +
-           this->Items.size() * sizeof(Tuple) + this->InitialPool.size() * sizeof(double) +
-           this->ShadingPool.size() * sizeof(double) + this->InitialNodes.size() * sizeof(Node) +
-           this->World.size() * sizeof(double) + this->Roots.size() * sizeof(Node);
+    return v.size() * sizeof(T);
   }
 
-  void trackMemory() { this->Peak = std::max(this->Peak, this->arrayBytes()); }
+  /// The band's work items and the loop's arrays, what the memory budget caps, at their sizes
+  /// in use (each array keeps its largest allocation between frames: the device's pool).
+  size_t budgetedBytes() const
+  {
+    return bytesOf(this->Items) + bytesOf(this->ItemNodes) + bytesOf(this->Nodes) +
+           bytesOf(this->Pool) + bytesOf(this->NextNodes) + bytesOf(this->NextPool) +
+           bytesOf(this->Children) + bytesOf(this->ChildPool) + bytesOf(this->Tuples) +
+           bytesOf(this->Next) + bytesOf(this->Outcomes) + bytesOf(this->Solution) +
+           bytesOf(this->HitIndex) + bytesOf(this->Counts) + bytesOf(this->Taken) +
+           bytesOf(this->ToSplit) + bytesOf(this->SplitFlags) + bytesOf(this->SplitIndex) +
+           bytesOf(this->ChildValues) + bytesOf(this->NodeBytes) + bytesOf(this->Deferred) +
+           bytesOf(this->KeepFlags) + bytesOf(this->Used) + bytesOf(this->FirstTuple) +
+           bytesOf(this->Index) + bytesOf(this->Offsets);
+  }
+
+  /// The copies of the input, the per-pixel arrays and the hits: what the budget does not cap.
+  size_t fixedBytes() const
+  {
+    return bytesOf(this->World) + bytesOf(this->Roots) + bytesOf(this->InitialNodes) +
+           bytesOf(this->InitialPool) + bytesOf(this->ShadingPool) + bytesOf(this->ItemOffsets) +
+           bytesOf(this->Cursor) + bytesOf(this->Ends) + bytesOf(this->BestDepth) +
+           bytesOf(this->Unresolved) + bytesOf(this->PixelSolves) + bytesOf(this->Hits);
+  }
+
+  /// Marks the iteration's scratch arrays empty, out of the working set (they keep their
+  /// allocations for the next iteration).
+  void endIteration()
+  {
+    for (auto* nodes : { &this->NextNodes, &this->Children })
+    {
+      nodes->resize(0);
+    }
+    for (auto* values : { &this->NextPool, &this->ChildPool, &this->Solution })
+    {
+      values->resize(0);
+    }
+    for (auto* counts : { &this->Counts, &this->ChildValues, &this->NodeBytes, &this->Offsets })
+    {
+      counts->resize(0);
+    }
+    for (auto* indices :
+      { &this->HitIndex, &this->ToSplit, &this->SplitIndex, &this->Index, &this->FirstTuple })
+    {
+      indices->resize(0);
+    }
+    for (auto* flags :
+      { &this->Outcomes, &this->SplitFlags, &this->Deferred, &this->KeepFlags, &this->Used })
+    {
+      flags->resize(0);
+    }
+    this->Next.resize(0);
+  }
+
+  void trackMemory()
+  {
+    const size_t budgeted = this->budgetedBytes();
+    this->PeakBudgeted = std::max(this->PeakBudgeted, budgeted);
+    this->Peak = std::max(this->Peak, budgeted + this->fixedBytes());
+  }
 
   // ---- sweep and group ---------------------------------------------------------------------
 
@@ -914,19 +969,25 @@ struct Driver
       const uint32_t* ends = raw(this->Ends);
 
       // Overlap stage: implicit nodes that are ready become tuples of the pixels whose centres
-      // their boxes cover (members of the round, not behind a nearer hit).
+      // their boxes cover (members of the round, not behind a nearer hit), as many as the
+      // memory budget takes; the others wait.
       {
         // Candidates: the covered pixels of the ready nodes, one thread each; those the round
-        // takes become tuples, in node and row order.
+        // takes become tuples, in node and row order. Each implicit node's bytes are summed
+        // too: the budget keeps room to carry every one over unsplit.
         const double* best = raw(this->BestDepth);
         uint64_t* counts = sized(this->Counts, nodeCount + 1);
+        uint64_t* implicitBytes = sized(this->NodeBytes, nodeCount + 1);
         forEach(nodeCount,
           [=] IGA_HD(size_t n)
           {
             counts[n] = nodes[n].implicit && readyForTuples(nodes[n], frame)
                           ? coveredPixelCount(nodes[n].info.box, frame)
                           : 0;
+            implicitBytes[n] =
+              nodes[n].implicit ? nodeBytes(1, shapes[nodes[n].patch].screenValues) : 0;
           });
+        thrust::exclusive_scan(exec(), implicitBytes, implicitBytes + nodeCount + 1, implicitBytes);
         const size_t candidates = scanCounts(this->Counts, nodeCount);
         uint32_t* taken = sized(this->Taken, candidates + 1);
         forEach(candidates,
@@ -936,14 +997,30 @@ struct Driver
             const size_t p = coveredPixel(nodes[n].info.box, frame, uint32_t(k - counts[n]));
             taken[k] = roundTakesPixel(nodes[n], best[p], items, cursor[p], ends[p], frame) ? 1 : 0;
           });
-        const size_t added = scanCounts(this->Taken, candidates); // at most the candidates
+        thrust::exclusive_scan(exec(), taken, taken + candidates + 1, taken);
+        const uint64_t held =
+          loopBytes(this->ItemNodes.size(), nodeCount, this->Pool.size(), tupleCount);
+        const uint64_t budget = settings.memoryBudgetBytes;
+        const bool noTuples = tupleCount == 0;
+        forEach(1,
+          [=] IGA_HD(size_t)
+          {
+            const size_t admitted =
+              admittedNodes(nodeCount, budget, held + implicitBytes[nodeCount], noTuples,
+                [=](size_t n) { return taken[counts[n + 1]]; });
+            totals[0] = admitted;
+            totals[1] = taken[counts[admitted]];
+          });
+        uint64_t read[2];
+        download(totals, 2, read);
+        const size_t admitted = size_t(read[0]), added = size_t(read[1]);
         checkIndexable(tupleCount + added);
         this->Tuples.resize(tupleCount + added);
         Tuple* tuples = raw(this->Tuples) + tupleCount;
         forEach(candidates,
           [=] IGA_HD(size_t k)
           {
-            if (taken[k + 1] != taken[k])
+            if (taken[k + 1] != taken[k] && taken[k] < added)
             {
               const uint32_t n = ownerOf(counts, nodeCount, k);
               tuples[taken[k]] = {
@@ -951,7 +1028,7 @@ struct Driver
               };
             }
           });
-        forEach(nodeCount,
+        forEach(admitted,
           [=] IGA_HD(size_t n)
           {
             Node& node = nodes[n];
@@ -962,6 +1039,7 @@ struct Driver
             }
           });
         tupleCount += added;
+        this->Taken.resize(0); // scratch: out of the working set
       }
       report.maxTuples = std::max(report.maxTuples, tupleCount);
       this->Stages.end(report.msOverlap);
@@ -1024,13 +1102,16 @@ struct Driver
           }
         });
       // Per node in order: whether it is to be split, and the running totals of split nodes and
-      // of their children's coefficients.
+      // of their children's coefficients; the bytes of the implicit nodes that may be carried
+      // over unsplit (those waiting for the overlap stage, and those to split).
       uint32_t* splitIndex = sized(this->SplitIndex, nodeCount + 1);
       uint64_t* childValues = sized(this->ChildValues, nodeCount + 1);
+      uint64_t* carriedBytes = sized(this->NodeBytes, nodeCount + 1);
       forEach(nodeCount,
         [=] IGA_HD(size_t n)
         {
-          if (nodes[n].implicit)
+          const bool waiting = nodes[n].implicit && readyForTuples(nodes[n], frame);
+          if (nodes[n].implicit && !waiting)
           {
             split[n] = coveredPixelCount(nodes[n].info.box, frame) > 0 ? Split : Keep;
           }
@@ -1039,48 +1120,40 @@ struct Driver
             split[n] = AtDepthCap; // its pixels stay unresolved
           }
           const bool splits = split[n] == Split;
-          const uint64_t values = uint64_t(8) * shapes[nodes[n].patch].screenValues;
+          const int values = shapes[nodes[n].patch].screenValues;
           splitIndex[n] = splits ? 1 : 0;
-          childValues[n] = splits ? values : 0;
+          childValues[n] = splits ? uint64_t(8) * values : 0;
+          carriedBytes[n] = nodes[n].implicit && (waiting || splits) ? nodeBytes(1, values) : 0;
         });
       thrust::exclusive_scan(exec(), splitIndex, splitIndex + nodeCount + 1, splitIndex);
       thrust::exclusive_scan(exec(), childValues, childValues + nodeCount + 1, childValues);
+      thrust::exclusive_scan(exec(), carriedBytes, carriedBytes + nodeCount + 1, carriedBytes);
       // Memory cap: split as many nodes as the budget allows, in order (the nodes before the
       // first whose children would pass it); implicit nodes beyond it become tuples in the next
-      // iteration instead, explicit ones leave their pixels unresolved.
-      const size_t base = this->Pool.size() * sizeof(double) + tupleCount * sizeof(Tuple);
-      const uint64_t room =
-        base > settings.memoryBudgetBytes ? 0 : uint64_t(settings.memoryBudgetBytes - base);
+      // iteration instead, explicit ones leave their pixels unresolved. The copies of implicit
+      // nodes carried over are charged first, as if every implicit node were refused.
+      const uint64_t held =
+        loopBytes(this->ItemNodes.size(), nodeCount, this->Pool.size(), tupleCount);
+      const uint64_t budget = settings.memoryBudgetBytes;
       forEach(1,
         [=] IGA_HD(size_t)
         {
-          size_t lo = 0, hi = nodeCount;
-          while (lo < hi)
-          {
-            const size_t mid = (lo + hi) / 2;
-            // The children's bytes of the split nodes up to mid, inclusive.
-            const uint64_t bytes = childValues[mid + 1] * sizeof(double) +
-                                   uint64_t(splitIndex[mid + 1]) * 8 * sizeof(Node);
-            if (bytes <= room)
-            {
-              lo = mid + 1;
-            }
-            else
-            {
-              hi = mid;
-            }
-          }
-          totals[0] = splitIndex[lo]; // nodes split
-          totals[1] = childValues[lo];
+          const uint64_t charged = held + carriedBytes[nodeCount];
+          const size_t allowed = prefixWithin(nodeCount, charged < budget ? budget - charged : 0,
+            [=](size_t n)
+            { return childBytes(8 * uint64_t(splitIndex[n + 1]), childValues[n + 1]); });
+          totals[0] = splitIndex[allowed]; // nodes split
+          totals[1] = childValues[allowed];
           totals[2] = hitIndex[tupleCount];
-          totals[3] = lo;
+          totals[3] = allowed;
+          totals[4] = charged; // for the compaction's cap
         });
       uint32_t* toSplit = sized(this->ToSplit, nodeCount);
       uint8_t* deferred = sized(this->Deferred, nodeCount);
       forEach(nodeCount,
         [=] IGA_HD(size_t n)
         {
-          deferred[n] = 0;
+          deferred[n] = nodes[n].implicit && readyForTuples(nodes[n], frame) ? 1 : 0; // waiting
           if (split[n] != Split)
           {
             return;
@@ -1123,6 +1196,8 @@ struct Driver
       Node* children = sized(this->Children, 8 * allowed);
       uint8_t* keep = sized(this->KeepFlags, 8 * allowed);
       uint8_t* used = sized(this->Used, 8 * allowed); // by the compaction stage
+      // The first tuple that moves to each child: those after the compaction's cap do not.
+      unsigned int* firstTuple = sized(this->FirstTuple, 8 * allowed);
       // One thread per child (a parent's eight children in one thread left most of the GPU
       // idle).
       forEach(8 * allowed,
@@ -1137,7 +1212,7 @@ struct Driver
           const auto view = viewOf(child, childPool, shapes);
           child.info = analyzeNodeBounds(view, frame.isovalues[child.iso], frame.clip);
           keep[k] = worthKeeping(child.info, frame) ? 1 : 0;
-          used[k] = 0;
+          firstTuple[k] = ~0u;
           if (child.implicit && keep[k])
           {
             analyzeNodeSolver(view, child.info);
@@ -1168,7 +1243,7 @@ struct Driver
                   mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
               {
                 ++count;
-                used[c] = 1; // every writer writes 1
+                lowerAtomically(&firstTuple[c], unsigned(t));
               }
             }
           }
@@ -1180,22 +1255,43 @@ struct Driver
           newCounts[t] = count;
         });
       thrust::exclusive_scan(exec(), newCounts, newCounts + tupleCount + 1, newCounts);
+      // Memory cap on the tuples handed on: the tuples whose next ones pass it give them up.
+      const uint64_t itemCount = this->ItemNodes.size(), childCount = 8 * allowed;
+      const uint64_t childValueCount = read[1];
+      forEach(1,
+        [=] IGA_HD(size_t)
+        {
+          const uint64_t charged = totals[4], carried = carriedBytes[nodeCount];
+          const size_t handedOn = prefixWithin(tupleCount,
+            nextTupleRoom(budget, charged + childBytes(childCount, childValueCount), itemCount,
+              nodeBytes(childCount, childValueCount) + carried),
+            [=](size_t t) { return newCounts[t + 1]; });
+          totals[4] = handedOn;
+          totals[5] = newCounts[handedOn];
+        });
       // The next nodes: implicit children that were kept, explicit children that received
       // pixels, and deferred implicit nodes; stored contiguously.
-      forEach(8 * allowed,
-        [=] IGA_HD(size_t c) { used[c] = keep[c] && (children[c].implicit || used[c]) ? 1 : 0; });
+      forEach(8 * allowed, [=] IGA_HD(size_t c)
+        { used[c] = keep[c] && (children[c].implicit || firstTuple[c] < totals[4]) ? 1 : 0; });
       size_t nextCount = 0;
       this->NodeCount = this->gatherNodes(children, childPool, used, 8 * allowed, nodes, pool,
-        deferred, nodeCount, false, newCounts + tupleCount, &nextCount);
+        deferred, nodeCount, false, totals + 5, &nextCount);
       checkIndexable(nextCount);
       const uint32_t* newIndex = raw(this->Index);
       Tuple* next = sized(this->Next, nextCount);
+      this->trackMemory(); // the iteration's peak: the old and the new nodes and tuples
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
         {
           size_t write = newCounts[t];
           if (newCounts[t + 1] == write)
           {
+            return;
+          }
+          if (t >= totals[4]) // given up at the cap
+          {
+            unresolved[tuples[t].pixel] = 1;
+            addAtomically(&unresolvedTuples[1], 1);
             return;
           }
           const size_t first = 8 * size_t(splitIndex[tuples[t].node]);
@@ -1209,6 +1305,7 @@ struct Driver
         });
       this->Tuples.swap(this->Next);
       tupleCount = nextCount;
+      this->endIteration();
       this->Stages.end(report.msCompaction);
       if (settings.progress)
       {
@@ -1358,7 +1455,7 @@ struct Driver
   size_t PixelCount = 0;
   size_t NodeCount = 0;
   size_t HitCount = 0;
-  size_t Peak = 0;
+  size_t Peak = 0, PeakBudgeted = 0;
   uint64_t DataVersion = 0;       ///< of the world patches or nets on the device (0: none)
   uint64_t ExtractionVersion = 0; ///< of the extractions on the device (0: none)
   uint64_t Uploads = 0;           ///< data changes so far (uploads or extractions)
@@ -1395,13 +1492,15 @@ struct Driver
   Array<uint32_t> Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex, KeptOffsets;
   Array<uint32_t> CoveredPixels, CoveredStarts; ///< G-buffer of a sparse frame, sent back
   Array<uint64_t> ChildValues;
-  Array<uint64_t> Totals;                     ///< scan totals read back together
+  Array<uint64_t> NodeBytes; ///< per node, then scanned: implicit nodes the budget keeps room for
+  Array<uint64_t> Totals;    ///< scan totals read back together
   Array<unsigned long long> RowPairs;         ///< the sweep's pairs per row, as differences
   Array<unsigned long long> UnresolvedTuples; ///< at the depth cap, over the memory budget
   StageTimer Stages;
   Array<uint64_t> Offsets;
   Array<uint32_t> PixelSolves;
   Array<uint8_t> Present, Outcomes, SplitFlags, Deferred, KeepFlags, Used;
+  Array<unsigned int> FirstTuple;
   Array<double> Solution;
   Array<RawHit> Hits;
   Array<Hit> Shaded, Compact;

@@ -308,6 +308,16 @@ IGA_HD inline void addAtomically(unsigned long long* counter, unsigned long long
 #endif
 }
 
+/// Lowers a device value to `value` if that is smaller, from any device thread.
+IGA_HD inline void lowerAtomically(unsigned int* target, unsigned int value)
+{
+#ifdef __CUDA_ARCH__
+  atomicMin(target, value);
+#else
+  *target = value < *target ? value : *target; // one thread after another, as above
+#endif
+}
+
 /// Stage times of a frame on the device's clock. Launches are queued ahead of the device, so
 /// the host's clock would charge a stage's work to whichever stage next waits for a result.
 class StageTimer

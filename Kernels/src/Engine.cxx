@@ -131,6 +131,7 @@ void groupByPixel(Array<Item>& items, size_t pixelCount, Array<uint32_t>& runs)
     items.swap(scratch);
   }
   runs.clear();
+  runs.reserve(items.size() + 1); // at most one run per item: no growth beyond that
   for (size_t k = 0; k < items.size(); ++k)
   {
     if (k == 0 || items[k].pixel != items[k - 1].pixel)
@@ -200,7 +201,7 @@ private:
   void setup()
   {
     this->Plan = planFrame(this->Patches, this->TheView, this->Config, this->Report);
-    this->trackMemory(bytesOf(this->Plan.initialPool) + bytesOf(this->Plan.shadingPool));
+    this->trackMemory(0);
     this->PixelCount = size_t(this->Config.width) * this->Config.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, kInfinity);
@@ -271,7 +272,7 @@ private:
     groupByPixel(pairs, this->PixelCount, runs);
     const size_t runCount = runs.size() - 1;
     this->ActivePixels.resize(runCount);
-    this->Items.resize(pairs.size());
+    Array<uint32_t>(pairs.size()).swap(this->Items); // this band's size, not an earlier one's
     parallelFor(runCount, this->Plan.threads,
       [&](size_t begin, size_t end)
       {
@@ -293,8 +294,7 @@ private:
     this->ItemOffsets.resize(this->PixelCount + 1);
     offsetsFromRuns(this->ActivePixels, runs, passFirstPixel(this->Plan.frame),
       passPixelCount(this->Plan.frame), this->Plan.threads, this->ItemOffsets);
-    this->trackMemory(bytesOf(this->Items) + bytesOf(this->ItemOffsets) +
-                      bytesOf(this->Plan.initialPool) + bytesOf(pairs));
+    this->trackMemory(bytesOf(this->Items) + bytesOf(pairs));
   }
 
   // ---- shared subdivision trees ------------------------------------------------------------
@@ -374,23 +374,25 @@ private:
       }
     }
     Array<Tuple> tuples;
-    Array<uint8_t> outcome;
-    Array<double> solution; // per tuple: u[3], ndc depth
     while (!nodes.empty())
     {
       ++this->Report.iterations;
       this->Report.maxPatches = std::max(this->Report.maxPatches, nodes.size());
 
       // Overlap stage: implicit nodes that are ready become tuples of the pixels whose centres
-      // their boxes cover (members of the round, not behind a nearer hit).
+      // their boxes cover (members of the round, not behind a nearer hit), as many as the
+      // memory budget takes; the others wait.
       Clock::time_point stage = Clock::now();
       Array<uint32_t> ready;
+      uint64_t implicitNodes = 0, implicitValues = 0;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
         if (nodes[n].implicit && readyForTuples(nodes[n], this->Plan.frame))
         {
           ready.push_back(uint32_t(n));
         }
+        implicitNodes += nodes[n].implicit ? 1 : 0;
+        implicitValues += nodes[n].implicit ? this->valueCount(nodes[n].patch) : 0;
       }
       Array<uint32_t> readyCounts(ready.size() + 1, 0);
       auto forCoveredPixels = [&](const Node& node, auto fn)
@@ -414,8 +416,15 @@ private:
           }
         });
       const size_t existing = tuples.size();
-      const size_t added = exclusiveScan(readyCounts);
+      exclusiveScan(readyCounts);
+      // The room left once every implicit node could be carried over unsplit (a copy each).
+      ready.resize(admittedNodes(ready.size(), this->Config.memoryBudgetBytes,
+        loopBytes(this->Items.size(), nodes.size(), pool.size(), existing) +
+          nodeBytes(implicitNodes, implicitValues),
+        existing == 0, [&](size_t k) { return readyCounts[k + 1]; }));
+      const size_t added = readyCounts[ready.size()];
       checkIndexable(existing + added);
+      tuples.reserve(existing + added); // exactly: the memory model counts tuples, not capacity
       tuples.resize(existing + added);
       parallelFor(ready.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
@@ -446,17 +455,18 @@ private:
       // pixel's tuples are solved in order of nearest depth by one thread, so that in first-hit
       // mode a hit drops the tuples behind it at once.
       stage = Clock::now();
-      groupByPixel(tuples, this->PixelCount, this->PixelRuns);
-      outcome.resize(tuples.size());
-      solution.resize(tuples.size() * 4);
+      Array<uint32_t> runs;
+      groupByPixel(tuples, this->PixelCount, runs);
+      Array<uint8_t> outcome(tuples.size());
+      Buffer<double> solution(tuples.size() * 4); // per tuple: u[3], ndc depth
       std::atomic<size_t> solves{ 0 };
-      parallelFor(this->PixelRuns.size() - 1, this->Plan.threads,
+      parallelFor(runs.size() - 1, this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           size_t local = 0;
           for (size_t run = begin; run < end; ++run)
           {
-            const uint32_t first = this->PixelRuns[run], last = this->PixelRuns[run + 1];
+            const uint32_t first = runs[run], last = runs[run + 1];
             const uint32_t pixel = tuples[first].pixel;
             std::sort(tuples.begin() + first, tuples.begin() + last,
               [&](const Tuple& a, const Tuple& b)
@@ -508,9 +518,14 @@ private:
         }
       }
       Array<uint32_t> toSplit;
+      Array<uint8_t> carry(nodes.size(), 0); // implicit nodes for the next iteration, unsplit
       for (size_t n = 0; n < nodes.size(); ++n)
       {
-        if (nodes[n].implicit)
+        if (nodes[n].implicit && readyForTuples(nodes[n], this->Plan.frame))
+        {
+          carry[n] = 1; // waiting for room in the overlap stage
+        }
+        else if (nodes[n].implicit)
         {
           split[n] = coveredPixelCount(nodes[n].info.box, this->Plan.frame) > 0 ? 1 : 0;
         }
@@ -525,28 +540,35 @@ private:
       }
       // Memory cap: split as many nodes as the budget allows, in order; implicit nodes beyond
       // it become tuples in the next iteration instead, explicit ones leave their pixels
-      // unresolved.
-      size_t childBytes = 0, allowed = 0;
-      for (; allowed < toSplit.size(); ++allowed)
+      // unresolved. The copies of implicit nodes carried over unsplit are charged first, as if
+      // every implicit node were refused.
+      const uint64_t budget = this->Config.memoryBudgetBytes;
+      Array<size_t> poolOffset(toSplit.size() + 1, 0); // doubles: past 2^32 with a large budget
+      uint64_t carried = 0, carriedValues = 0;
+      for (size_t n = 0; n < nodes.size(); ++n)
       {
-        const size_t bytes =
-          size_t(8) * this->valueCount(nodes[toSplit[allowed]].patch) * sizeof(double) +
-          8 * sizeof(Node);
-        if (childBytes + bytes + bytesOf(pool) + bytesOf(tuples) > this->Config.memoryBudgetBytes)
+        if (carry[n] || (nodes[n].implicit && split[n] == 1))
         {
-          break;
+          ++carried;
+          carriedValues += this->valueCount(nodes[n].patch);
         }
-        childBytes += bytes;
       }
-      Array<Node> deferred;
-      Array<double> deferredPool;
+      for (size_t k = 0; k < toSplit.size(); ++k)
+      {
+        poolOffset[k + 1] = poolOffset[k] + 8 * this->valueCount(nodes[toSplit[k]].patch);
+      }
+      const uint64_t carriedBytes = nodeBytes(carried, carriedValues);
+      const uint64_t held =
+        loopBytes(this->Items.size(), nodes.size(), pool.size(), tuples.size()) + carriedBytes;
+      const size_t allowed = prefixWithin(toSplit.size(), held < budget ? budget - held : 0,
+        [&](size_t k) { return childBytes(8 * (k + 1), poolOffset[k + 1]); });
       for (size_t k = allowed; k < toSplit.size(); ++k)
       {
         Node& node = nodes[toSplit[k]];
         if (node.implicit)
         {
           node.overBudget = true; // ready for tuples next time
-          deferred.push_back(node);
+          carry[toSplit[k]] = 1;
           split[toSplit[k]] = 0;
         }
         else
@@ -555,16 +577,16 @@ private:
         }
       }
       toSplit.resize(allowed);
-      Array<size_t> poolOffset(toSplit.size() + 1, 0); // doubles: past 2^32 with a large budget
-      for (size_t k = 0; k < toSplit.size(); ++k)
+      poolOffset.resize(allowed + 1);
+      Array<uint32_t> deferred; // the carried nodes, in order
+      for (size_t n = 0; n < nodes.size(); ++n)
       {
-        poolOffset[k + 1] = poolOffset[k] + 8 * this->valueCount(nodes[toSplit[k]].patch);
+        if (carry[n])
+        {
+          deferred.push_back(uint32_t(n));
+        }
       }
-      if (this->ChildPool.size() < poolOffset.back())
-      {
-        this->ChildPool.resize(poolOffset.back()); // grows only: no zeroing every iteration
-      }
-      Buffer<double>& childPool = this->ChildPool;
+      Buffer<double> childPool(poolOffset.back());
       Buffer<Node> children(toSplit.size() * 8);
       Array<uint8_t> keep(children.size(), 0);
       parallelFor(toSplit.size(), this->Plan.threads,
@@ -594,8 +616,6 @@ private:
           }
         });
       this->Report.subdividedPatches += toSplit.size();
-      this->trackMemory(bytesOf(pool) + bytesOf(childPool) + bytesOf(tuples) + bytesOf(children) +
-                        bytesOf(outcome) + bytesOf(solution) + this->baseBytes());
       this->Report.msSubdivision += millisecondsSince(stage);
 
       // Compaction: failed tuples move to the kept children covering their pixel; solved and
@@ -612,7 +632,7 @@ private:
         return keep[c] &&
                mayHitPixel(children[c], t.pixel, this->BestDepth[t.pixel], this->Plan.frame);
       };
-      Array<uint32_t> newCounts(tuples.size(), 0);
+      Array<uint32_t> newOffsets(tuples.size() + 1, 0); // counts, then their exclusive scan
       parallelFor(tuples.size(), this->Plan.threads,
         [&](size_t begin, size_t end)
         {
@@ -625,29 +645,35 @@ private:
             const size_t base = firstChild[tuples[t].node];
             for (size_t c = base; c < base + 8; ++c)
             {
-              newCounts[t] += childCovers(tuples[t], c) ? 1 : 0;
+              newOffsets[t] += childCovers(tuples[t], c) ? 1 : 0;
             }
           }
         });
+      exclusiveScan(newOffsets);
+      // Memory cap on the tuples handed on: the tuples whose next ones pass it give them up.
+      const size_t handedOn = prefixWithin(tuples.size(),
+        nextTupleRoom(budget, held + childBytes(children.size(), childPool.size()),
+          this->Items.size(), nodeBytes(children.size(), childPool.size()) + carriedBytes),
+        [&](size_t t) { return newOffsets[t + 1]; });
       for (size_t t = 0; t < tuples.size(); ++t)
       {
-        if (outcome[t] == Failed && split[tuples[t].node] >= 2)
+        const bool givenUp = t >= handedOn && newOffsets[t + 1] > newOffsets[t];
+        if ((outcome[t] == Failed && split[tuples[t].node] >= 2) || givenUp)
         {
           this->Unresolved[tuples[t].pixel] = 1;
           ++(split[tuples[t].node] == 2 ? this->Report.unresolvedAtDepthCap
                                         : this->Report.unresolvedAtBudget);
         }
       }
-      Array<uint32_t> newOffsets = newCounts;
-      Array<Tuple> next(exclusiveScan(newOffsets));
-      parallelFor(tuples.size(), this->Plan.threads,
+      Array<Tuple> next(newOffsets[handedOn]);
+      parallelFor(handedOn, this->Plan.threads,
         [&](size_t begin, size_t end)
         {
           for (size_t t = begin; t < end; ++t)
           {
             uint32_t write = newOffsets[t];
             const size_t base = firstChild[tuples[t].node];
-            for (size_t c = base; newCounts[t] > 0 && c < base + 8; ++c)
+            for (size_t c = base; newOffsets[t + 1] > write && c < base + 8; ++c)
             {
               if (childCovers(tuples[t], c))
               {
@@ -667,6 +693,7 @@ private:
       Array<uint32_t> newIndex(children.size(), 0), keptFrom;
       keptFrom.reserve(children.size() + deferred.size());
       Array<size_t> keptOffset(1, 0);
+      keptOffset.reserve(children.size() + deferred.size() + 1);
       for (size_t c = 0; c < children.size(); ++c)
       {
         if (keep[c] && (children[c].implicit || used[c]))
@@ -680,7 +707,8 @@ private:
       for (size_t d = 0; d < deferred.size(); ++d)
       {
         keptFrom.push_back(uint32_t(d));
-        keptOffset.push_back(keptOffset.back() + size_t(this->valueCount(deferred[d].patch)));
+        keptOffset.push_back(
+          keptOffset.back() + size_t(this->valueCount(nodes[deferred[d]].patch)));
       }
       Buffer<Node> kept(keptFrom.size());
       Buffer<double> keptPool(keptOffset.back());
@@ -689,7 +717,7 @@ private:
         {
           for (size_t n = begin; n < end; ++n)
           {
-            kept[n] = n < fromChildren ? children[keptFrom[n]] : deferred[keptFrom[n]];
+            kept[n] = n < fromChildren ? children[keptFrom[n]] : nodes[deferred[keptFrom[n]]];
             const size_t count = keptOffset[n + 1] - keptOffset[n];
             const Buffer<double>& source = n < fromChildren ? childPool : pool;
             std::copy(source.begin() + kept[n].coeff, source.begin() + kept[n].coeff + count,
@@ -707,6 +735,14 @@ private:
       {
         t.node = newIndex[t.node];
       }
+      // The iteration's peak: everything it made is alive.
+      this->trackMemory(bytesOf(this->Items) + bytesOf(nodes) + bytesOf(pool) + bytesOf(tuples) +
+                        bytesOf(outcome) + bytesOf(solution) + bytesOf(runs) + bytesOf(split) +
+                        bytesOf(toSplit) + bytesOf(carry) + bytesOf(deferred) + bytesOf(children) +
+                        bytesOf(childPool) + bytesOf(keep) + bytesOf(firstChild) +
+                        bytesOf(newOffsets) + bytesOf(next) + bytesOf(used) + bytesOf(newIndex) +
+                        bytesOf(keptFrom) + bytesOf(keptOffset) + bytesOf(kept) +
+                        bytesOf(keptPool));
       nodes.swap(kept);
       pool.swap(keptPool);
       tuples.swap(next);
@@ -718,15 +754,21 @@ private:
     }
   }
 
-  size_t baseBytes() const
+  /// Per-pixel arrays, the copies of the input patches and the hits: what the memory budget
+  /// does not cap.
+  size_t fixedBytes() const
   {
-    return bytesOf(this->Items) + bytesOf(this->ItemOffsets) + bytesOf(this->Plan.initialPool) +
-           bytesOf(this->Hits) + bytesOf(this->BestDepth) + bytesOf(this->Unresolved);
+    return bytesOf(this->ItemOffsets) + bytesOf(this->BestDepth) + bytesOf(this->Unresolved) +
+           bytesOf(this->GroupBegin) + bytesOf(this->GroupEnd) + bytesOf(this->ActivePixels) +
+           bytesOf(this->Plan.initialNodes) + bytesOf(this->Plan.initialPool) +
+           bytesOf(this->Plan.shadingPool) + bytesOf(this->Hits);
   }
 
-  void trackMemory(size_t bytes)
+  /// Records a working set of `budgeted` bytes besides the fixed ones.
+  void trackMemory(size_t budgeted)
   {
-    this->Report.peakBytes = std::max(this->Report.peakBytes, bytes);
+    this->Report.peakBudgetedBytes = std::max(this->Report.peakBudgetedBytes, budgeted);
+    this->Report.peakBytes = std::max(this->Report.peakBytes, budgeted + this->fixedBytes());
   }
 
   void recordHit(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
@@ -834,7 +876,7 @@ private:
       this->Hits.insert(this->Hits.end(), hits.begin(), hits.end());
     }
     this->trackMemory(
-      this->baseBytes() +
+      bytesOf(this->Items) +
       (count ? *std::max_element(peak.begin(), peak.end()) : 0) * size_t(this->Plan.threads));
     this->Report.msSolution += millisecondsSince(stage);
   }
@@ -900,7 +942,7 @@ private:
     const std::vector<Node>& leaves = this->Leaves;
     const std::vector<double>& leafPool = this->LeafPool;
     const std::vector<uint32_t>& leafOffsets = this->LeafOffsets;
-    this->trackMemory(this->baseBytes() + bytesOf(leafPool) + bytesOf(leaves));
+    this->trackMemory(bytesOf(this->Items) + bytesOf(leafPool) + bytesOf(leaves));
     const size_t first = passFirstPixel(this->Plan.frame), count = passPixelCount(this->Plan.frame);
     std::vector<std::vector<RawHit>> perPixel(count);
     std::atomic<size_t> solves{ 0 };
@@ -1020,8 +1062,6 @@ private:
   Array<RawHit> Hits;
   Array<uint32_t> ActivePixels;         ///< pixels with work items
   Array<uint32_t> GroupBegin, GroupEnd; ///< this round's work items per pixel
-  Array<uint32_t> PixelRuns;            ///< SST: where each pixel's tuples start, then the end
-  Buffer<double> ChildPool;             ///< SST: children's coefficients, reused
 };
 
 } // namespace

@@ -247,8 +247,12 @@ void checkIndexable(size_t count, const char* what)
 
 std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& s)
 {
-  const uint64_t limit = std::min<uint64_t>(
-    s.memoryBudgetBytes / kBytesPerSweepPair, std::numeric_limits<uint32_t>::max());
+  // A band's pairs stay within the budget at the sweep's peak, and as work items next to a
+  // tuple each, which the loop holds at once in all-hits mode.
+  const uint64_t pairBytes =
+    std::max<uint64_t>(kBytesPerSweepPair, kBytesPerWorkItem + kBytesPerTuple);
+  const uint64_t limit =
+    std::min<uint64_t>(s.memoryBudgetBytes / pairBytes, std::numeric_limits<uint32_t>::max());
   std::vector<int> starts = { 0 };
   uint64_t rowPairs = 0, bandPairs = 0;
   for (int row = 0; row < s.height; ++row)

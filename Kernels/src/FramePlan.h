@@ -59,10 +59,11 @@ void checkIndexable(size_t count, const char* what = "(pixel, patch) pairs");
 constexpr size_t kBytesPerSweepPair = 20;
 
 /// The bands of rows a frame is drawn in, as their starts followed by the image height: as few
-/// as keep every band's (pixel, node) pairs within the 32-bit indices and, at
-/// kBytesPerSweepPair, within the memory budget, except that a row over the budget is a band of
-/// its own. `rowDifferences` (height + 1 entries, see addRowPairs) counts the pairs per row.
-/// Throws std::length_error (checkIndexable) for a row beyond the 32-bit indices.
+/// as keep every band's (pixel, node) pairs within the 32-bit indices and within the memory
+/// budget, at kBytesPerSweepPair and as work items with a tuple each (Tree.h), except that a
+/// row over the budget is a band of its own. `rowDifferences` (height + 1 entries, see addRowPairs)
+/// counts the pairs per row. Throws std::length_error (checkIndexable) for a row beyond the 32-bit
+/// indices.
 std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& settings);
 
 /// Runs pass() once per band of `bands` (rowBands) with the frame's rows set to it; returns the

@@ -14,6 +14,7 @@
 //   may differ.
 #include "iga/Datasets.h"
 #include "iga/sst/Engine.h"
+#include "iga/sst/Tree.h"
 
 #ifdef IGAVIEW_DEVICE_LOGIC
 #include "DeviceDriver.h"
@@ -349,6 +350,52 @@ TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
   EXPECT_LE(report.peakBytes, size_t(1) << 20);
 }
 
+/// The budget caps the working set it names (FrameReport::peakBudgetedBytes) in both drivers,
+/// which give up the same work under it: every scene at a half, a quarter and an eighth of
+/// what it takes without a cap, pixels left unresolved each time.
+TEST(DeviceEngineCaps, BudgetCapsTheWorkingSet)
+{
+  for (Scene s : scenes())
+  {
+    SCOPED_TRACE(s.name);
+    Settings cpu = s.settings;
+    cpu.backend = iga::sst::Backend::Cpu;
+    GBuffer out;
+    const size_t unbounded =
+      iga::sst::render(s.set.patches, s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out)
+        .peakBudgetedBytes;
+    for (size_t fraction : { 2, 4, 8 })
+    {
+      SCOPED_TRACE(fraction);
+      cpu.memoryBudgetBytes = s.settings.memoryBudgetBytes = unbounded / fraction;
+      const FrameReport cpuReport = iga::sst::render(
+        s.set.patches, s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
+      EXPECT_LE(cpuReport.peakBudgetedBytes, cpu.memoryBudgetBytes);
+      EXPECT_GT(cpuReport.unresolvedAtBudget, 0u);
+      GBuffer device;
+      FrameReport deviceReport;
+      std::string why;
+      if (!deviceRender(s, device, deviceReport, why))
+      {
+        continue; // no GPU: the CPU driver was checked
+      }
+      EXPECT_LE(deviceReport.peakBudgetedBytes, s.settings.memoryBudgetBytes);
+      EXPECT_GT(deviceReport.unresolvedAtBudget, 0u);
+#ifdef IGAVIEW_DEVICE_LOGIC
+      // The same decisions, step for step (a GPU's rounding may move a cut).
+      EXPECT_EQ(deviceReport.iterations, cpuReport.iterations);
+      EXPECT_EQ(deviceReport.subdividedPatches, cpuReport.subdividedPatches);
+      EXPECT_EQ(deviceReport.maxPatches, cpuReport.maxPatches);
+      EXPECT_EQ(deviceReport.maxTuples, cpuReport.maxTuples);
+      EXPECT_EQ(deviceReport.newtonSolves, cpuReport.newtonSolves);
+      EXPECT_EQ(deviceReport.unresolvedPixels, cpuReport.unresolvedPixels);
+      EXPECT_EQ(deviceReport.unresolvedAtBudget, cpuReport.unresolvedAtBudget);
+      EXPECT_EQ(device.offsets, out.offsets);
+#endif
+    }
+  }
+}
+
 /// With a data version the device keeps its copy of the patches (and its shading patches): a
 /// camera move uploads only the isovalues, a new colour attribute or a new version (the tube
 /// twisted further) uploads the patches again but not their shapes, and every frame matches the
@@ -561,12 +608,14 @@ int expectBandsMatchOnePass(Scene s, size_t budget, std::initializer_list<iga::s
 }
 
 /// 48 slabs over a 160 x 120 image make 7 680 (pixel, patch) pairs a row. A memory budget of
-/// 2 MiB (20 bytes a pair) takes 13 rows a pass: 10 bands. Every pixel's first hit lies on the
-/// nearest slab's middle plane, y = 1.0025.
+/// 2 MiB (65 bytes a pair: its work item and a tuple) takes 4 rows a pass: 30 bands. Every pixel's
+/// first hit lies on the nearest slab's middle plane, y = 1.0025.
 TEST(DeviceEngineCaps, ManyPairsAreDrawnInBands)
 {
   const Scene s = slabStack(48, 0.01, 100, 160, 120);
-  const size_t budget = size_t(2) << 20, rowsPerBand = budget / 20 / (48 * 160);
+  const size_t budget = size_t(2) << 20,
+               rowsPerBand =
+                 budget / (iga::sst::kBytesPerWorkItem + iga::sst::kBytesPerTuple) / (48 * 160);
   EXPECT_EQ(expectBandsMatchOnePass(s, budget,
               { iga::sst::Method::BasicScheme, iga::sst::Method::SharedSubdivisionTree }),
     int((120 + rowsPerBand - 1) / rowsPerBand));
@@ -582,7 +631,7 @@ TEST(DeviceEngineCaps, ManyPairsAreDrawnInBands)
 }
 
 /// A row needing more pairs than the budget allows is drawn as a band of its own (rows are not
-/// split): a 64 KiB budget takes 3 276 pairs, the slabs' rows have 7 680 each, so 120 bands.
+/// split): a 64 KiB budget takes 1 008 pairs, the slabs' rows have 7 680 each, so 120 bands.
 TEST(DeviceEngineCaps, RowOverTheBudgetIsABandOfItsOwn)
 {
   EXPECT_EQ(expectBandsMatchOnePass(slabStack(48, 0.01, 100, 160, 120), 64 * 1024,
@@ -591,17 +640,18 @@ TEST(DeviceEngineCaps, RowOverTheBudgetIsABandOfItsOwn)
 }
 
 /// Band edges across patch boxes: 40 slabs, the far ones narrower than the view, so their boxes
-/// end inside the image, in all-hits mode; a budget of 4 000 pairs cuts the 37 rows into 11
-/// bands (and still leaves the subdivision room), for every CPU method and the device.
+/// end inside the image, in all-hits mode; a budget of 300 000 bytes (4 615 pairs a band at
+/// 65 bytes a pair) cuts the 37 rows into 10 bands and still leaves the loop room for every
+/// tuple, for every CPU method and the device.
 TEST(DeviceEngineCaps, BandEdgesAcrossBoxesInAllHitsMode)
 {
   Scene s = slabStack(40, 0.04, 0.5, 40, 37);
   s.settings.firstHitOnly = false;
   s.settings.bruteForceLevels = 2;
-  EXPECT_EQ(expectBandsMatchOnePass(s, 80000,
+  EXPECT_EQ(expectBandsMatchOnePass(s, 300000,
               { iga::sst::Method::BasicScheme, iga::sst::Method::SharedSubdivisionTree,
                 iga::sst::Method::BruteForce }),
-    11);
+    10);
 }
 
 /// Pairs have 32-bit indices in both drivers, whatever the budget: 262 144 slabs over a row of

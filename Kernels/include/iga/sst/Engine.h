@@ -48,8 +48,12 @@ struct Settings
   /// for every plane (vtkPlane's normal side); at most kMaxClipPlanes. Cut exactly at each hit.
   std::vector<std::array<double, 4>> clipPlanes;
   int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
-  /// Cap on the subdivision's storage, and on the sweep's (pixel, patch) pairs at 20 bytes a
-  /// pair: a frame that needs more pairs is drawn in several passes over bands of rows.
+  /// Cap on the working set of a shared-subdivision-tree frame besides its per-pixel arrays,
+  /// copies of the input and hits (FrameReport::peakBudgetedBytes): the sweep's (pixel, patch)
+  /// pairs at 65 bytes a pair (a frame that needs more is drawn in several passes over bands
+  /// of rows), and the loop's nodes, coefficients, tuples and children (Tree.h's memory
+  /// model). Pixels whose work would pass it are left unresolved and counted
+  /// (FrameReport::unresolvedAtBudget).
   size_t memoryBudgetBytes = size_t(2) << 30;
   /// CUDA: size of the page-locked host buffer that uploads and the G-buffer pass through, a
   /// chunk at a time (kept between frames); at least 4096.
@@ -123,7 +127,9 @@ struct FrameReport
   size_t subdividedPatches = 0;
   size_t maxTuples = 0;
   size_t maxPatches = 0;
-  size_t peakBytes = 0;     ///< largest engine-owned working set
+  size_t peakBytes = 0; ///< largest engine-owned working set
+  /// Of that, the part Settings::memoryBudgetBytes caps (at its own peak).
+  size_t peakBudgetedBytes = 0;
   size_t uploadedBytes = 0; ///< CUDA: bytes copied to the device for this frame
   /// CUDA: bytes copied back for the G-buffer (a copy to host memory: there is no CUDA-GL
   /// interop), the pixel offsets and the hits

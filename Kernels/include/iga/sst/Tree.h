@@ -46,6 +46,87 @@ struct Tuple
   uint32_t node;
 };
 
+// The SST loop's memory model, the same in both drivers so that under
+// Settings::memoryBudgetBytes they split, and give up, the same nodes and tuples. The budget caps
+// the band's work items and the loop's nodes, coefficients, tuples and children.
+
+/// Per tuple, in either driver: the tuple, its outcome, solution (u, depth) and hit index or
+/// pixel run, and the compaction's count and offset.
+constexpr uint64_t kBytesPerTuple = sizeof(Tuple) + 1 + 4 * sizeof(double) + 12;
+/// Per node record, with the flags, counts and offsets of its stages.
+constexpr uint64_t kBytesPerNode = sizeof(Node) + 48;
+/// Per work item of the band: its initial node, and the sorted (pixel, node) pair it came from,
+/// which the CUDA driver keeps.
+constexpr uint64_t kBytesPerWorkItem = sizeof(Tuple) + sizeof(uint32_t);
+
+/// Nodes with `values` screen coefficients in all.
+IGA_HD inline uint64_t nodeBytes(uint64_t nodes, uint64_t values)
+{
+  return nodes * kBytesPerNode + values * sizeof(double);
+}
+
+/// What an iteration holds before its subdivision: work items, nodes and tuples.
+IGA_HD inline uint64_t loopBytes(
+  uint64_t workItems, uint64_t nodes, uint64_t values, uint64_t tuples)
+{
+  return workItems * kBytesPerWorkItem + nodeBytes(nodes, values) + tuples * kBytesPerTuple;
+}
+
+/// What splitting adds: the children, and the compaction's copy of those it keeps.
+IGA_HD inline uint64_t childBytes(uint64_t children, uint64_t values)
+{
+  return 2 * nodeBytes(children, values);
+}
+
+/// The longest prefix [0, count) of a sequence whose running total through element k,
+/// `through(k)` (non-decreasing in k), stays within `room`.
+template<class Through>
+IGA_HD size_t prefixWithin(size_t count, uint64_t room, Through through)
+{
+  size_t lo = 0, hi = count;
+  while (lo < hi)
+  {
+    const size_t mid = (lo + hi) / 2;
+    if (uint64_t(through(mid)) <= room)
+    {
+      lo = mid + 1;
+    }
+    else
+    {
+      hi = mid;
+    }
+  }
+  return lo;
+}
+
+/// How many nodes of `count` the overlap stage turns into tuples, when through(k) tuples come
+/// from nodes [0, k]: as many as keep the tuples within the budget's room for them past
+/// `held` (loopBytes); the others wait, implicit. When no tuple would be left otherwise
+/// (`noTuples`, and none fit) the first node with tuples comes in anyway, over the budget, so
+/// that the loop goes on.
+template<class Through>
+IGA_HD size_t admittedNodes(
+  size_t count, uint64_t budget, uint64_t held, bool noTuples, Through through)
+{
+  const size_t admitted =
+    prefixWithin(count, held < budget ? (budget - held) / kBytesPerTuple : 0, through);
+  const bool stalled =
+    noTuples && admitted < count && (admitted == 0 || through(admitted - 1) == 0);
+  return stalled ? prefixWithin(count, through(admitted), through) : admitted;
+}
+
+/// How many tuples the compaction may hand on: a Tuple each next to all the iteration holds
+/// (`held`, children included), then kBytesPerTuple each in the next iteration, next to the
+/// work items and the kept children (at most `children` bytes).
+IGA_HD inline uint64_t nextTupleRoom(
+  uint64_t budget, uint64_t held, uint64_t workItems, uint64_t children)
+{
+  const uint64_t later = workItems * kBytesPerWorkItem + children;
+  const uint64_t now = held < budget ? (budget - held) / sizeof(Tuple) : 0;
+  const uint64_t next = later < budget ? (budget - later) / kBytesPerTuple : 0;
+  return now < next ? now : next;
+}
+
 /// What every per-element step of a frame reads, passed by value (device code gets a copy).
 struct FrameConstants
 {
