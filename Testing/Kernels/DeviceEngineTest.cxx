@@ -247,6 +247,22 @@ class DeviceEngine : public ::testing::TestWithParam<int>
 {
 };
 
+#ifdef IGAVIEW_DEVICE_LOGIC
+/// On Thrust's host system the device driver makes the CPU driver's decisions, step for step
+/// (on a GPU, rounding may move a silhouette pixel or a cut).
+void expectSameSteps(const FrameReport& device, const FrameReport& cpu)
+{
+  EXPECT_EQ(device.iterations, cpu.iterations);
+  EXPECT_EQ(device.newtonSolves, cpu.newtonSolves);
+  EXPECT_EQ(device.subdividedPatches, cpu.subdividedPatches);
+  EXPECT_EQ(device.maxPatches, cpu.maxPatches);
+  EXPECT_EQ(device.maxTuples, cpu.maxTuples);
+  EXPECT_EQ(device.unresolvedPixels, cpu.unresolvedPixels);
+  EXPECT_EQ(device.unresolvedAtDepthCap, cpu.unresolvedAtDepthCap);
+  EXPECT_EQ(device.unresolvedAtBudget, cpu.unresolvedAtBudget);
+}
+#endif
+
 /// Compares a device frame with the CPU driver's frame of the same scene.
 void expectMatchesTheCpuDriver(
   const Scene& s, const GBuffer& device, const FrameReport& deviceReport)
@@ -310,13 +326,7 @@ void expectMatchesTheCpuDriver(
   EXPECT_EQ(deviceReport.downloadedBytes, offsetBytes + device.hits.size() * sizeof(iga::sst::Hit));
   EXPECT_EQ(cpuReport.downloadedBytes, 0u);
 #ifdef IGAVIEW_DEVICE_LOGIC
-  // The same work, step for step.
-  EXPECT_EQ(deviceReport.iterations, cpuReport.iterations);
-  EXPECT_EQ(deviceReport.newtonSolves, cpuReport.newtonSolves);
-  EXPECT_EQ(deviceReport.subdividedPatches, cpuReport.subdividedPatches);
-  EXPECT_EQ(deviceReport.maxTuples, cpuReport.maxTuples);
-  EXPECT_EQ(deviceReport.unresolvedPixels, cpuReport.unresolvedPixels);
-  EXPECT_EQ(deviceReport.unresolvedAtDepthCap, cpuReport.unresolvedAtDepthCap);
+  expectSameSteps(deviceReport, cpuReport);
 #endif
 }
 
@@ -382,14 +392,7 @@ TEST(DeviceEngineCaps, BudgetCapsTheWorkingSet)
       EXPECT_LE(deviceReport.peakBudgetedBytes, s.settings.memoryBudgetBytes);
       EXPECT_GT(deviceReport.unresolvedAtBudget, 0u);
 #ifdef IGAVIEW_DEVICE_LOGIC
-      // The same decisions, step for step (a GPU's rounding may move a cut).
-      EXPECT_EQ(deviceReport.iterations, cpuReport.iterations);
-      EXPECT_EQ(deviceReport.subdividedPatches, cpuReport.subdividedPatches);
-      EXPECT_EQ(deviceReport.maxPatches, cpuReport.maxPatches);
-      EXPECT_EQ(deviceReport.maxTuples, cpuReport.maxTuples);
-      EXPECT_EQ(deviceReport.newtonSolves, cpuReport.newtonSolves);
-      EXPECT_EQ(deviceReport.unresolvedPixels, cpuReport.unresolvedPixels);
-      EXPECT_EQ(deviceReport.unresolvedAtBudget, cpuReport.unresolvedAtBudget);
+      expectSameSteps(deviceReport, cpuReport);
       EXPECT_EQ(device.offsets, out.offsets);
 #endif
     }
