@@ -705,9 +705,10 @@ struct Driver
            bytesOf(this->Next) + bytesOf(this->Outcomes) + bytesOf(this->Solution) +
            bytesOf(this->HitIndex) + bytesOf(this->Counts) + bytesOf(this->Taken) +
            bytesOf(this->ToSplit) + bytesOf(this->SplitFlags) + bytesOf(this->SplitIndex) +
-           bytesOf(this->ChildValues) + bytesOf(this->NodeBytes) + bytesOf(this->Deferred) +
-           bytesOf(this->KeepFlags) + bytesOf(this->Used) + bytesOf(this->FirstTuple) +
-           bytesOf(this->Index) + bytesOf(this->Offsets);
+           bytesOf(this->ChildValues) + bytesOf(this->SplitCost) + bytesOf(this->FailedTuples) +
+           bytesOf(this->NodeBytes) + bytesOf(this->Deferred) + bytesOf(this->KeepFlags) +
+           bytesOf(this->Used) + bytesOf(this->FirstTuple) + bytesOf(this->Index) +
+           bytesOf(this->Offsets);
   }
 
   /// The copies of the input, the per-pixel arrays and the hits: what the budget does not cap.
@@ -731,10 +732,12 @@ struct Driver
     {
       values->resize(0);
     }
-    for (auto* counts : { &this->Counts, &this->ChildValues, &this->NodeBytes, &this->Offsets })
+    for (auto* counts :
+      { &this->Counts, &this->ChildValues, &this->SplitCost, &this->NodeBytes, &this->Offsets })
     {
       counts->resize(0);
     }
+    this->FailedTuples.resize(0);
     for (auto* indices :
       { &this->HitIndex, &this->ToSplit, &this->SplitIndex, &this->Index, &this->FirstTuple })
     {
@@ -998,15 +1001,15 @@ struct Driver
             taken[k] = roundTakesPixel(nodes[n], best[p], items, cursor[p], ends[p], frame) ? 1 : 0;
           });
         thrust::exclusive_scan(exec(), taken, taken + candidates + 1, taken);
-        const uint64_t held =
-          loopBytes(this->ItemNodes.size(), nodeCount, this->Pool.size(), tupleCount);
+        const uint64_t itemCount = this->ItemNodes.size();
+        const uint64_t held = loopBytes(itemCount, nodeCount, this->Pool.size(), tupleCount);
         const uint64_t budget = settings.memoryBudgetBytes;
         const bool noTuples = tupleCount == 0;
         forEach(1,
           [=] IGA_HD(size_t)
           {
             const size_t admitted =
-              admittedNodes(nodeCount, budget, held + implicitBytes[nodeCount], noTuples,
+              admittedNodes(nodeCount, budget, held + implicitBytes[nodeCount], itemCount, noTuples,
                 [=](size_t n) { return taken[counts[n + 1]]; });
             totals[0] = admitted;
             totals[1] = taken[counts[admitted]];
@@ -1088,6 +1091,8 @@ struct Driver
       const double* best = raw(this->BestDepth);
       uint8_t* split = sized(this->SplitFlags, nodeCount);
       thrust::fill(exec(), split, split + nodeCount, uint8_t(Keep));
+      unsigned long long* failed = sized(this->FailedTuples, nodeCount); // per node
+      thrust::fill(exec(), failed, failed + nodeCount, 0ull);
       forEach(tupleCount,
         [=] IGA_HD(size_t t)
         {
@@ -1099,13 +1104,16 @@ struct Driver
           if (outcome[t] == Failed)
           {
             split[tuples[t].node] = Split;
+            addAtomically(&failed[tuples[t].node], 1);
           }
         });
-      // Per node in order: whether it is to be split, and the running totals of split nodes and
-      // of their children's coefficients; the bytes of the implicit nodes that may be carried
-      // over unsplit (those waiting for the overlap stage, and those to split).
+      // Per node in order: whether it is to be split, and the running totals of split nodes, of
+      // their children's coefficients and of what splitting adds (splitBytes); the bytes of the
+      // implicit nodes that may be carried over unsplit (those waiting for the overlap stage,
+      // and those to split).
       uint32_t* splitIndex = sized(this->SplitIndex, nodeCount + 1);
       uint64_t* childValues = sized(this->ChildValues, nodeCount + 1);
+      uint64_t* splitCost = sized(this->SplitCost, nodeCount + 1);
       uint64_t* carriedBytes = sized(this->NodeBytes, nodeCount + 1);
       forEach(nodeCount,
         [=] IGA_HD(size_t n)
@@ -1123,10 +1131,12 @@ struct Driver
           const int values = shapes[nodes[n].patch].screenValues;
           splitIndex[n] = splits ? 1 : 0;
           childValues[n] = splits ? uint64_t(8) * values : 0;
+          splitCost[n] = splits ? splitBytes(values, failed[n]) : 0;
           carriedBytes[n] = nodes[n].implicit && (waiting || splits) ? nodeBytes(1, values) : 0;
         });
       thrust::exclusive_scan(exec(), splitIndex, splitIndex + nodeCount + 1, splitIndex);
       thrust::exclusive_scan(exec(), childValues, childValues + nodeCount + 1, childValues);
+      thrust::exclusive_scan(exec(), splitCost, splitCost + nodeCount + 1, splitCost);
       thrust::exclusive_scan(exec(), carriedBytes, carriedBytes + nodeCount + 1, carriedBytes);
       // Memory cap: split as many nodes as the budget allows, in order (the nodes before the
       // first whose children would pass it); implicit nodes beyond it become tuples in the next
@@ -1140,8 +1150,7 @@ struct Driver
         {
           const uint64_t charged = held + carriedBytes[nodeCount];
           const size_t allowed = prefixWithin(nodeCount, charged < budget ? budget - charged : 0,
-            [=](size_t n)
-            { return childBytes(8 * uint64_t(splitIndex[n + 1]), childValues[n + 1]); });
+            [=](size_t n) { return splitCost[n + 1]; });
           totals[0] = splitIndex[allowed]; // nodes split
           totals[1] = childValues[allowed];
           totals[2] = hitIndex[tupleCount];
@@ -1491,7 +1500,8 @@ struct Driver
   Array<uint64_t> Counts; ///< per owner, then scanned into where its items start
   Array<uint32_t> Index, PixelStart, ToSplit, Taken, HitIndex, SplitIndex, KeptOffsets;
   Array<uint32_t> CoveredPixels, CoveredStarts; ///< G-buffer of a sparse frame, sent back
-  Array<uint64_t> ChildValues;
+  Array<uint64_t> ChildValues, SplitCost;
+  Array<unsigned long long> FailedTuples; ///< per node, counted with atomics
   Array<uint64_t> NodeBytes; ///< per node, then scanned: implicit nodes the budget keeps room for
   Array<uint64_t> Totals;    ///< scan totals read back together
   Array<unsigned long long> RowPairs;         ///< the sweep's pairs per row, as differences

@@ -201,7 +201,6 @@ private:
   void setup()
   {
     this->Plan = planFrame(this->Patches, this->TheView, this->Config, this->Report);
-    this->trackMemory(0);
     this->PixelCount = size_t(this->Config.width) * this->Config.height;
     this->Unresolved.assign(this->PixelCount, 0);
     this->BestDepth.assign(this->PixelCount, kInfinity);
@@ -421,7 +420,7 @@ private:
       ready.resize(admittedNodes(ready.size(), this->Config.memoryBudgetBytes,
         loopBytes(this->Items.size(), nodes.size(), pool.size(), existing) +
           nodeBytes(implicitNodes, implicitValues),
-        existing == 0, [&](size_t k) { return readyCounts[k + 1]; }));
+        this->Items.size(), existing == 0, [&](size_t k) { return readyCounts[k + 1]; }));
       const size_t added = readyCounts[ready.size()];
       checkIndexable(existing + added);
       tuples.reserve(existing + added); // exactly: the memory model counts tuples, not capacity
@@ -510,11 +509,13 @@ private:
           }
         });
       Array<uint8_t> split(nodes.size(), 0);
+      Array<uint32_t> failed(nodes.size(), 0); // tuples per node
       for (size_t t = 0; t < tuples.size(); ++t)
       {
         if (outcome[t] == Failed)
         {
           split[tuples[t].node] = 1;
+          ++failed[tuples[t].node];
         }
       }
       Array<uint32_t> toSplit;
@@ -543,7 +544,8 @@ private:
       // unresolved. The copies of implicit nodes carried over unsplit are charged first, as if
       // every implicit node were refused.
       const uint64_t budget = this->Config.memoryBudgetBytes;
-      Array<size_t> poolOffset(toSplit.size() + 1, 0); // doubles: past 2^32 with a large budget
+      Array<size_t> poolOffset(toSplit.size() + 1, 0);  // doubles: past 2^32 with a large budget
+      Array<uint64_t> splitCost(toSplit.size() + 1, 0); // running splitBytes
       uint64_t carried = 0, carriedValues = 0;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
@@ -555,13 +557,15 @@ private:
       }
       for (size_t k = 0; k < toSplit.size(); ++k)
       {
-        poolOffset[k + 1] = poolOffset[k] + 8 * this->valueCount(nodes[toSplit[k]].patch);
+        const int values = this->valueCount(nodes[toSplit[k]].patch);
+        poolOffset[k + 1] = poolOffset[k] + 8 * values;
+        splitCost[k + 1] = splitCost[k] + splitBytes(values, failed[toSplit[k]]);
       }
       const uint64_t carriedBytes = nodeBytes(carried, carriedValues);
       const uint64_t held =
         loopBytes(this->Items.size(), nodes.size(), pool.size(), tuples.size()) + carriedBytes;
       const size_t allowed = prefixWithin(toSplit.size(), held < budget ? budget - held : 0,
-        [&](size_t k) { return childBytes(8 * (k + 1), poolOffset[k + 1]); });
+        [&](size_t k) { return splitCost[k + 1]; });
       for (size_t k = allowed; k < toSplit.size(); ++k)
       {
         Node& node = nodes[toSplit[k]];
@@ -736,13 +740,13 @@ private:
         t.node = newIndex[t.node];
       }
       // The iteration's peak: everything it made is alive.
-      this->trackMemory(bytesOf(this->Items) + bytesOf(nodes) + bytesOf(pool) + bytesOf(tuples) +
-                        bytesOf(outcome) + bytesOf(solution) + bytesOf(runs) + bytesOf(split) +
-                        bytesOf(toSplit) + bytesOf(carry) + bytesOf(deferred) + bytesOf(children) +
-                        bytesOf(childPool) + bytesOf(keep) + bytesOf(firstChild) +
-                        bytesOf(newOffsets) + bytesOf(next) + bytesOf(used) + bytesOf(newIndex) +
-                        bytesOf(keptFrom) + bytesOf(keptOffset) + bytesOf(kept) +
-                        bytesOf(keptPool));
+      this->trackMemory(
+        bytesOf(this->Items) + bytesOf(nodes) + bytesOf(pool) + bytesOf(tuples) + bytesOf(outcome) +
+        bytesOf(solution) + bytesOf(runs) + bytesOf(split) + bytesOf(failed) + bytesOf(splitCost) +
+        bytesOf(poolOffset) + bytesOf(toSplit) + bytesOf(carry) + bytesOf(deferred) +
+        bytesOf(children) + bytesOf(childPool) + bytesOf(keep) + bytesOf(firstChild) +
+        bytesOf(newOffsets) + bytesOf(next) + bytesOf(used) + bytesOf(newIndex) +
+        bytesOf(keptFrom) + bytesOf(keptOffset) + bytesOf(kept) + bytesOf(keptPool));
       nodes.swap(kept);
       pool.swap(keptPool);
       tuples.swap(next);

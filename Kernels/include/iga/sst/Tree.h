@@ -54,7 +54,7 @@ struct Tuple
 /// pixel run, and the compaction's count and offset.
 constexpr uint64_t kBytesPerTuple = sizeof(Tuple) + 1 + 4 * sizeof(double) + 12;
 /// Per node record, with the flags, counts and offsets of its stages.
-constexpr uint64_t kBytesPerNode = sizeof(Node) + 48;
+constexpr uint64_t kBytesPerNode = sizeof(Node) + 64;
 /// Per work item of the band: its initial node, and the sorted (pixel, node) pair it came from,
 /// which the CUDA driver keeps.
 constexpr uint64_t kBytesPerWorkItem = sizeof(Tuple) + sizeof(uint32_t);
@@ -76,6 +76,14 @@ IGA_HD inline uint64_t loopBytes(
 IGA_HD inline uint64_t childBytes(uint64_t children, uint64_t values)
 {
   return 2 * nodeBytes(children, values);
+}
+
+/// What splitting a node with `values` screen coefficients adds: its children, their copy, and
+/// room for the tuples that failed on it to move on (one each in the next iteration), so that
+/// the compaction does not give up the work the split was for.
+IGA_HD inline uint64_t splitBytes(uint64_t values, uint64_t failedTuples)
+{
+  return childBytes(8, 8 * values) + failedTuples * kBytesPerTuple;
 }
 
 /// The longest prefix [0, count) of a sequence whose running total through element k,
@@ -101,18 +109,25 @@ IGA_HD size_t prefixWithin(size_t count, uint64_t room, Through through)
 
 /// How many nodes of `count` the overlap stage turns into tuples, when through(k) tuples come
 /// from nodes [0, k]: as many as keep the tuples within the budget's room for them past
-/// `held` (loopBytes); the others wait, implicit. When no tuple would be left otherwise
-/// (`noTuples`, and none fit) the first node with tuples comes in anyway, over the budget, so
-/// that the loop goes on.
+/// `held` (loopBytes); the others wait, implicit. When that leaves no tuple at all
+/// (`noTuples`, and none fit), the loop would stall: then a band's worth comes in anyway, as
+/// many tuples as the band has work items (rowBands keeps room for one each), and at least the
+/// first node with tuples, so that a round whose nodes alone fill the budget still moves on
+/// in a few iterations rather than a node at a time.
 template<class Through>
 IGA_HD size_t admittedNodes(
-  size_t count, uint64_t budget, uint64_t held, bool noTuples, Through through)
+  size_t count, uint64_t budget, uint64_t held, uint64_t workItems, bool noTuples, Through through)
 {
   const size_t admitted =
     prefixWithin(count, held < budget ? (budget - held) / kBytesPerTuple : 0, through);
   const bool stalled =
     noTuples && admitted < count && (admitted == 0 || through(admitted - 1) == 0);
-  return stalled ? prefixWithin(count, through(admitted), through) : admitted;
+  if (!stalled)
+  {
+    return admitted;
+  }
+  const uint64_t first = through(admitted); // the tuples of the first node with any
+  return prefixWithin(count, first > workItems ? first : workItems, through);
 }
 
 /// How many tuples the compaction may hand on: a Tuple each next to all the iteration holds
