@@ -724,31 +724,12 @@ struct Driver
   /// allocations for the next iteration).
   void endIteration()
   {
-    for (auto* nodes : { &this->NextNodes, &this->Children })
-    {
-      nodes->resize(0);
-    }
-    for (auto* values : { &this->NextPool, &this->ChildPool, &this->Solution })
-    {
-      values->resize(0);
-    }
-    for (auto* counts :
-      { &this->Counts, &this->ChildValues, &this->SplitCost, &this->NodeBytes, &this->Offsets })
-    {
-      counts->resize(0);
-    }
-    this->FailedTuples.resize(0);
-    for (auto* indices :
-      { &this->HitIndex, &this->ToSplit, &this->SplitIndex, &this->Index, &this->FirstTuple })
-    {
-      indices->resize(0);
-    }
-    for (auto* flags :
-      { &this->Outcomes, &this->SplitFlags, &this->Deferred, &this->KeepFlags, &this->Used })
-    {
-      flags->resize(0);
-    }
-    this->Next.resize(0);
+    auto markEmpty = [](auto&... arrays) { (arrays.resize(0), ...); };
+    markEmpty(this->NextNodes, this->Children, this->NextPool, this->ChildPool, this->Solution,
+      this->Counts, this->ChildValues, this->SplitCost, this->NodeBytes, this->Offsets,
+      this->FailedTuples, this->HitIndex, this->ToSplit, this->SplitIndex, this->Index,
+      this->FirstTuple, this->Outcomes, this->SplitFlags, this->Deferred, this->KeepFlags,
+      this->Used, this->Next);
   }
 
   void trackMemory()

@@ -518,8 +518,11 @@ private:
           ++failed[tuples[t].node];
         }
       }
+      // Nodes to split, and the implicit nodes that may be carried over unsplit (those waiting
+      // for the overlap stage, and those to split): the memory cap charges a copy of each.
       Array<uint32_t> toSplit;
       Array<uint8_t> carry(nodes.size(), 0); // implicit nodes for the next iteration, unsplit
+      uint64_t carried = 0, carriedValues = 0;
       for (size_t n = 0; n < nodes.size(); ++n)
       {
         if (nodes[n].implicit && readyForTuples(nodes[n], this->Plan.frame))
@@ -538,6 +541,11 @@ private:
         {
           toSplit.push_back(uint32_t(n));
         }
+        if (carry[n] || (nodes[n].implicit && split[n] == 1))
+        {
+          ++carried;
+          carriedValues += this->valueCount(nodes[n].patch);
+        }
       }
       // Memory cap: split as many nodes as the budget allows, in order; implicit nodes beyond
       // it become tuples in the next iteration instead, explicit ones leave their pixels
@@ -546,15 +554,6 @@ private:
       const uint64_t budget = this->Config.memoryBudgetBytes;
       Array<size_t> poolOffset(toSplit.size() + 1, 0);  // doubles: past 2^32 with a large budget
       Array<uint64_t> splitCost(toSplit.size() + 1, 0); // running splitBytes
-      uint64_t carried = 0, carriedValues = 0;
-      for (size_t n = 0; n < nodes.size(); ++n)
-      {
-        if (carry[n] || (nodes[n].implicit && split[n] == 1))
-        {
-          ++carried;
-          carriedValues += this->valueCount(nodes[n].patch);
-        }
-      }
       for (size_t k = 0; k < toSplit.size(); ++k)
       {
         const int values = this->valueCount(nodes[toSplit[k]].patch);
