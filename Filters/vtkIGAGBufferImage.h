@@ -13,7 +13,7 @@
 #define vtkIGAGBufferImage_h
 
 #include "IGAViewFiltersModule.h" // for export macro
-#include "iga/sst/Engine.h"       // for GBuffer
+#include "iga/sst/GBuffer.h"      // for GBuffer
 #include "vtkSmartPointer.h"      // for return value
 
 #include <string>

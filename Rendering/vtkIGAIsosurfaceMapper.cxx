@@ -1,7 +1,7 @@
 #include "vtkIGAIsosurfaceMapper.h"
 
 #include "vtkIGABezierHexahedra.h"
-#include "vtkIGANurbsData.h"
+#include "vtkIGANurbsCells.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -35,6 +35,9 @@
 #include "iga/NurbsSet.h"
 #include "iga/sst/Engine.h"
 
+#include "vtkIGAIsosurfaceDeclFS.h"
+#include "vtkIGAIsosurfaceImplFS.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -67,122 +70,6 @@ void moveControlPoints(vtkMatrix4x4* matrix, double* points, size_t count, int c
     matrix->MultiplyPoint(cp, moved);
     std::copy(moved, moved + 4, cp);
   }
-}
-
-/// The NURBS form of an input whose cells are the Bézier elements of NURBS volumes.
-struct NurbsForm
-{
-  std::vector<std::shared_ptr<const iga::BezierExtraction<double, 3>>> Extractions;
-  std::vector<double> ExtractionKey; ///< degrees, net sizes and knots the operators belong to
-  uint64_t ExtractionVersion = 0;
-  std::vector<std::vector<double>> Nets;  ///< as the input has them
-  std::vector<std::vector<double>> World; ///< moved by the actor's matrix (empty: identity)
-  uint64_t WorldVersion = 0;              ///< the data version World was made for
-  int Channels = 0;
-
-  iga::sst::NurbsVolumes volumes(bool moved) const
-  {
-    iga::sst::NurbsVolumes volumes;
-    volumes.channels = this->Channels;
-    volumes.extractionVersion = this->ExtractionVersion;
-    for (size_t v = 0; v < this->Nets.size(); ++v)
-    {
-      volumes.extractions.push_back(this->Extractions[v].get());
-      volumes.nets.push_back(moved ? &this->World[v] : &this->Nets[v]);
-    }
-    return volumes;
-  }
-};
-
-/// Fills `form` from a grid that carries a NURBS description (vtkIGANurbsData) of volumes whose
-/// extracted elements are exactly `cells` (the grid's cells, in order, same attributes, equal
-/// to rounding). False, and `form` not to be used, for anything else.
-bool collectNurbs(vtkDataObject* input, const iga::VolumeSet<double>& cells, NurbsForm& form)
-{
-  auto* grid = vtkUnstructuredGrid::SafeDownCast(input);
-  if (!grid || !grid->GetFieldData()->GetAbstractArray("NurbsPatchInfo"))
-  {
-    return false;
-  }
-  vtkNew<vtkIGANurbsData> data;
-  if (!vtkIGANurbsData::FromUnstructuredGrid(grid, data).empty())
-  {
-    return false;
-  }
-  iga::NurbsSet<double> set = data->GetPatches(0);
-  if (set.volumes.empty() || !set.surfaces.empty() || set.attributeNames != cells.attributeNames)
-  {
-    return false;
-  }
-  // The data's extraction operators; a new version only when the knots change.
-  std::vector<double> key;
-  for (const auto& volume : set.volumes)
-  {
-    for (int d = 0; d < 3; ++d)
-    {
-      key.push_back(volume.degree[d]);
-      key.push_back(volume.netSize[d]);
-      key.push_back(double(volume.knots[d].size()));
-      key.insert(key.end(), volume.knots[d].begin(), volume.knots[d].end());
-    }
-  }
-  form.Extractions.clear();
-  for (size_t v = 0; v < set.volumes.size(); ++v)
-  {
-    form.Extractions.push_back(data->GetVolumeExtraction(int(v)));
-  }
-  if (key != form.ExtractionKey || !form.ExtractionVersion)
-  {
-    static std::atomic<uint64_t> versions{ 0 };
-    form.ExtractionKey.swap(key);
-    form.ExtractionVersion = ++versions;
-  }
-  form.Channels = set.channels();
-  form.Nets.clear();
-  for (auto& volume : set.volumes)
-  {
-    form.Nets.push_back(std::move(volume.net));
-  }
-  form.World.clear();
-  form.WorldVersion = 0;
-  // The elements must be the cells: same count, degrees and coefficients to rounding (the
-  // cells went through Euclidean points and weights).
-  std::vector<iga::BezierVolume<double>> elements;
-  try
-  {
-    elements = iga::sst::extractElements(form.volumes(false));
-  }
-  catch (const std::invalid_argument&)
-  {
-    return false;
-  }
-  if (elements.size() != cells.patches.size())
-  {
-    return false;
-  }
-  for (size_t e = 0; e < elements.size(); ++e)
-  {
-    const auto a = elements[e].view();
-    const auto b = cells.patches[e].view();
-    if (a.channels != b.channels || a.pointCount() != b.pointCount() ||
-        !std::equal(a.degree, a.degree + 3, b.degree))
-    {
-      return false;
-    }
-    double scale = 0;
-    for (int v = 0; v < b.valueCount(); ++v)
-    {
-      scale = std::max(scale, std::abs(b.coeffs[v]));
-    }
-    for (int v = 0; v < b.valueCount(); ++v)
-    {
-      if (!(std::abs(a.coeffs[v] - b.coeffs[v]) <= 1e-9 * scale))
-      {
-        return false;
-      }
-    }
-  }
-  return true;
 }
 
 } // namespace
@@ -225,11 +112,13 @@ struct vtkIGAIsosurfaceMapper::Internals
   double VersionMatrix[16] = {};
   /// The data's patches moved by that matrix (empty for the identity).
   std::vector<iga::BezierVolume<double>> World;
-  // The NURBS form of the input, collected when a frame is tried on a GPU; valid for the input
-  // of NurbsTime.
-  NurbsForm Nurbs;
+  // The NURBS form of the input, collected when the engine prefers it; valid for the input of
+  // NurbsTime. Its nets moved by the actor's matrix, for the data version NurbsWorldVersion.
+  vtkIGANurbsCells Nurbs;
   bool NurbsValid = false;
   vtkMTimeType NurbsTime = 0;
+  std::vector<std::vector<double>> NurbsWorld;
+  uint64_t NurbsWorldVersion = 0;
   std::string LastEngineInput;
   uint64_t LastExtractionVersion = 0;
 };
@@ -552,16 +441,48 @@ void selectionColour(vtkIdType id, float* rgba)
 
 } // namespace
 
+/// What one render of the mapper computes and draws from.
+struct vtkIGAIsosurfaceMapper::Frame
+{
+  vtkDataObject* Input = nullptr;
+  int Width = 0, Height = 0;
+  std::vector<ShadingLight> Lights;
+  /// Everything the frame depends on: modification times of the objects owned here, values
+  /// of those VTK touches every render (camera, matrices, lights, clipping planes).
+  std::vector<double> Key;
+  iga::sst::View View;
+  iga::sst::Settings Settings;
+  bool ByScalars = false;
+  double MostPairs = 0, Progress = 0; ///< of the progress reported during the frame
+};
+
 void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
+{
+  Frame frame;
+  if (!this->CollectInput(frame) || !this->DescribeFrame(renderer, actor, frame))
+  {
+    return;
+  }
+  if (!this->SameFrame(frame.Key))
+  {
+    if (!this->ComputeFrame(actor, frame))
+    {
+      return;
+    }
+    this->ShadeFrame(actor, frame);
+  }
+  this->DrawFrame(renderer, actor, frame.Input);
+}
+
+bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
 {
   Internals& in = *this->Internal;
   if (!this->GetInputDataObject(0, 0) || this->Isovalues.empty())
   {
-    return;
+    return false;
   }
   this->UpdateInput();
-  vtkDataObject* input = this->GetInputDataObject(0, 0);
-
+  vtkDataObject* input = frame.Input = this->GetInputDataObject(0, 0);
   // Patches, when the data changed.
   if (input->GetMTime() > in.SetTime || !in.SetTime)
   {
@@ -580,7 +501,7 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   }
   if (!in.SetValid)
   {
-    return;
+    return false;
   }
   // Messages are reported once until the settings (the mapper's own, not the lookup table's)
   // or the input change.
@@ -590,6 +511,12 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     in.Reported.clear();
     std::copy(reportFor, reportFor + 2, in.ReportedFor);
   }
+  return true;
+}
+
+bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* actor, Frame& frame)
+{
+  Internals& in = *this->Internal;
   const auto& names = in.Set.attributeNames;
   auto indexOf = [&](const std::string& name)
   { return int(std::find(names.begin(), names.end(), name) - names.begin()); };
@@ -599,366 +526,414 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     this->ReportOnce("surface array",
       "no point array named '" + this->SurfaceArrayName + "' to draw isosurfaces of", true);
     in.FrameKey.clear();
-    return;
+    return false;
   }
-
-  int width, height, origin[2];
-  renderer->GetTiledSizeAndOrigin(&width, &height, &origin[0], &origin[1]);
-  if (width < 1 || height < 1)
+  int origin[2];
+  renderer->GetTiledSizeAndOrigin(&frame.Width, &frame.Height, &origin[0], &origin[1]);
+  if (frame.Width < 1 || frame.Height < 1)
   {
-    return;
+    return false;
   }
   vtkCamera* camera = renderer->GetActiveCamera();
-  vtkProperty* property = actor->GetProperty();
-  vtkScalarsToColors* lut = this->GetLookupTable();
-
-  // Recompute only when something the frame depends on changed: modification times of the
-  // objects owned here, values of those VTK touches every render (camera, matrix, lights).
   vtkMatrix4x4* worldToClip =
     camera->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1, 1);
-  std::vector<double> key = { double(this->GetMTime()), double(input->GetMTime()),
-    double(property->GetMTime()), double(lut->GetMTime()), double(width), double(height),
-    double(this->Backend), double(this->MaximumSubdivisionDepth), double(this->MemoryBudgetMB),
+  frame.Key = { double(this->GetMTime()), double(frame.Input->GetMTime()),
+    double(actor->GetProperty()->GetMTime()), double(this->GetLookupTable()->GetMTime()),
+    double(frame.Width), double(frame.Height), double(this->Backend),
+    double(this->MaximumSubdivisionDepth), double(this->MemoryBudgetMB),
     double(this->NumberOfThreads) };
-  key.insert(key.end(), worldToClip->GetData(), worldToClip->GetData() + 16);
-  key.insert(key.end(), actor->GetMatrix()->GetData(), actor->GetMatrix()->GetData() + 16);
-  double eye[3];
-  camera->GetPosition(eye);
-  key.insert(key.end(), eye, eye + 3);
+  frame.Key.insert(frame.Key.end(), worldToClip->GetData(), worldToClip->GetData() + 16);
+  frame.Key.insert(
+    frame.Key.end(), actor->GetMatrix()->GetData(), actor->GetMatrix()->GetData() + 16);
+  this->DescribeLights(renderer, frame);
+
+  iga::sst::View& view = frame.View;
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      view.worldToClip.m[i][j] = worldToClip->GetElement(i, j);
+    }
+  }
+  camera->GetPosition(view.eye);
+  frame.Key.insert(frame.Key.end(), view.eye, view.eye + 3);
+  camera->GetDirectionOfProjection(view.forward);
+  view.parallel = camera->GetParallelProjection() != 0;
+  view.pixelFootprint =
+    view.parallel
+      ? 2 * camera->GetParallelScale() / frame.Height
+      : 2 * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2) / frame.Height;
+
+  iga::sst::Settings& settings = frame.Settings;
+  settings.width = frame.Width;
+  settings.height = frame.Height;
+  settings.threads = this->NumberOfThreads;
+  settings.isovalues = this->Isovalues;
+  // Clipping planes (world coordinates, as vtkOpenGLPolyDataMapper takes them).
+  settings.clipPlanes.resize(size_t(this->GetNumberOfClippingPlanes()));
+  vtkNew<vtkMatrix4x4> identity;
+  for (size_t k = 0; k < settings.clipPlanes.size(); ++k)
+  {
+    this->GetClippingPlaneInDataCoords(identity, int(k), settings.clipPlanes[k].data());
+    frame.Key.insert(frame.Key.end(), settings.clipPlanes[k].begin(), settings.clipPlanes[k].end());
+  }
+  settings.surfaceAttribute = surfaceAttribute;
+  frame.ByScalars = this->ScalarVisibility && this->ArrayName && *this->ArrayName &&
+                    indexOf(this->ArrayName) < int(names.size());
+  settings.colorAttribute = frame.ByScalars ? indexOf(this->ArrayName) : -1;
+  settings.maxSubdivisionDepth = this->MaximumSubdivisionDepth;
+  settings.memoryBudgetBytes = size_t(this->MemoryBudgetMB) << 20;
+  settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu
+                     : this->Backend == BACKEND_CUDA ? iga::sst::Backend::Cuda
+                                                     : iga::sst::Backend::Automatic;
+  // Progress after every subdivision round (on this thread): the share of the most (pixel,
+  // sub-patch) pairs seen in this frame that is done, never decreasing, below 1 until the frame
+  // is over.
+  settings.progress = [this, &frame](int, size_t pairsLeft)
+  {
+    frame.MostPairs = std::max(frame.MostPairs, double(pairsLeft));
+    const double done = frame.MostPairs > 0 ? 1.0 - double(pairsLeft) / frame.MostPairs : 0.0;
+    frame.Progress = std::max(frame.Progress, std::min(done, 0.99));
+    this->UpdateProgress(frame.Progress);
+  };
+  return true;
+}
+
+void vtkIGAIsosurfaceMapper::DescribeLights(vtkRenderer* renderer, Frame& frame)
+{
   vtkLightCollection* lightCollection = renderer->GetLights();
-  std::vector<ShadingLight> lights;
   vtkCollectionSimpleIterator it;
   lightCollection->InitTraversal(it);
   while (vtkLight* light = lightCollection->GetNextLight(it))
   {
-    if (light->GetSwitch() && light->GetIntensity() > 0)
+    if (!light->GetSwitch() || light->GetIntensity() <= 0)
     {
-      ShadingLight shading{ light, light->GetPositional() != 0, {}, {}, {}, -2 };
-      double focal[3], colour[3];
-      light->GetTransformedPosition(shading.position);
-      light->GetTransformedFocalPoint(focal);
-      light->GetDiffuseColor(colour);
-      for (int d = 0; d < 3; ++d)
-      {
-        shading.towards[d] = shading.position[d] - focal[d];
-        shading.direction[d] = -shading.towards[d];
-      }
-      iga::normalize3(shading.towards);
-      iga::normalize3(shading.direction);
-      if (shading.positional && light->GetConeAngle() < 90)
-      {
-        shading.cosCone = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
-      }
-      lights.push_back(shading);
-      key.insert(key.end(), shading.position, shading.position + 3);
-      key.insert(key.end(), focal, focal + 3);
-      key.insert(key.end(), colour, colour + 3);
-      key.insert(key.end(), light->GetAttenuationValues(), light->GetAttenuationValues() + 3);
-      key.insert(key.end(), { light->GetIntensity(), double(shading.positional),
-                              light->GetConeAngle(), light->GetExponent() });
+      continue;
     }
+    ShadingLight shading{ light, light->GetPositional() != 0, {}, {}, {}, -2 };
+    double focal[3], colour[3];
+    light->GetTransformedPosition(shading.position);
+    light->GetTransformedFocalPoint(focal);
+    light->GetDiffuseColor(colour);
+    for (int d = 0; d < 3; ++d)
+    {
+      shading.towards[d] = shading.position[d] - focal[d];
+      shading.direction[d] = -shading.towards[d];
+    }
+    iga::normalize3(shading.towards);
+    iga::normalize3(shading.direction);
+    if (shading.positional && light->GetConeAngle() < 90)
+    {
+      shading.cosCone = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
+    }
+    frame.Lights.push_back(shading);
+    std::vector<double>& key = frame.Key;
+    key.insert(key.end(), shading.position, shading.position + 3);
+    key.insert(key.end(), focal, focal + 3);
+    key.insert(key.end(), colour, colour + 3);
+    key.insert(key.end(), light->GetAttenuationValues(), light->GetAttenuationValues() + 3);
+    key.insert(key.end(), { light->GetIntensity(), double(shading.positional),
+                            light->GetConeAngle(), light->GetExponent() });
   }
-  // Clipping planes (world coordinates, as vtkOpenGLPolyDataMapper takes them).
-  std::vector<std::array<double, 4>> clipPlanes(size_t(this->GetNumberOfClippingPlanes()));
-  vtkNew<vtkMatrix4x4> identity;
-  for (size_t k = 0; k < clipPlanes.size(); ++k)
-  {
-    this->GetClippingPlaneInDataCoords(identity, int(k), clipPlanes[k].data());
-    key.insert(key.end(), clipPlanes[k].begin(), clipPlanes[k].end());
-  }
+}
+
+bool vtkIGAIsosurfaceMapper::SameFrame(const std::vector<double>& key)
+{
   // VTK recomputes the camera's matrices every render with changes at single-precision level
   // (1e-8 relative, 1e-5 of a pixel); those cannot change the image.
-  const bool sameFrame =
-    key.size() == in.FrameKey.size() &&
-    std::equal(key.begin(), key.end(), in.FrameKey.begin(),
+  std::vector<double>& last = this->Internal->FrameKey;
+  const bool same =
+    key.size() == last.size() &&
+    std::equal(key.begin(), key.end(), last.begin(),
       [](double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(a)); });
-  if (!sameFrame)
+  if (!same)
   {
-
-    in.FrameKey = key;
-    // Patches in world space, made again only when the data or the actor's matrix change (a
-    // new data version): the matrix acts linearly on homogeneous control points, exactly,
-    // whatever the matrix.
-    vtkMatrix4x4* matrix = actor->GetMatrix();
-    if (!in.DataVersion || in.VersionSetTime != in.SetTime ||
-        !std::equal(in.VersionMatrix, in.VersionMatrix + 16, matrix->GetData()))
-    {
-      static std::atomic<uint64_t> mappers{ 0 };
-      const uint64_t mapper = in.DataVersion ? in.DataVersion >> 40 : ++mappers;
-      const uint64_t changes = in.DataVersion ? (in.DataVersion & ((uint64_t(1) << 40) - 1)) : 0;
-      in.DataVersion = (mapper << 40) | (changes + 1);
-      in.VersionSetTime = in.SetTime;
-      std::copy(matrix->GetData(), matrix->GetData() + 16, in.VersionMatrix);
-      // The identity (the usual case) needs no copy.
-      in.World.clear();
-      if (!matrix->IsIdentity())
-      {
-        in.World = in.Set.patches;
-      }
-      for (auto& patch : in.World)
-      {
-        const auto view = patch.view();
-        moveControlPoints(matrix, view.coeffs, size_t(view.pointCount()), view.channels);
-      }
-    }
-    const std::vector<iga::BezierVolume<double>>& world =
-      matrix->IsIdentity() ? in.Set.patches : in.World;
-
-    iga::sst::View view;
-    for (int i = 0; i < 4; ++i)
-    {
-      for (int j = 0; j < 4; ++j)
-      {
-        view.worldToClip.m[i][j] = worldToClip->GetElement(i, j);
-      }
-    }
-    camera->GetPosition(view.eye);
-    camera->GetDirectionOfProjection(view.forward);
-    view.parallel = camera->GetParallelProjection() != 0;
-    view.pixelFootprint =
-      view.parallel
-        ? 2 * camera->GetParallelScale() / height
-        : 2 * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2) / height;
-
-    iga::sst::Settings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.threads = this->NumberOfThreads;
-    settings.isovalues = this->Isovalues;
-    settings.clipPlanes = clipPlanes;
-    settings.surfaceAttribute = surfaceAttribute;
-    const bool byScalars = this->ScalarVisibility && this->ArrayName && *this->ArrayName &&
-                           indexOf(this->ArrayName) < int(names.size());
-    settings.colorAttribute = byScalars ? indexOf(this->ArrayName) : -1;
-    settings.dataVersion = in.DataVersion;
-    settings.maxSubdivisionDepth = this->MaximumSubdivisionDepth;
-    settings.memoryBudgetBytes = size_t(this->MemoryBudgetMB) << 20;
-    settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu
-                       : this->Backend == BACKEND_CUDA ? iga::sst::Backend::Cuda
-                                                       : iga::sst::Backend::Automatic;
-    // Progress after every subdivision round (on this thread): the share of the most (pixel,
-    // sub-patch) pairs seen in this frame that is done, never decreasing, below 1 until the
-    // frame is over.
-    double mostPairs = 0, progress = 0;
-    settings.progress = [this, &mostPairs, &progress](int, size_t pairsLeft)
-    {
-      mostPairs = std::max(mostPairs, double(pairsLeft));
-      const double done = mostPairs > 0 ? 1.0 - double(pairsLeft) / mostPairs : 0.0;
-      progress = std::max(progress, std::min(done, 0.99));
-      this->UpdateProgress(progress);
-    };
-
-    iga::sst::GBuffer& gbuffer = in.GBuffer;
-    this->UpdateProgress(0.0);
-    try
-    {
-      // A GPU takes NURBS volumes as their nets (elements extracted there), checked once per
-      // input; CPU threads take the cells the mapper already has.
-      const bool gpu = iga::sst::triesGpu(settings.backend);
-      if (gpu && in.NurbsTime != in.SetTime)
-      {
-        in.NurbsValid = collectNurbs(input, in.Set, in.Nurbs);
-        in.NurbsTime = in.SetTime;
-      }
-      const bool nurbs = gpu && in.NurbsValid;
-      if (nurbs && !matrix->IsIdentity() && in.Nurbs.WorldVersion != in.DataVersion)
-      {
-        in.Nurbs.World = in.Nurbs.Nets;
-        for (auto& net : in.Nurbs.World)
-        {
-          moveControlPoints(matrix, net.data(), net.size() / in.Nurbs.Channels, in.Nurbs.Channels);
-        }
-        in.Nurbs.WorldVersion = in.DataVersion;
-      }
-      in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
-      in.LastExtractionVersion = nurbs ? in.Nurbs.ExtractionVersion : 0;
-      const auto report = nurbs ? iga::sst::render(in.Nurbs.volumes(!matrix->IsIdentity()), view,
-                                    settings, iga::sst::Method::SharedSubdivisionTree, gbuffer)
-                                : iga::sst::render(world, view, settings,
-                                    iga::sst::Method::SharedSubdivisionTree, gbuffer);
-      this->UpdateProgress(1.0);
-      this->LastEngineTime = report.msTotal;
-      this->LastUnresolvedPixels = vtkIdType(report.unresolvedPixels);
-      in.LastBackend = report.backend;
-      in.LastNotice = report.notice;
-      if (!report.notice.empty() && in.Notices.insert(report.notice).second)
-      {
-        // A warning when CUDA was asked for (here or by IGAVIEW_BACKEND) or failed; the
-        // automatic choice of CPU threads is only worth a plain message.
-        const bool asked = this->Backend == BACKEND_CUDA ||
-                           report.notice.rfind("CUDA asked for", 0) == 0 ||
-                           report.notice.rfind("CUDA frame failed", 0) == 0;
-        if (asked)
-        {
-          vtkWarningMacro(<< report.notice);
-        }
-        else if (firstInProcess(report.notice))
-        {
-          // Once per process: every mapper of a session without a GPU would say the same.
-          vtkOutputWindowDisplayText(
-            (std::string(this->GetClassName()) + ": " + report.notice + "\n").c_str());
-        }
-      }
-      if (report.unresolvedPixels > 0)
-      {
-        // Once per cap hit, whatever the count (it changes with every camera move). The
-        // report counts the (pixel, sub-patch) pairs each cap gave up.
-        const bool depth = report.unresolvedAtDepthCap > 0, budget = report.unresolvedAtBudget > 0;
-        std::string caps;
-        if (depth)
-        {
-          caps += " at the subdivision depth cap (MaximumSubdivisionDepth " +
-                  std::to_string(this->MaximumSubdivisionDepth) + ": " +
-                  std::to_string(report.unresolvedAtDepthCap) + " pixel/sub-patch pairs given up)";
-        }
-        if (budget)
-        {
-          caps += std::string(depth ? " and" : "") + " at the memory budget (MemoryBudgetMB " +
-                  std::to_string(this->MemoryBudgetMB) + ": " +
-                  std::to_string(report.unresolvedAtBudget) + " pairs given up)";
-        }
-        this->ReportOnce(
-          std::string("unresolved") + (depth ? " depth" : "") + (budget ? " budget" : ""),
-          std::to_string(report.unresolvedPixels) + " pixels left unresolved" + caps +
-            "; not reported again until the settings or the input change",
-          false);
-      }
-    }
-    catch (const std::exception& e)
-    {
-      this->UpdateProgress(1.0);
-      this->ReportOnce(std::string("engine: ") + e.what(), e.what(), true);
-      in.FrameKey.clear();
-      return;
-    }
-
-    // vtkMapper's rule (vtkOpenGLPolyDataMapper's): the table's own range when asked to.
-    if (byScalars && !this->UseLookupTableScalarRange)
-    {
-      lut->SetRange(this->ScalarRange);
-    }
-    double baseColour[3];
-    property->GetDiffuseColor(baseColour);
-    in.Size[0] = width;
-    in.Size[1] = height;
-    in.Colour.assign(size_t(width) * height * 4, 0.0f);
-    in.Depth.assign(size_t(width) * height, 1.0f);
-    for (int j = 0; j < height; ++j)
-    {
-      for (int i = 0; i < width; ++i)
-      {
-        const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
-        if (!hit)
-        {
-          continue;
-        }
-        const size_t p = size_t(j) * width + i;
-        double base[3] = { baseColour[0], baseColour[1], baseColour[2] };
-        if (byScalars)
-        {
-          const unsigned char* mapped = lut->MapValue(hit->color);
-          for (int c = 0; c < 3; ++c)
-          {
-            base[c] = mapped[c] / 255.0;
-          }
-        }
-        double toEye[3];
-        for (int d = 0; d < 3; ++d)
-        {
-          toEye[d] = view.parallel ? -view.forward[d] : view.eye[d] - hit->position[d];
-        }
-        iga::normalize3(toEye);
-        shadeHit(*hit, base, property, lights, toEye, &in.Colour[4 * p]);
-        in.Depth[p] = float(0.5 * (hit->ndcDepth + 1.0));
-      }
-    }
-    in.FrameTime.Modified();
+    last = key;
   }
+  return same;
+}
 
-  // Hardware selection (vtkHardwareSelector, vtkPropPicker): the pass's ids instead of colours,
-  // in VTK's encoding (0 is "nothing"): prop, composite block, process or cell (= patch) id + 1.
-  // Point ids are not drawn: a pixel of the isosurface is no control point.
+void vtkIGAIsosurfaceMapper::UpdateDataVersion(vtkMatrix4x4* matrix)
+{
+  // Patches in world space, made again only when the data or the actor's matrix change (a new
+  // data version): the matrix acts linearly on homogeneous control points, exactly, whatever
+  // the matrix.
+  Internals& in = *this->Internal;
+  if (in.DataVersion && in.VersionSetTime == in.SetTime &&
+      std::equal(in.VersionMatrix, in.VersionMatrix + 16, matrix->GetData()))
+  {
+    return;
+  }
+  static std::atomic<uint64_t> mappers{ 0 };
+  const uint64_t mapper = in.DataVersion ? in.DataVersion >> 40 : ++mappers;
+  const uint64_t changes = in.DataVersion ? (in.DataVersion & ((uint64_t(1) << 40) - 1)) : 0;
+  in.DataVersion = (mapper << 40) | (changes + 1);
+  in.VersionSetTime = in.SetTime;
+  std::copy(matrix->GetData(), matrix->GetData() + 16, in.VersionMatrix);
+  // The identity (the usual case) needs no copy.
+  in.World.clear();
+  if (!matrix->IsIdentity())
+  {
+    in.World = in.Set.patches;
+  }
+  for (auto& patch : in.World)
+  {
+    const auto view = patch.view();
+    moveControlPoints(matrix, view.coeffs, size_t(view.pointCount()), view.channels);
+  }
+}
+
+bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
+{
+  Internals& in = *this->Internal;
+  vtkMatrix4x4* matrix = actor->GetMatrix();
+  this->UpdateDataVersion(matrix);
+  frame.Settings.dataVersion = in.DataVersion;
+  this->UpdateProgress(0.0);
+  try
+  {
+    // The engine says which form it runs best on: NURBS nets (elements extracted on a GPU),
+    // checked once per input, or the cells the mapper already has.
+    const bool nurbs =
+      iga::sst::preferredInput(frame.Settings.backend) == iga::sst::InputForm::NurbsVolumes &&
+      this->UpdateNurbs(matrix);
+    in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
+    in.LastExtractionVersion = nurbs ? in.Nurbs.ExtractionVersion : 0;
+    const auto method = iga::sst::Method::SharedSubdivisionTree;
+    const auto report =
+      nurbs ? iga::sst::render(in.Nurbs.Volumes(matrix->IsIdentity() ? nullptr : &in.NurbsWorld),
+                frame.View, frame.Settings, method, in.GBuffer)
+            : iga::sst::render(matrix->IsIdentity() ? in.Set.patches : in.World, frame.View,
+                frame.Settings, method, in.GBuffer);
+    this->UpdateProgress(1.0);
+    this->ReportEngine(report);
+  }
+  catch (const std::exception& e)
+  {
+    this->UpdateProgress(1.0);
+    this->ReportOnce(std::string("engine: ") + e.what(), e.what(), true);
+    in.FrameKey.clear();
+    return false;
+  }
+  return true;
+}
+
+bool vtkIGAIsosurfaceMapper::UpdateNurbs(vtkMatrix4x4* matrix)
+{
+  Internals& in = *this->Internal;
+  if (in.NurbsTime != in.SetTime)
+  {
+    in.NurbsValid = in.Nurbs.Collect(this->GetInputDataObject(0, 0), in.Set);
+    in.NurbsTime = in.SetTime;
+    in.NurbsWorldVersion = 0;
+  }
+  if (in.NurbsValid && !matrix->IsIdentity() && in.NurbsWorldVersion != in.DataVersion)
+  {
+    in.NurbsWorld = in.Nurbs.Nets;
+    for (auto& net : in.NurbsWorld)
+    {
+      moveControlPoints(matrix, net.data(), net.size() / in.Nurbs.Channels, in.Nurbs.Channels);
+    }
+    in.NurbsWorldVersion = in.DataVersion;
+  }
+  return in.NurbsValid;
+}
+
+void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
+{
+  Internals& in = *this->Internal;
+  this->LastEngineTime = report.msTotal;
+  this->LastUnresolvedPixels = vtkIdType(report.unresolvedPixels);
+  in.LastBackend = report.backend;
+  in.LastNotice = report.notice;
+  if (!report.notice.empty() && in.Notices.insert(report.notice).second)
+  {
+    if (report.noticeSeverity == iga::sst::NoticeSeverity::Warning)
+    {
+      vtkWarningMacro(<< report.notice);
+    }
+    else if (firstInProcess(report.notice))
+    {
+      // Once per process: every mapper of a session without a GPU would say the same.
+      vtkOutputWindowDisplayText(
+        (std::string(this->GetClassName()) + ": " + report.notice + "\n").c_str());
+    }
+  }
+  if (report.unresolvedPixels == 0)
+  {
+    return;
+  }
+  // Once per cap hit, whatever the count (it changes with every camera move). The report counts
+  // the (pixel, sub-patch) pairs each cap gave up.
+  const bool depth = report.unresolvedAtDepthCap > 0, budget = report.unresolvedAtBudget > 0;
+  std::string caps;
+  if (depth)
+  {
+    caps += " at the subdivision depth cap (MaximumSubdivisionDepth " +
+            std::to_string(this->MaximumSubdivisionDepth) + ": " +
+            std::to_string(report.unresolvedAtDepthCap) + " pixel/sub-patch pairs given up)";
+  }
+  if (budget)
+  {
+    caps += std::string(depth ? " and" : "") + " at the memory budget (MemoryBudgetMB " +
+            std::to_string(this->MemoryBudgetMB) + ": " +
+            std::to_string(report.unresolvedAtBudget) + " pairs given up)";
+  }
+  this->ReportOnce(std::string("unresolved") + (depth ? " depth" : "") + (budget ? " budget" : ""),
+    std::to_string(report.unresolvedPixels) + " pixels left unresolved" + caps +
+      "; not reported again until the settings or the input change",
+    false);
+}
+
+void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
+{
+  Internals& in = *this->Internal;
+  vtkProperty* property = actor->GetProperty();
+  vtkScalarsToColors* lut = this->GetLookupTable();
+  const iga::sst::View& view = frame.View;
+  // vtkMapper's rule (vtkOpenGLPolyDataMapper's): the table's own range when asked to.
+  if (frame.ByScalars && !this->UseLookupTableScalarRange)
+  {
+    lut->SetRange(this->ScalarRange);
+  }
+  double baseColour[3];
+  property->GetDiffuseColor(baseColour);
+  const int width = frame.Width, height = frame.Height;
+  in.Size[0] = width;
+  in.Size[1] = height;
+  in.Colour.assign(size_t(width) * height * 4, 0.0f);
+  in.Depth.assign(size_t(width) * height, 1.0f);
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const iga::sst::Hit* hit = in.GBuffer.firstHit(i, j);
+      if (!hit)
+      {
+        continue;
+      }
+      const size_t p = size_t(j) * width + i;
+      double base[3] = { baseColour[0], baseColour[1], baseColour[2] };
+      if (frame.ByScalars)
+      {
+        const unsigned char* mapped = lut->MapValue(hit->color);
+        for (int c = 0; c < 3; ++c)
+        {
+          base[c] = mapped[c] / 255.0;
+        }
+      }
+      double toEye[3];
+      for (int d = 0; d < 3; ++d)
+      {
+        toEye[d] = view.parallel ? -view.forward[d] : view.eye[d] - hit->position[d];
+      }
+      iga::normalize3(toEye);
+      shadeHit(*hit, base, property, frame.Lights, toEye, &in.Colour[4 * p]);
+      in.Depth[p] = float(0.5 * (hit->ndcDepth + 1.0));
+    }
+  }
+  in.FrameTime.Modified();
+}
+
+void vtkIGAIsosurfaceMapper::SelectionIds(
+  vtkHardwareSelector* selector, vtkDataObject* input, std::vector<float>& ids)
+{
+  // The pass's ids instead of colours, in VTK's encoding (0 is "nothing"): prop, composite
+  // block, process or cell (= patch) id + 1. Point ids are not drawn: a pixel of the isosurface
+  // is no control point.
+  Internals& in = *this->Internal;
+  const int pass = selector->GetCurrentPass();
+  const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
+  if (!in.PatchCell.empty())
+  {
+    selector->UpdateMaximumCellId(*std::max_element(in.PatchCell.begin(), in.PatchCell.end()));
+  }
+  ids.assign(in.Colour.size(), 0.0f);
+  for (int j = 0; j < in.Size[1]; ++j)
+  {
+    for (int i = 0; i < in.Size[0]; ++i)
+    {
+      const iga::sst::Hit* hit = in.GBuffer.firstHit(i, j);
+      float* rgba = &ids[4 * (size_t(j) * in.Size[0] + i)];
+      if (!hit)
+      {
+        continue;
+      }
+      const vtkIdType cellId = in.PatchCell[hit->patch];
+      switch (pass)
+      {
+        case vtkHardwareSelector::CELL_ID_LOW24:
+          selectionColour(cellId & 0xffffff, rgba);
+          break;
+        case vtkHardwareSelector::CELL_ID_HIGH24:
+          selectionColour(cellId >> 24, rgba);
+          break;
+        case vtkHardwareSelector::POINT_ID_LOW24:
+        case vtkHardwareSelector::POINT_ID_HIGH24:
+          selectionColour(0, rgba);
+          break;
+        case vtkHardwareSelector::COMPOSITE_INDEX_PASS:
+          selector->RenderCompositeIndex(composite ? in.PatchBlock[hit->patch] : 1);
+          VTK_FALLTHROUGH;
+        default: // actor and process passes
+          std::copy(selector->GetPropColorValue(), selector->GetPropColorValue() + 3, rgba);
+          rgba[3] = 1.0f;
+      }
+    }
+  }
+}
+
+void vtkIGAIsosurfaceMapper::DrawFrame(vtkRenderer* renderer, vtkActor* actor, vtkDataObject* input)
+{
+  // Hardware selection (vtkHardwareSelector, vtkPropPicker) draws ids instead of colours.
   vtkHardwareSelector* selector = renderer->GetSelector();
   std::vector<float> ids;
   if (selector)
   {
     selector->BeginRenderProp();
-    const int pass = selector->GetCurrentPass();
-    const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
-    if (!in.PatchCell.empty())
-    {
-      selector->UpdateMaximumCellId(*std::max_element(in.PatchCell.begin(), in.PatchCell.end()));
-    }
-    ids.assign(in.Colour.size(), 0.0f);
-    for (int j = 0; j < in.Size[1]; ++j)
-    {
-      for (int i = 0; i < in.Size[0]; ++i)
-      {
-        const iga::sst::Hit* hit = in.GBuffer.firstHit(i, j);
-        float* rgba = &ids[4 * (size_t(j) * in.Size[0] + i)];
-        if (!hit)
-        {
-          continue;
-        }
-        const vtkIdType cellId = in.PatchCell[hit->patch];
-        switch (pass)
-        {
-          case vtkHardwareSelector::CELL_ID_LOW24:
-            selectionColour(cellId & 0xffffff, rgba);
-            break;
-          case vtkHardwareSelector::CELL_ID_HIGH24:
-            selectionColour(cellId >> 24, rgba);
-            break;
-          case vtkHardwareSelector::POINT_ID_LOW24:
-          case vtkHardwareSelector::POINT_ID_HIGH24:
-            selectionColour(0, rgba);
-            break;
-          case vtkHardwareSelector::COMPOSITE_INDEX_PASS:
-            selector->RenderCompositeIndex(composite ? in.PatchBlock[hit->patch] : 1);
-            VTK_FALLTHROUGH;
-          default: // actor and process passes
-            std::copy(selector->GetPropColorValue(), selector->GetPropColorValue() + 3, rgba);
-            rgba[3] = 1.0f;
-        }
-      }
-    }
+    this->SelectionIds(selector, input, ids);
   }
-
-  // Draw: upload when the frame changed (or ids were drawn instead), then a full-screen pass
-  // with gl_FragDepth.
   vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-  if (!window)
+  if (window)
   {
-    if (selector)
-    {
-      selector->EndRenderProp();
-    }
+    this->UploadTextures(window, selector ? &ids : nullptr);
+    this->DrawQuad(window, actor);
+  }
+  if (selector)
+  {
+    selector->EndRenderProp();
+  }
+}
+
+void vtkIGAIsosurfaceMapper::UploadTextures(vtkOpenGLRenderWindow* window, std::vector<float>* ids)
+{
+  // When the frame changed, or ids were drawn instead of its colours.
+  Internals& in = *this->Internal;
+  if (!ids && in.UploadTime >= in.FrameTime && in.ColourTexture->GetContext() == window)
+  {
     return;
   }
-  if (selector || in.UploadTime < in.FrameTime || in.ColourTexture->GetContext() != window)
+  in.ColourTexture->SetContext(window);
+  in.DepthTexture->SetContext(window);
+  in.ColourTexture->Create2DFromRaw(
+    in.Size[0], in.Size[1], 4, VTK_FLOAT, ids ? ids->data() : in.Colour.data());
+  in.DepthTexture->Create2DFromRaw(in.Size[0], in.Size[1], 1, VTK_FLOAT, in.Depth.data());
+  for (vtkTextureObject* texture : { in.ColourTexture.Get(), in.DepthTexture.Get() })
   {
-    in.ColourTexture->SetContext(window);
-    in.DepthTexture->SetContext(window);
-    in.ColourTexture->Create2DFromRaw(
-      in.Size[0], in.Size[1], 4, VTK_FLOAT, selector ? ids.data() : in.Colour.data());
-    in.DepthTexture->Create2DFromRaw(in.Size[0], in.Size[1], 1, VTK_FLOAT, in.Depth.data());
-    for (vtkTextureObject* texture : { in.ColourTexture.Get(), in.DepthTexture.Get() })
-    {
-      texture->SetMinificationFilter(vtkTextureObject::Nearest);
-      texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    }
-    in.UploadTime.Modified();
-    if (selector)
-    {
-      in.UploadTime = vtkTimeStamp(); // the colours go back up next time
-    }
+    texture->SetMinificationFilter(vtkTextureObject::Nearest);
+    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
   }
-  // Render passes (order-independent translucency, dual and classic depth peeling) hook into
-  // the shader as into vtkOpenGLPolyDataMapper's, through the DepthPeeling markers, at every
-  // peel; their depth tests read gl_FragDepth, set before the PreColor hook, and gl_FragCoord.z
-  // would be the quad's: it is replaced by the surface's depth igaDepth.
+  in.UploadTime.Modified();
+  if (ids)
+  {
+    in.UploadTime = vtkTimeStamp(); // the colours go back up next time
+  }
+}
+
+std::vector<vtkOpenGLRenderPass*> vtkIGAIsosurfaceMapper::RenderPasses(
+  vtkOpenGLRenderWindow* window, vtkActor* actor)
+{
   std::vector<vtkOpenGLRenderPass*> passes;
-  vtkMTimeType passTime = 0;
   vtkInformation* keys = actor->GetPropertyKeys();
   if (keys && keys->Has(vtkOpenGLRenderPass::RenderPasses()))
   {
@@ -966,7 +941,6 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     {
       passes.push_back(
         static_cast<vtkOpenGLRenderPass*>(keys->Get(vtkOpenGLRenderPass::RenderPasses(), k)));
-      passTime = std::max(passTime, passes.back()->GetShaderStageMTime());
     }
   }
   // VTK 9.2's depth peeling passes copy the opaque depth through a multisample resolve into a
@@ -986,52 +960,59 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
         "UseDepthPeeling requires",
       false);
   }
-  if (!in.Quad || passes != in.ShaderPasses || passTime > in.ShaderTime)
+  return passes;
+}
+
+bool vtkIGAIsosurfaceMapper::UpdateShader(
+  vtkOpenGLRenderWindow* window, vtkActor* actor, const std::vector<vtkOpenGLRenderPass*>& passes)
+{
+  // Render passes (order-independent translucency, dual and classic depth peeling) hook into
+  // the shader as into vtkOpenGLPolyDataMapper's, through the DepthPeeling markers, at every
+  // peel; their depth tests read gl_FragDepth, set before the PreColor hook, and gl_FragCoord.z
+  // would be the quad's: it is replaced by the surface's depth igaDepth.
+  Internals& in = *this->Internal;
+  vtkMTimeType passTime = 0;
+  for (vtkOpenGLRenderPass* pass : passes)
   {
-    std::string vertex = vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader();
-    std::string geometry;
-    std::string fragment = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-    vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Decl",
-      "uniform sampler2D colourTexture;\n"
-      "uniform sampler2D depthTexture;\n"
-      "float igaDepth;\n"
-      "//VTK::DepthPeeling::Dec\n");
-    vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Impl",
-      "  vec4 colour = texture(colourTexture, texCoord);\n"
-      "  if (colour.a <= 0.0) { discard; }\n"
-      "  igaDepth = texture(depthTexture, texCoord).r;\n"
-      "  gl_FragDepth = igaDepth;\n"
-      "  //VTK::DepthPeeling::PreColor\n"
-      "  gl_FragData[0] = vec4(colour.rgb / colour.a, colour.a);\n"
-      "  //VTK::DepthPeeling::Impl\n");
-    for (vtkOpenGLRenderPass* pass : passes)
-    {
-      pass->PreReplaceShaderValues(vertex, geometry, fragment, this, actor);
-    }
-    for (vtkOpenGLRenderPass* pass : passes)
-    {
-      pass->PostReplaceShaderValues(vertex, geometry, fragment, this, actor);
-    }
-    vtkShaderProgram::Substitute(fragment, "gl_FragCoord.z", "igaDepth", true);
-    if (in.Quad)
-    {
-      in.Quad->ReleaseGraphicsResources(window);
-    }
-    in.Quad.reset(new vtkOpenGLQuadHelper(window, vertex.c_str(), fragment.c_str(), nullptr));
-    in.ShaderPasses = passes;
-    in.ShaderTime = passTime;
+    passTime = std::max(passTime, pass->GetShaderStageMTime());
   }
-  else
+  if (in.Quad && passes == in.ShaderPasses && passTime <= in.ShaderTime)
   {
     window->GetShaderCache()->ReadyShaderProgram(in.Quad->Program);
+    return in.Quad->Program != nullptr;
   }
-  if (!in.Quad->Program)
+  std::string vertex = vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader();
+  std::string geometry;
+  std::string fragment = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
+  vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Decl", vtkIGAIsosurfaceDeclFS);
+  vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Impl", vtkIGAIsosurfaceImplFS);
+  for (vtkOpenGLRenderPass* pass : passes)
+  {
+    pass->PreReplaceShaderValues(vertex, geometry, fragment, this, actor);
+  }
+  for (vtkOpenGLRenderPass* pass : passes)
+  {
+    pass->PostReplaceShaderValues(vertex, geometry, fragment, this, actor);
+  }
+  vtkShaderProgram::Substitute(fragment, "gl_FragCoord.z", "igaDepth", true);
+  if (in.Quad)
+  {
+    in.Quad->ReleaseGraphicsResources(window);
+  }
+  in.Quad.reset(new vtkOpenGLQuadHelper(window, vertex.c_str(), fragment.c_str(), nullptr));
+  in.ShaderPasses = passes;
+  in.ShaderTime = passTime;
+  return in.Quad->Program != nullptr;
+}
+
+void vtkIGAIsosurfaceMapper::DrawQuad(vtkOpenGLRenderWindow* window, vtkActor* actor)
+{
+  // A full-screen pass with gl_FragDepth.
+  Internals& in = *this->Internal;
+  const std::vector<vtkOpenGLRenderPass*> passes = this->RenderPasses(window, actor);
+  if (!this->UpdateShader(window, actor, passes))
   {
     vtkErrorMacro(<< "the isosurface shader did not compile");
-    if (selector)
-    {
-      selector->EndRenderProp();
-    }
     return;
   }
   vtkOpenGLState* state = window->GetState();
@@ -1053,8 +1034,4 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   in.Quad->Render();
   in.ColourTexture->Deactivate();
   in.DepthTexture->Deactivate();
-  if (selector)
-  {
-    selector->EndRenderProp();
-  }
 }

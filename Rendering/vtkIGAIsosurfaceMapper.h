@@ -74,14 +74,25 @@
 #include "vtkMapper.h"
 
 #ifndef __VTK_WRAP__
-#include "iga/sst/Engine.h" // for GBuffer
+#include "iga/sst/GBuffer.h" // for GBuffer
+namespace iga
+{
+namespace sst
+{
+struct FrameReport;
+}
+}
 #endif
 
 #include <memory> // for std::unique_ptr
-
-class vtkDataObject;
 #include <string> // for std::string
 #include <vector> // for std::vector
+
+class vtkDataObject;
+class vtkHardwareSelector;
+class vtkMatrix4x4;
+class vtkOpenGLRenderPass;
+class vtkOpenGLRenderWindow;
 
 class IGAVIEWRENDERING_EXPORT vtkIGAIsosurfaceMapper : public vtkMapper
 {
@@ -202,6 +213,37 @@ private:
   /// Reports `message` (a warning, or an error) unless the same key was reported since the
   /// settings or the input last changed.
   void ReportOnce(const std::string& key, const std::string& message, bool error);
+
+#ifndef __VTK_WRAP__
+  // The steps of Render: the input as patches, what the frame depends on, the engine's frame
+  // when that changed, its shading, and the draw.
+  struct Frame;
+  /// The input's patches, converted when it changed; false when there is nothing to draw.
+  bool CollectInput(Frame& frame);
+  /// Size, view, lights, clipping planes and engine settings of the frame, and its key.
+  bool DescribeFrame(vtkRenderer* renderer, vtkActor* actor, Frame& frame);
+  void DescribeLights(vtkRenderer* renderer, Frame& frame);
+  /// Whether `key` is the last frame's (to rounding VTK adds); remembers it when not.
+  bool SameFrame(const std::vector<double>& key);
+  /// The engine's G-buffer of the frame, in the input form the engine prefers.
+  bool ComputeFrame(vtkActor* actor, Frame& frame);
+  /// A new data version (and world patches) when the data or the actor's matrix changed.
+  void UpdateDataVersion(vtkMatrix4x4* matrix);
+  /// The input's NURBS form (vtkIGANurbsCells), moved by the matrix; false when it has none.
+  bool UpdateNurbs(vtkMatrix4x4* matrix);
+  /// The report's notice and caps, each said once.
+  void ReportEngine(const iga::sst::FrameReport& report);
+  /// Colour and window depth of every pixel from the G-buffer, with VTK's lights.
+  void ShadeFrame(vtkActor* actor, const Frame& frame);
+  /// Colours, or a hardware selector's ids, drawn as a full-screen pass with gl_FragDepth.
+  void DrawFrame(vtkRenderer* renderer, vtkActor* actor, vtkDataObject* input);
+  void SelectionIds(vtkHardwareSelector* selector, vtkDataObject* input, std::vector<float>& ids);
+  void UploadTextures(vtkOpenGLRenderWindow* window, std::vector<float>* ids);
+  std::vector<vtkOpenGLRenderPass*> RenderPasses(vtkOpenGLRenderWindow* window, vtkActor* actor);
+  bool UpdateShader(vtkOpenGLRenderWindow* window, vtkActor* actor,
+    const std::vector<vtkOpenGLRenderPass*>& passes);
+  void DrawQuad(vtkOpenGLRenderWindow* window, vtkActor* actor);
+#endif
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -26,12 +26,26 @@
 #include <utility>
 #include <vector>
 
+// The driver compiled for the CUDA system and for Thrust's host system (the logic tests) may
+// meet in one binary: an inline namespace per system keeps their symbols apart.
+#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
+#define IGA_DEVICE_SYSTEM_BEGIN                                                                    \
+  inline namespace cuda_system                                                                     \
+  {
+#else
+#define IGA_DEVICE_SYSTEM_BEGIN                                                                    \
+  inline namespace host_system                                                                     \
+  {
+#endif
+#define IGA_DEVICE_SYSTEM_END }
+
 namespace iga
 {
 namespace sst
 {
 namespace device
 {
+IGA_DEVICE_SYSTEM_BEGIN
 
 #if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
 inline void check(cudaError_t status, const char* what)
@@ -298,26 +312,6 @@ inline auto exec()
 }
 #endif
 
-/// Adds to a device counter from any device thread.
-IGA_HD inline void addAtomically(unsigned long long* counter, unsigned long long value)
-{
-#ifdef __CUDA_ARCH__
-  atomicAdd(counter, value);
-#else
-  *counter += value; // Thrust's host system runs a kernel's threads one after another
-#endif
-}
-
-/// Lowers a device value to `value` if that is smaller, from any device thread.
-IGA_HD inline void lowerAtomically(unsigned int* target, unsigned int value)
-{
-#ifdef __CUDA_ARCH__
-  atomicMin(target, value);
-#else
-  *target = value < *target ? value : *target; // one thread after another, as above
-#endif
-}
-
 /// Stage times of a frame on the device's clock. Launches are queued ahead of the device, so
 /// the host's clock would charge a stage's work to whichever stage next waits for a result.
 class StageTimer
@@ -398,6 +392,7 @@ private:
   std::vector<double*> Targets;
 };
 
+IGA_DEVICE_SYSTEM_END
 } // namespace device
 } // namespace sst
 } // namespace iga

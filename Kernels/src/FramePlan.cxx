@@ -345,7 +345,7 @@ FramePlan planView(const View& view, const Settings& s, double attributeRange, F
   plan.frame.height = s.height;
   plan.frame.rowBegin = 0;
   plan.frame.rowEnd = s.height;
-  plan.frame.firstHitOnly = s.firstHitOnly;
+  plan.frame.hits.firstHitOnly = s.firstHitOnly;
   plan.frame.maxSubdivisionDepth = s.maxSubdivisionDepth;
   plan.frame.isovalues = s.isovalues.data();
   return plan;

@@ -7,6 +7,7 @@
 #include "vtkNew.h"
 
 #include "iga/Datasets.h"
+#include "iga/sst/Engine.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
 
 namespace
 {
@@ -242,6 +243,48 @@ TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
     }
   EXPECT_GT(twoHits, 500);
   EXPECT_EQ(twoHits, covered);
+}
+
+/// Every hit says whether the ray enters the region below the isovalue there: the sphere's
+/// inside (x^2 + y^2 + z^2 - 1 < 0) is entered at the front and left at the back, whatever the
+/// orientation of the parametrisation (mirrored: det J < 0); with the attribute negated the
+/// outside is below and the order flips.
+TEST(Engine, HitsSayWhetherTheRayEntersTheRegionBelowTheIsovalue)
+{
+  const double position[3] = { 0.3, -4, 0.5 };
+  for (const char* variant : { "as made", "mirrored", "negated" })
+  {
+    SCOPED_TRACE(variant);
+    auto [set, camera, settings] = sphereView(3, position, 40);
+    settings.firstHitOnly = false;
+    const auto view = set.patches[0].view();
+    const int order = view.order(0), rest = view.pointCount() / order;
+    if (std::string(variant) == "mirrored") // reverse the first parameter direction
+    {
+      for (int r = 0; r < rest; ++r)
+        for (int i = 0; i < order / 2; ++i)
+          for (int c = 0; c < view.channels; ++c)
+            std::swap(view.point(r * order + i)[c], view.point(r * order + order - 1 - i)[c]);
+    }
+    if (std::string(variant) == "negated")
+    {
+      for (int p = 0; p < view.pointCount(); ++p)
+        view.point(p)[iga::kFirstAttributeChannel] *= -1;
+    }
+    const bool frontEnters = std::string(variant) != "negated";
+    const GBuffer gbuffer = renderSet(set, camera, settings);
+    int checked = 0;
+    for (int p = 0; p < 40 * 40; ++p)
+    {
+      if (gbuffer.hitCount(p % 40, p / 40) != 2)
+        continue;
+      const auto* hits = gbuffer.firstHit(p % 40, p / 40);
+      EXPECT_EQ(hits[0].entersBelow, frontEnters) << "pixel " << p;
+      EXPECT_EQ(hits[1].entersBelow, !frontEnters) << "pixel " << p;
+      ++checked;
+    }
+    EXPECT_GT(checked, 300);
+  }
 }
 
 /// Clipping planes cut the surface exactly: the first hit is the nearest sphere point on the

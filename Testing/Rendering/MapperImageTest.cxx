@@ -4,6 +4,8 @@
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGAIsosurfaceMapper.h"
 
+#include "iga/sst/Engine.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"

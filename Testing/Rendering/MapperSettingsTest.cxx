@@ -5,6 +5,8 @@
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGAIsosurfaceMapper.h"
 
+#include "iga/sst/Engine.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"

@@ -5,6 +5,7 @@
 #include "iga/BSpline.h"
 #include "iga/BezierPatch.h"
 #include "iga/Camera.h"
+#include "iga/sst/GBuffer.h"
 
 #include <array>
 #include <cstdint>
@@ -73,39 +74,12 @@ struct Settings
   std::function<void(int iteration, size_t pairsLeft)> progress;
 };
 
-/// One ray/isosurface intersection.
-struct Hit
+/// How much a frame's notice matters to a user.
+enum class NoticeSeverity
 {
-  double ndcDepth;    ///< NDC depth in [-1, 1]; window depth is (ndcDepth + 1) / 2
-  double eyeDepth;    ///< distance from the eye along the view direction
-  double position[3]; ///< world position
-  double normal[3];   ///< unit world normal of the isosurface, facing the viewer
-  double uvw[3];      ///< parameter in the input patch
-  int patch;          ///< input patch index
-  int isovalue;       ///< index into Settings::isovalues
-  double color;       ///< colour attribute at the hit (NaN without one)
-};
-
-/// Per pixel, all hits sorted front to back. Pixel (i, j) has index j * width + i, row 0 at the
-/// bottom (OpenGL and VTK convention), and samples the ray through the pixel's centre.
-struct GBuffer
-{
-  int width = 0;
-  int height = 0;
-  std::vector<uint32_t> offsets; ///< width * height + 1 entries into hits
-  std::vector<Hit> hits;
-
-  const Hit* firstHit(int i, int j) const
-  {
-    const size_t p = size_t(j) * width + i;
-    return offsets[p] < offsets[p + 1] ? &hits[offsets[p]] : nullptr;
-  }
-  int hitCount(int i, int j) const
-  {
-    const size_t p = size_t(j) * width + i;
-    return int(offsets[p + 1] - offsets[p]);
-  }
-  size_t coveredPixels() const;
+  None,    ///< no notice
+  Info,    ///< the automatic choice took CPU threads (no GPU): worth saying once
+  Warning, ///< CUDA was asked for and could not be used, or a CUDA frame failed
 };
 
 struct FrameReport
@@ -115,6 +89,7 @@ struct FrameReport
   /// One line when the backend differs from the one asked for or a CUDA frame fell back to the
   /// CPU (why), empty otherwise.
   std::string notice;
+  NoticeSeverity noticeSeverity = NoticeSeverity::None;
   int threads = 0;
   int iterations = 0; ///< solution/subdivision rounds
   int bands = 0;      ///< passes over bands of rows: 1 unless the sweep's pairs exceed a pass
@@ -200,10 +175,17 @@ const char* methodName(Method method);
 const char* backendName(Backend backend);
 Backend parseBackend(const std::string& name);
 
-/// Whether a shared-subdivision-tree frame with this backend setting is tried on a GPU first:
-/// CUDA asked for (here or, for Automatic, by IGAVIEW_BACKEND), or Automatic with a usable
-/// device. Callers holding their data in two forms hand the engine the one that driver prefers.
-bool triesGpu(Backend backend);
+/// The input form a shared-subdivision-tree frame with this backend setting runs best on, for
+/// callers holding their data in both: NURBS volumes where the frame is tried on a GPU (CUDA
+/// asked for, here or for Automatic by IGAVIEW_BACKEND, or Automatic with a usable device),
+/// which extracts their elements there and so receives only moved nets; the Bézier patches
+/// otherwise, which CPU threads would extract again.
+enum class InputForm
+{
+  BezierPatches,
+  NurbsVolumes,
+};
+InputForm preferredInput(Backend backend);
 
 /// The CPU engine keeps the large host blocks its frames free (up to 512 MiB) for the next
 /// frame, so steady frames touch no fresh pages; this gives them back to the system.

@@ -4,6 +4,7 @@
 
 #include "iga/Camera.h"
 #include "iga/sst/Engine.h"
+#include "iga/sst/HitPolicy.h"
 #include "iga/sst/PixelProblem.h"
 
 #include <stddef.h>
@@ -151,7 +152,7 @@ struct FrameConstants
   /// node) pairs need several passes over bands of rows (rowBands).
   int rowBegin;
   int rowEnd;
-  bool firstHitOnly;
+  HitPolicy hits;
   int maxSubdivisionDepth;
   double tolerance[3];     ///< Newton's acceptance window (pixels, pixels, attribute)
   ClipPlanes<double> clip; ///< in homogeneous window coordinates
@@ -299,25 +300,25 @@ IGA_HD inline bool readyForTuples(const Node& node, const FrameConstants& frame)
          node.level >= frame.maxSubdivisionDepth || node.overBudget;
 }
 
-/// Whether a node's box holds the pixel and, in first-hit mode, may lie before its best hit.
+/// Whether a node's box holds the pixel and may matter to it (the hit policy).
 IGA_HD inline bool mayHitPixel(
   const Node& node, uint32_t pixel, double bestDepth, const FrameConstants& frame)
 {
   return boxCoversPixel(node.info.box, int(pixel % frame.width), int(pixel / frame.width)) &&
-         !(frame.firstHitOnly && node.info.box.lo[2] > bestDepth);
+         frame.hits.mayMatter(node.info.box.lo[2], bestDepth);
 }
 
 /// The end of a pixel's next group of work items (initial nodes sorted by nearest depth) from
-/// `cursor`: in first-hit mode the nearest item and all items overlapping it in depth (none
-/// when the best hit is nearer), else all items up to `end`.
+/// `cursor`: for a policy by depth groups the nearest item and all items overlapping it in
+/// depth (none when it cannot matter), else all items up to `end`.
 IGA_HD inline uint32_t groupEnd(const Node* initialNodes, const uint32_t* items, uint32_t cursor,
-  uint32_t end, double bestDepth, bool firstHitOnly)
+  uint32_t end, double bestDepth, const HitPolicy& policy)
 {
-  if (!firstHitOnly)
+  if (!policy.byDepthGroups())
   {
     return end;
   }
-  if (cursor >= end || initialNodes[items[cursor]].info.box.lo[2] > bestDepth)
+  if (cursor >= end || !policy.mayMatter(initialNodes[items[cursor]].info.box.lo[2], bestDepth))
   {
     return cursor;
   }
@@ -355,7 +356,7 @@ enum TupleState : uint8_t
 };
 
 /// The solution stage for one pixel: its tuples [first, last), sorted nearest first, each solved
-/// unless, in first-hit mode, it lies behind the best hit so far. Writes every tuple's state
+/// unless it cannot matter next to the best hit so far (the hit policy). Writes every tuple's state
 /// and, for a hit, its root (u, NDC depth) at solution[4 t]; returns the pixel's best depth.
 /// `certified` counts the tuples tried on certified nodes. `viewOf(node)` gives a node's screen
 /// patch.
@@ -369,7 +370,7 @@ IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t las
   {
     const Node& node = nodes[tuples[t].node];
     state[t] = Failed;
-    if (frame.firstHitOnly && node.info.box.lo[2] > best)
+    if (!frame.hits.mayMatter(node.info.box.lo[2], best))
     {
       state[t] = Dropped;
       continue;
@@ -393,12 +394,11 @@ IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t las
 }
 
 /// Whether a pixel its box covers takes a tuple of an implicit node this round: the node's
-/// initial node is among the pixel's work items [begin, end) and, in first-hit mode, the node
-/// is not behind the pixel's best hit.
+/// initial node is among the pixel's work items [begin, end) and the node may matter to it.
 IGA_HD inline bool roundTakesPixel(const Node& node, double bestDepth, const uint32_t* items,
   uint32_t begin, uint32_t end, const FrameConstants& frame)
 {
-  return !(frame.firstHitOnly && node.info.box.lo[2] > bestDepth) &&
+  return frame.hits.mayMatter(node.info.box.lo[2], bestDepth) &&
          inGroup(items, begin, end, node.initial);
 }
 
@@ -456,6 +456,20 @@ struct ShadingView
   bool hasColor;
 };
 
+/// The viewer of a frame as shading sees it.
+inline ShadingView shadingViewOf(const View& view, const Settings& settings)
+{
+  ShadingView viewer{};
+  for (int d = 0; d < 3; ++d)
+  {
+    viewer.eye[d] = view.eye[d];
+    viewer.forward[d] = view.forward[d];
+  }
+  viewer.parallel = view.parallel;
+  viewer.hasColor = settings.colorAttribute >= 0;
+  return viewer;
+}
+
 /// World position, normal (facing the viewer), depth and colour value of a root, evaluated on
 /// its shading patch in double precision.
 IGA_HD inline Hit shadeHit(
@@ -478,13 +492,15 @@ IGA_HD inline Hit shadeHit(
     values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, gradient);
   // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J). The cofactor form
   // stays defined where J is singular (collapsed faces); the orientation is fixed below.
-  double normal[3] = { 0, 0, 0 };
+  double normal[3] = { 0, 0, 0 }, determinant = 0;
   for (int r = 0; r < 3; ++r)
   {
     for (int c = 0; c < 3; ++c)
     {
       const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
-      normal[r] += (J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0]) * gradient[c];
+      const double cofactor = J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0];
+      normal[r] += cofactor * gradient[c];
+      determinant += r == 0 ? J[0][c] * cofactor : 0;
     }
   }
   double toEye[3];
@@ -502,6 +518,9 @@ IGA_HD inline Hit shadeHit(
     normalize3(normal);
   }
   const double sign = dot3(normal, toEye) < 0 ? -1.0 : 1.0;
+  // The attribute falls along the ray where its world gradient points back to the eye. Where J
+  // is singular its orientation is unknown and taken as positive.
+  hit.entersBelow = (determinant < 0 ? -sign : sign) > 0;
   double offset[3];
   for (int d = 0; d < 3; ++d)
   {
@@ -511,54 +530,6 @@ IGA_HD inline Hit shadeHit(
   hit.eyeDepth = dot3(offset, viewer.forward);
   hit.color = viewer.hasColor ? values[kShadeColor] / values[kShadeWeight] : nan("");
   return hit;
-}
-
-IGA_HD inline bool hitBefore(const Hit& a, const Hit& b)
-{
-  if (a.eyeDepth != b.eyeDepth)
-  {
-    return a.eyeDepth < b.eyeDepth;
-  }
-  if (a.isovalue != b.isovalue)
-  {
-    return a.isovalue < b.isovalue;
-  }
-  return a.patch < b.patch;
-}
-
-/// Sorts one pixel's hits front to back and merges duplicates (a root on a face shared by two
-/// sub-patches is found in both: two roots of one isovalue closer along the ray than 1e-4 of a
-/// pixel's footprint are one, as Newton places roots within 1e-6 pixel of the ray). Returns how
-/// many are kept at the front, at most one in first-hit mode.
-IGA_HD inline int mergePixelHits(
-  Hit* hits, int count, double footprint, bool parallel, bool firstHitOnly)
-{
-  for (int k = 1; k < count; ++k) // insertion sort: a pixel has a handful of hits
-  {
-    const Hit moving = hits[k];
-    int at = k;
-    for (; at > 0 && hitBefore(moving, hits[at - 1]); --at)
-    {
-      hits[at] = hits[at - 1];
-    }
-    hits[at] = moving;
-  }
-  int kept = 0;
-  for (int k = 0; k < count; ++k)
-  {
-    const double tolerance = 1e-4 * footprint * (parallel ? 1.0 : absValue(hits[k].eyeDepth));
-    bool duplicate = false;
-    for (int previous = 0; previous < kept && !duplicate; ++previous)
-    {
-      duplicate = hits[previous].isovalue == hits[k].isovalue &&
-                  hits[k].eyeDepth - hits[previous].eyeDepth <= tolerance;
-    }
-    if (!duplicate)
-    {
-      hits[kept++] = hits[k];
-    }
-  }
-  return firstHitOnly && kept > 1 ? 1 : kept;
 }
 
 } // namespace sst

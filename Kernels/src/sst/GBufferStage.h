@@ -1,0 +1,72 @@
+// Stage 6, G-buffer: the frame's hits grouped by pixel, shaded on their input patches in double
+// precision, and per pixel resolved by the hit policy (sorted front to back, duplicates merged,
+// what the policy keeps). Run r of pixel RunPixels[r] keeps KeptStarts[r + 1] - KeptStarts[r]
+// hits, which compactHits puts at KeptStarts[r] where the driver wants them.
+#pragma once
+
+#include "sst/LoopState.h"
+
+namespace iga
+{
+namespace sst
+{
+
+template<class Exec>
+void gBufferStage(LoopState<Exec>& s)
+{
+  const size_t hitCount = s.HitCount;
+  RawHit* raws = raw(s.Hits);
+  s.exec.sortByPixel(raws, hitCount, s.pixelCount);
+  uint32_t* runStarts = sized(s.RunStarts, hitCount + 1);
+  const size_t runCount = s.exec.select(
+    hitCount, [=] IGA_HD(size_t h) { return h == 0 || raws[h].pixel != raws[h - 1].pixel; },
+    [] IGA_HD(size_t h) { return h; }, runStarts);
+  s.exec.fill(runStarts + runCount, 1, uint32_t(hitCount));
+  // A pixel's hits by one thread: a handful in all-hits mode, one or two in first-hit mode.
+  const PatchShape* shapes = s.shapes;
+  const double* shadingPool = s.shadingPool;
+  const ShadingView viewer = s.viewer;
+  const HitPolicy policy = s.frame.hits;
+  const double footprint = s.pixelFootprint;
+  Hit* shaded = sized(s.Shaded, hitCount);
+  uint32_t* pixels = sized(s.RunPixels, runCount);
+  uint32_t* kept = sized(s.KeptStarts, runCount + 1);
+  s.exec.forEach(
+    runCount,
+    [=] IGA_HD(size_t r)
+    {
+      for (uint32_t h = runStarts[r]; h < runStarts[r + 1]; ++h)
+      {
+        const PatchShape& shape = shapes[raws[h].patch];
+        const VolumeView<const double> shading(
+          shadingPool + shape.screen, shape.degree, kShadeChannels);
+        shaded[h] = shadeHit(shading, raws[h], viewer);
+      }
+      pixels[r] = raws[runStarts[r]].pixel;
+      kept[r] = uint32_t(policy.resolve(
+        shaded + runStarts[r], int(runStarts[r + 1] - runStarts[r]), footprint, viewer.parallel));
+    },
+    kGrainHit);
+  s.KeptCount = scanCounts(s.exec, s.KeptStarts, runCount); // at most the hit count
+  s.RunCount = runCount;
+}
+
+/// Copies the kept hits, run by run, to `out` (KeptCount of them, in the execution's memory).
+template<class Exec>
+void compactHits(LoopState<Exec>& s, Hit* out)
+{
+  const uint32_t* runStarts = raw(s.RunStarts);
+  const uint32_t* kept = raw(s.KeptStarts);
+  const Hit* shaded = raw(s.Shaded);
+  s.exec.forEach(s.RunCount,
+    [=] IGA_HD(size_t r)
+    {
+      for (uint32_t k = kept[r]; k < kept[r + 1]; ++k)
+      {
+        out[k] = shaded[runStarts[r] + (k - kept[r])];
+      }
+    });
+}
+
+} // namespace sst
+} // namespace iga
