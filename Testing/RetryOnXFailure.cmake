@@ -4,7 +4,9 @@
 # up to 5 times, after a pause that grows (1, 2, 3, 4 s): three immediate retries once failed
 # in a row. The command is COMMAND (a ;-list) or, when this script serves as a test
 # executable's CROSSCOMPILING_EMULATOR, the arguments after the script. Its output goes to
-# standard output (gtest_discover_tests reads the test list from there).
+# standard output (gtest_discover_tests reads the test list from there). With EXPECT (a
+# regular expression) the output must match it too: a test passes on its exit code and its
+# output, never on its output alone.
 if(NOT DEFINED COMMAND)
   math(EXPR last "${CMAKE_ARGC} - 1")
   foreach(i RANGE 3 ${last})
@@ -23,4 +25,7 @@ endforeach()
 execute_process(COMMAND ${CMAKE_COMMAND} -E echo "${out}")
 if(NOT result EQUAL 0)
   message(FATAL_ERROR "failed (${result})")
+endif()
+if(DEFINED EXPECT AND NOT out MATCHES "${EXPECT}")
+  message(FATAL_ERROR "exited 0, but the output does not match '${EXPECT}'")
 endif()
