@@ -7,10 +7,13 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 namespace iga
 {
@@ -44,12 +47,12 @@ public:
   }
 
   /// Runs job() on the calling thread and on `helpers` other threads at once, and returns when
-  /// all have returned. A loop started while the pool serves another (a loop inside a loop, or
-  /// another thread's) gets threads of its own.
+  /// all have returned; job must not throw (parallelFor catches for it). A loop started while
+  /// the pool serves another (a loop inside a loop, or another thread's), or in a process forked
+  /// from the pool's, gets threads of its own.
   void run(int helpers, const std::function<void()>& job)
   {
-    std::unique_lock<std::mutex> serving(this->Serving, std::try_to_lock);
-    if (!serving.owns_lock())
+    if (getpid() != this->Owner || this->Busy.exchange(true, std::memory_order_acquire))
     {
       std::vector<std::thread> threads;
       for (int t = 0; t < helpers; ++t)
@@ -81,12 +84,18 @@ public:
     {
       cpuRelax();
     }
-    std::unique_lock<std::mutex> lock(this->Mutex);
-    this->Done.wait(lock, [this] { return this->Pending.load() == 0; });
+    {
+      std::unique_lock<std::mutex> lock(this->Mutex);
+      this->Done.wait(lock, [this] { return this->Pending.load() == 0; });
+    }
+    this->Busy.store(false, std::memory_order_release);
   }
 
 private:
-  WorkerPool() = default;
+  WorkerPool()
+    : Owner(getpid())
+  {
+  }
 
   /// A pool thread: runs the job of every generation it is a helper of.
   void serve(size_t index, uint64_t seen)
@@ -119,8 +128,9 @@ private:
     }
   }
 
-  std::mutex Serving; ///< held by the loop the pool serves
-  std::mutex Mutex;   ///< guards the fields below but the atomics, and sleeping
+  const pid_t Owner;               ///< the process whose threads these are
+  std::atomic<bool> Busy{ false }; ///< while the pool serves a loop
+  std::mutex Mutex;                ///< guards the fields below but the atomics, and sleeping
   std::condition_variable Wake, Done;
   std::vector<std::thread> Threads;
   const std::function<void()>* Job = nullptr; ///< of the current generation
@@ -130,9 +140,10 @@ private:
 };
 
 /// Runs fn(begin, end) over [0, n) on `threads` threads pulling chunks of at least `minimum`
-/// indices (a loop of cheap elements below twice that runs on the calling thread alone: waking
-/// a thread costs more). Callers write results per index, so outputs never depend on the
-/// thread count or scheduling.
+/// indices (so a loop of at most `minimum` runs on the calling thread alone: for cheap
+/// elements, waking a thread costs more). Callers write results per index, so outputs never
+/// depend on the thread count or scheduling. An exception thrown by fn stops the loop's other
+/// chunks and is thrown again, once all threads have left the loop.
 template<class Fn>
 void parallelFor(size_t n, int threads, Fn&& fn, size_t minimum = 1)
 {
@@ -146,6 +157,8 @@ void parallelFor(size_t n, int threads, Fn&& fn, size_t minimum = 1)
     return;
   }
   std::atomic<size_t> next{ 0 };
+  std::exception_ptr failure;
+  std::mutex failureMutex;
   const std::function<void()> worker = [&]()
   {
     for (;;)
@@ -155,10 +168,24 @@ void parallelFor(size_t n, int threads, Fn&& fn, size_t minimum = 1)
       {
         break;
       }
-      fn(begin, std::min(n, begin + grain));
+      try
+      {
+        fn(begin, std::min(n, begin + grain));
+      }
+      catch (...)
+      {
+        std::lock_guard<std::mutex> lock(failureMutex);
+        failure = failure ? failure : std::current_exception();
+        next.store(n); // the other threads take no further chunk
+        break;
+      }
     }
   };
   WorkerPool::instance().run(threads - 1, worker);
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
 }
 
 /// Runs fn(part, begin, end) for `parts` contiguous ranges of [0, n) in order of index, on

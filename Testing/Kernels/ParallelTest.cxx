@@ -1,5 +1,6 @@
 // The CPU threads' primitives: the worker pool behind parallelFor (every index once, across many
-// loops, loops inside loops and loops of two threads at once, cheap loops on the caller), and
+// loops, loops inside loops and loops of two threads at once, cheap loops on the caller, an
+// exception thrown again once every thread has left the loop), and
 // CpuExec's select, scan, sum and sorts against serial references.
 #include "ParallelFor.h"
 #include "sst/CpuExec.h"
@@ -10,6 +11,7 @@
 #include <atomic>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -68,6 +70,26 @@ TEST(WorkerPool, LoopsInsideLoopsAndFromTwoThreads)
     loops();
   }
   other.join();
+}
+
+TEST(WorkerPool, AnExceptionIsThrownAgainOnceTheLoopIsLeft)
+{
+  for (int loop = 0; loop < 200; ++loop)
+  {
+    std::atomic<size_t> visited{ 0 };
+    EXPECT_THROW(parallelFor(10000, 2,
+                   [&](size_t begin, size_t end)
+                   {
+                     if (begin <= 5000 && 5000 < end)
+                     {
+                       throw std::runtime_error("index 5000");
+                     }
+                     visited += end - begin;
+                   }),
+      std::runtime_error);
+    EXPECT_LT(visited.load(), 10000u);
+    expectEveryIndexOnce(10000, 2); // the pool serves the next loop
+  }
 }
 
 TEST(WorkerPool, CheapLoopsStayOnTheCaller)

@@ -129,7 +129,7 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
       }
       else if (outcome[t] == Failed && state >= AtDepthCap)
       {
-        unresolved[tuples[t].pixel] = 1;
+        storeShared(&unresolved[tuples[t].pixel], 1);
         addAtomically(&tallies[state == AtDepthCap ? TuplesAtDepthCap : TuplesOverBudget], 1);
       }
       newCounts[t] = count;
@@ -171,7 +171,7 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
       }
       if (t >= totals[4]) // given up at the cap
       {
-        unresolved[tuples[t].pixel] = 1;
+        storeShared(&unresolved[tuples[t].pixel], 1);
         addAtomically(&tallies[TuplesOverBudget], 1);
         return;
       }

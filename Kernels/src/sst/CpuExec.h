@@ -44,8 +44,8 @@ struct CpuExec
 
   int threads = 1;
 
-  /// Elements a thread takes at least in loops of cheap elements (a fill, a flag): below
-  /// twice that, waking a second thread costs more than the loop.
+  /// Elements a thread takes at least in loops of cheap elements (a fill, a flag): a loop of
+  /// fewer runs on the calling thread, where waking a second one would cost more than it.
   static constexpr size_t kCheap = 4096;
 
   template<class Fn>

@@ -56,7 +56,7 @@ void solveRound(LoopState<Exec>& s)
       {
         for (uint32_t i = begin[active[k]]; i < end[active[k]]; ++i)
         {
-          present[items[i]] = 1;
+          storeShared(&present[items[i]], 1);
         }
       });
     s.NodeCount = gatherNodes(

@@ -57,6 +57,17 @@ IGA_HD inline void lowerAtomically(unsigned int* target, unsigned int value)
 #endif
 }
 
+/// Stores a flag value that several threads may store at once (a relaxed atomic store on CPU
+/// threads, where plain stores from two threads would race).
+IGA_HD inline void storeShared(uint8_t* flag, uint8_t value)
+{
+#ifdef __CUDA_ARCH__
+  *flag = value;
+#else
+  __atomic_store_n(flag, value, __ATOMIC_RELAXED);
+#endif
+}
+
 /// How many elements of a loop are worth a CPU thread (the grain of CpuExec::forEach; a GPU
 /// thread takes one whatever it costs), by what an element costs: a node split into its eight
 /// children (tens of microseconds at degree 4), a node analysed, a pixel's tuples solved, a hit

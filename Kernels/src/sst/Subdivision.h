@@ -58,7 +58,7 @@ size_t chooseSplits(LoopState<Exec>& s)
       }
       if (outcome[t] == Failed)
       {
-        split[tuples[t].node] = Split;
+        storeShared(&split[tuples[t].node], Split);
         addAtomically(&failed[tuples[t].node], 1);
       }
     });
