@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <stdexcept>
 
 namespace
 {
@@ -87,21 +88,28 @@ bool vtkIGANurbsCells::Collect(vtkDataObject* input, const iga::VolumeSet<double
   {
     this->Nets.push_back(std::move(volume.net));
   }
+  // Nets the engine would refuse (wrong size, non-finite values, non-positive weights) leave
+  // the cells, which the engine takes.
+  try
+  {
+    iga::sst::checkNurbsVolumes(this->Volumes());
+  }
+  catch (const std::invalid_argument&)
+  {
+    return false;
+  }
   // The elements must be the cells, volume by volume in each extraction's element order.
   size_t first = 0;
   for (size_t v = 0; v < this->Extractions.size(); ++v)
   {
     const iga::BezierExtraction<double, 3>& extraction = *this->Extractions[v];
     const size_t count = size_t(extraction.elementCount());
-    size_t points = 1;
     int degree[3];
     for (int d = 0; d < 3; ++d)
     {
-      points *= size_t(extraction.netSize(d));
       degree[d] = extraction.direction(d).degree;
     }
-    if (this->Nets[v].size() != points * size_t(this->Channels) ||
-        first + count > cells.patches.size())
+    if (first + count > cells.patches.size())
     {
       return false;
     }
@@ -122,7 +130,11 @@ bool vtkIGANurbsCells::Collect(vtkDataObject* input, const iga::VolumeSet<double
           buffer.resize(3 * size_t(cell.valueCount()));
           extraction.extract(int(e), this->Nets[v].data(), this->Channels, buffer.data(),
             buffer.data() + cell.valueCount());
-          equal = equal && sameCoefficients(buffer.data(), cell);
+          if (!sameCoefficients(buffer.data(), cell))
+          {
+            equal = false; // only ever lowered: threads race to say no
+            break;
+          }
         }
       });
     if (!equal)

@@ -4,10 +4,11 @@
  *
  * A grid written by vtkIGANurbsData (readers, sources) carries the NURBS description of the
  * volumes its Bézier cells were extracted from. Collect() rebuilds those volumes and accepts
- * them only where their elements are exactly the grid's cells: the same count, degrees and
- * attributes, and coefficients equal to 1e-9 of each cell's largest (the cells went through
- * Euclidean points and weights). A filter that moved the points or dropped cells but passed the
- * field data on, or an MPI rank holding part of the cells, leaves the cells the only form.
+ * them only where the engine would take their nets (checkNurbsVolumes) and their elements are
+ * exactly the grid's cells: the same count, degrees and attributes, and coefficients equal to
+ * 1e-9 of each cell's largest (the cells went through Euclidean points and weights). A filter that
+ * moved the points or dropped cells but passed the field data on, or an MPI rank holding part of
+ * the cells, leaves the cells the only form.
  *
  * The extraction operators keep a version that changes only with the knots, degrees and net
  * sizes: a new time step that moves the nets keeps it, so an engine holding the operators on a
@@ -19,7 +20,7 @@
 #include "IGAViewFiltersModule.h" // for export macro
 #include "iga/BSpline.h"          // for BezierExtraction
 #include "iga/Datasets.h"         // for VolumeSet
-#include "iga/sst/Engine.h"       // for NurbsVolumes
+#include "iga/sst/NurbsVolumes.h" // for NurbsVolumes
 
 #include <cstdint> // for versions
 #include <memory>  // for shared_ptr

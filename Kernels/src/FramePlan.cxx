@@ -194,47 +194,6 @@ double checkPatches(const std::vector<BezierVolume<double>>& patches, const Sett
   return attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
 }
 
-void checkNurbsVolumes(const NurbsVolumes& volumes)
-{
-  if (volumes.nets.size() != volumes.extractions.size())
-  {
-    throw std::invalid_argument(std::to_string(volumes.extractions.size()) + " extractions but " +
-                                std::to_string(volumes.nets.size()) + " control nets");
-  }
-  if (volumes.channels < kFirstAttributeChannel + 1)
-  {
-    throw std::invalid_argument("control points have " + std::to_string(volumes.channels) +
-                                " channels; position, weight and an attribute need " +
-                                std::to_string(kFirstAttributeChannel + 1));
-  }
-  for (size_t v = 0; v < volumes.nets.size(); ++v)
-  {
-    const std::string name = "volume " + std::to_string(v) + ": ";
-    if (!volumes.extractions[v] || !volumes.nets[v])
-    {
-      throw std::invalid_argument(name + "no extraction or no control net");
-    }
-    const auto& extraction = *volumes.extractions[v];
-    int netSize[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      const int degree = extraction.direction(d).degree;
-      if (degree < 1 || degree > kMaxDegree)
-      {
-        throw std::invalid_argument(name + "degree " + std::to_string(degree) + " is outside 1.." +
-                                    std::to_string(kMaxDegree));
-      }
-      netSize[d] = extraction.netSize(d);
-    }
-    const std::string problem =
-      checkControlNet<double, 3>(netSize, volumes.channels, *volumes.nets[v]);
-    if (!problem.empty())
-    {
-      throw std::invalid_argument(name + problem);
-    }
-  }
-}
-
 void checkIndexable(size_t count, const char* what)
 {
   if (count > std::numeric_limits<uint32_t>::max())

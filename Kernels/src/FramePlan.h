@@ -44,11 +44,6 @@ double checkPatches(const std::vector<BezierVolume<double>>& patches, const Sett
 /// besides control point values, for drivers that test those on the device.
 bool usableShape(const int* degree, int channels, const Settings& settings);
 
-/// Checks NURBS volumes: one net per extraction, of the extraction's size, finite values and
-/// positive weights. Their Bézier elements are then valid too: extraction takes convex
-/// combinations of control points. Throws std::invalid_argument naming the volume and point.
-void checkNurbsVolumes(const NurbsVolumes& volumes);
-
 /// Both drivers index (pixel, patch) pairs, tuples, nodes and hits with 32 bits: throws
 /// std::length_error, naming the count and what it counts, when a frame needs more than
 /// 2^32 - 1.

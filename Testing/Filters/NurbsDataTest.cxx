@@ -1,9 +1,12 @@
 // vtkIGANurbsData: Bézier extraction against Cox-de Boor evaluation (through VTK's own cell
 // interpolation), the grid round trip, time steps in the pipeline, copies and memory.
 #include "NurbsTestUtilities.h"
+#include "vtkIGABezierHexahedra.h"
+#include "vtkIGANurbsCells.h"
 #include "vtkIGANurbsData.h"
 
 #include "vtkCellType.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -299,6 +302,74 @@ TEST(NurbsData, CopiesShareOrOwnAndTheGridIsCached)
   EXPECT_LT(withoutGrid, values * sizeof(double) / 1024 + 16);
   const auto grid = fresh->ToUnstructuredGrid(1);
   EXPECT_EQ(fresh->GetActualMemorySize(), withoutGrid + grid->GetActualMemorySize());
+}
+
+/// The grid's cells, as the mapper collects them.
+iga::VolumeSet<double> cellsOf(vtkUnstructuredGrid* grid)
+{
+  iga::VolumeSet<double> cells;
+  std::string error;
+  std::vector<std::string> warnings;
+  EXPECT_TRUE(vtkIGABezierHexahedra::FromUnstructuredGrid(grid, cells, error, warnings)) << error;
+  return cells;
+}
+
+/// Volumes only: the engine takes no surfaces.
+vtkSmartPointer<vtkUnstructuredGrid> volumesGrid(unsigned seed, double time = 0.0)
+{
+  iga::NurbsSet<double> set = randomSet(seed);
+  set.surfaces.clear();
+  vtkNew<vtkIGANurbsData> data;
+  EXPECT_EQ(data->SetPatches(set, time), "");
+  return data->ToUnstructuredGrid();
+}
+
+TEST(NurbsCells, TheCellsOfTheirOwnNurbsVolumesAreRecognised)
+{
+  const auto grid = volumesGrid(7);
+  vtkIGANurbsCells form;
+  ASSERT_TRUE(form.Collect(grid, cellsOf(grid)));
+  ASSERT_EQ(form.Nets.size(), 2u);
+  EXPECT_GT(form.ExtractionVersion, 0u);
+  const auto volumes = form.Volumes();
+  EXPECT_EQ(volumes.nets.size(), 2u);
+  EXPECT_EQ(volumes.extractionVersion, form.ExtractionVersion);
+  EXPECT_EQ(volumes.channels, iga::kFirstAttributeChannel + 2);
+  // The same knots again (another time step of the same volumes) keep the version.
+  const uint64_t version = form.ExtractionVersion;
+  const auto again = volumesGrid(7, 1.0);
+  ASSERT_TRUE(form.Collect(again, cellsOf(again)));
+  EXPECT_EQ(form.ExtractionVersion, version);
+}
+
+TEST(NurbsCells, MovedOrMissingCellsAndBadNetsLeaveTheCells)
+{
+  const auto grid = volumesGrid(7);
+  vtkIGANurbsCells form;
+  // A filter moved a point but passed the field data on.
+  vtkNew<vtkUnstructuredGrid> moved;
+  moved->DeepCopy(grid);
+  double point[3];
+  moved->GetPoint(5, point);
+  point[1] += 0.01;
+  moved->GetPoints()->SetPoint(5, point);
+  EXPECT_FALSE(form.Collect(moved, cellsOf(moved)));
+  // Part of the cells (an MPI rank's).
+  auto part = cellsOf(grid);
+  part.patches.pop_back();
+  EXPECT_FALSE(form.Collect(grid, part));
+  // A net the engine would refuse: a non-positive weight, a NaN.
+  for (double bad : { -1.0, std::nan("") })
+  {
+    vtkNew<vtkUnstructuredGrid> tampered;
+    tampered->DeepCopy(grid);
+    auto* net =
+      vtkDoubleArray::SafeDownCast(tampered->GetFieldData()->GetAbstractArray("NurbsControlNet"));
+    ASSERT_NE(net, nullptr);
+    net->SetComponent(0, iga::kWeightChannel, bad);
+    EXPECT_FALSE(form.Collect(tampered, cellsOf(tampered))) << bad;
+  }
+  EXPECT_TRUE(form.Collect(grid, cellsOf(grid)));
 }
 
 } // namespace

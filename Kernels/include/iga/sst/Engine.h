@@ -6,6 +6,7 @@
 #include "iga/BezierPatch.h"
 #include "iga/Camera.h"
 #include "iga/sst/GBuffer.h"
+#include "iga/sst/NurbsVolumes.h"
 
 #include <array>
 #include <cstdint>
@@ -135,22 +136,6 @@ View makeView(const Camera& camera, int width, int height);
 /// values, non-positive weights, missing attributes) or bad settings.
 FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
   const Settings& settings, Method method, GBuffer& out);
-
-/// NURBS / B-spline volumes as they deform: per volume its Bézier extraction (built once from
-/// the knots) and its current control net (homogeneous, standard layout, first direction
-/// fastest, `channels` values per point). The engine draws their Bézier elements, numbered
-/// volume by volume in each extraction's element order (first direction fastest): Hit::patch
-/// is that number. The CUDA driver extracts the elements on the device, so a deforming volume
-/// sends only its moved net each frame.
-struct NurbsVolumes
-{
-  std::vector<const BezierExtraction<double, 3>*> extractions;
-  std::vector<const std::vector<double>*> nets;
-  int channels = 0;
-  /// Names the extractions (knots, degrees, net sizes) for drivers that keep them on a GPU;
-  /// equal non-zero versions reuse the copy there. Settings::dataVersion names the nets.
-  uint64_t extractionVersion = 0;
-};
 
 /// The Bézier elements of NURBS volumes, in the engine's numbering (host extraction). Throws
 /// std::invalid_argument naming the volume and the problem for a malformed net.
