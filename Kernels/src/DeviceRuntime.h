@@ -5,6 +5,7 @@
 // CUDA system and by g++ for Thrust's host system (the driver's logic tests).
 #pragma once
 
+#include "StageClock.h"
 #include "iga/Portability.h"
 
 #include <thrust/device_ptr.h>
@@ -17,7 +18,6 @@
 #endif
 
 #include <algorithm>
-#include <chrono>
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
@@ -312,6 +312,7 @@ inline auto exec()
 }
 #endif
 
+#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
 /// Stage times of a frame on the device's clock. Launches are queued ahead of the device, so
 /// the host's clock would charge a stage's work to whichever stage next waits for a result.
 class StageTimer
@@ -320,35 +321,31 @@ public:
   StageTimer() = default;
   StageTimer(const StageTimer&) = delete;
   StageTimer& operator=(const StageTimer&) = delete;
+  ~StageTimer()
+  {
+    for (cudaEvent_t event : this->Events)
+    {
+      cudaEventDestroy(event);
+    }
+  }
 
   /// Starts the first stage.
   void begin()
   {
     this->Targets.clear();
-#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
     this->record(0);
-#else
-    this->Last = std::chrono::steady_clock::now();
-#endif
   }
 
   /// Ends a stage and starts the next; the stage's milliseconds are added to `ms` by finish().
   void end(double& ms)
   {
-#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
     this->Targets.push_back(&ms);
     this->record(this->Targets.size()); // event k + 1 ends stage k
-#else
-    const auto now = std::chrono::steady_clock::now();
-    ms += std::chrono::duration<double, std::milli>(now - this->Last).count();
-    this->Last = now;
-#endif
   }
 
   /// Waits for the last stage and adds the times.
   void finish()
   {
-#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
     if (this->Targets.empty())
     {
       return;
@@ -359,16 +356,6 @@ public:
       float ms = 0;
       check(cudaEventElapsedTime(&ms, this->Events[k], this->Events[k + 1]), "stage timer");
       *this->Targets[k] += double(ms);
-    }
-#endif
-  }
-
-#if THRUST_DEVICE_SYSTEM == THRUST_DEVICE_SYSTEM_CUDA
-  ~StageTimer()
-  {
-    for (cudaEvent_t event : this->Events)
-    {
-      cudaEventDestroy(event);
     }
   }
 
@@ -385,12 +372,13 @@ private:
   }
 
   std::vector<cudaEvent_t> Events; ///< kept from frame to frame
-#else
-private:
-  std::chrono::steady_clock::time_point Last;
-#endif
   std::vector<double*> Targets;
 };
+#else
+/// Thrust's host system runs every algorithm before it returns: the host's clock is the
+/// device's.
+using StageTimer = StageClock;
+#endif
 
 IGA_DEVICE_SYSTEM_END
 } // namespace device

@@ -24,10 +24,10 @@
 
 #include "BlockCache.h"
 #include "ParallelFor.h"
+#include "StageClock.h"
 #include "iga/sst/Tree.h"
 
 #include <algorithm>
-#include <chrono>
 #include <numeric>
 #include <vector>
 
@@ -41,6 +41,7 @@ struct CpuExec
   template<class T>
   using Array = Buffer<T>;
   static constexpr bool kThreadPerChild = false;
+  using StageTimer = StageClock;
 
   int threads = 1;
 
@@ -228,23 +229,6 @@ struct CpuExec
   {
     sst::offsetsFromRuns(pixels, starts, runs, first, pixelCount, this->threads, offsets);
   }
-
-  /// Stage times on the host's clock.
-  class StageTimer
-  {
-  public:
-    void begin() { this->Last = std::chrono::steady_clock::now(); }
-    void end(double& ms)
-    {
-      const auto now = std::chrono::steady_clock::now();
-      ms += std::chrono::duration<double, std::milli>(now - this->Last).count();
-      this->Last = now;
-    }
-    void finish() {}
-
-  private:
-    std::chrono::steady_clock::time_point Last;
-  };
 };
 
 } // namespace sst
