@@ -33,7 +33,8 @@ inline void cpuRelax()
 /// Threads kept for parallelFor. The SST loop runs a few dozen parallel loops an iteration,
 /// with a little serial work between them: starting a thread costs tens of microseconds, and
 /// waking a sleeping one about as much. So the threads are started once, and between loops
-/// they spin a short while (kSpins pauses, about 50 microseconds) before they sleep.
+/// they spin a short while (kSpins pauses: 60 microseconds on the project's machines, less on
+/// processors with a shorter pause) before they sleep.
 class WorkerPool
 {
 public:
