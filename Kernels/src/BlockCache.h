@@ -133,20 +133,21 @@ private:
   size_t FreeBytes = 0;
 };
 
-/// Allocates through the BlockCache. `zeroFill` false leaves new elements of trivial types
-/// uninitialised (they are written before they are read), so arrays grow without zeroing.
-template<class T, bool zeroFill = true>
+/// Allocates through the BlockCache. New elements of trivial types are left uninitialised
+/// (they are written before they are read), so arrays grow without zeroing; elements given a
+/// value get it.
+template<class T>
 struct CachedAllocator
 {
   using value_type = T;
   template<class U>
   struct rebind
   {
-    using other = CachedAllocator<U, zeroFill>;
+    using other = CachedAllocator<U>;
   };
   CachedAllocator() = default;
   template<class U>
-  CachedAllocator(const CachedAllocator<U, zeroFill>&) noexcept
+  CachedAllocator(const CachedAllocator<U>&) noexcept
   {
   }
   T* allocate(size_t n) { return static_cast<T*>(BlockCache::instance().allocate(n * sizeof(T))); }
@@ -154,7 +155,7 @@ struct CachedAllocator
   template<class U, class... Args>
   void construct(U* p, Args&&... args)
   {
-    if constexpr (sizeof...(Args) == 0 && !zeroFill)
+    if constexpr (sizeof...(Args) == 0)
     {
       ::new (static_cast<void*>(p)) U;
     }
@@ -164,12 +165,12 @@ struct CachedAllocator
     }
   }
   template<class U>
-  bool operator==(const CachedAllocator<U, zeroFill>&) const noexcept
+  bool operator==(const CachedAllocator<U>&) const noexcept
   {
     return true;
   }
   template<class U>
-  bool operator!=(const CachedAllocator<U, zeroFill>&) const noexcept
+  bool operator!=(const CachedAllocator<U>&) const noexcept
   {
     return false;
   }
@@ -177,10 +178,7 @@ struct CachedAllocator
 
 /// A host array of the SST loop whose storage comes from the BlockCache.
 template<class T>
-using Array = std::vector<T, CachedAllocator<T>>;
-/// The same without zero-filling on growth.
-template<class T>
-using Buffer = std::vector<T, CachedAllocator<T, false>>;
+using Buffer = std::vector<T, CachedAllocator<T>>;
 
 } // namespace sst
 } // namespace iga

@@ -173,24 +173,21 @@ private:
   }
 
   /// Appends a reference method's hits, pixel by pixel.
-  void appendHits(const std::vector<std::vector<RawHit>>& perPixel)
+  void appendPixelHits(const std::vector<std::vector<RawHit>>& perPixel)
   {
     LoopState<CpuExec>& s = this->Loop;
+    size_t total = s.HitCount;
     for (const auto& hits : perPixel)
     {
-      checkIndexable(s.HitCount + hits.size(), "hits");
-      s.Hits.resize(s.HitCount + hits.size());
-      std::copy(hits.begin(), hits.end(), s.Hits.begin() + s.HitCount);
-      s.HitCount += hits.size();
+      total += hits.size();
     }
-  }
-
-  /// Records a reference method's working set of `bytes` besides the loop's arrays.
-  void trackMemory(size_t bytes)
-  {
-    LoopState<CpuExec>& s = this->Loop;
-    s.peakBudgeted = std::max(s.peakBudgeted, budgetedBytes(s) + bytes);
-    s.peak = std::max(s.peak, budgetedBytes(s) + bytes + fixedBytes(s));
+    checkIndexable(total, "hits");
+    s.Hits.resize(total);
+    for (const auto& hits : perPixel)
+    {
+      s.HitCount =
+        size_t(std::copy(hits.begin(), hits.end(), s.Hits.begin() + s.HitCount) - s.Hits.begin());
+    }
   }
 
   /// The G-buffer stage's kept hits into the G-buffer.
@@ -301,8 +298,8 @@ private:
     this->Report.newtonSolves += solves;
     this->Report.subdividedPatches += splits;
     this->Report.unresolvedAtDepthCap += capped;
-    this->appendHits(perPixel);
-    this->trackMemory(
+    this->appendPixelHits(perPixel);
+    trackMemory(this->Loop,
       (count ? *std::max_element(peak.begin(), peak.end()) : 0) * size_t(this->Plan.threads));
   }
 
@@ -367,7 +364,7 @@ private:
     const std::vector<Node>& leaves = this->Leaves;
     const std::vector<double>& leafPool = this->LeafPool;
     const std::vector<uint32_t>& leafOffsets = this->LeafOffsets;
-    this->trackMemory(capacityBytes(leafPool) + capacityBytes(leaves));
+    trackMemory(this->Loop, capacityBytes(leafPool) + capacityBytes(leaves));
     const size_t first = passFirstPixel(s.frame), count = passPixelCount(s.frame);
     std::vector<std::vector<RawHit>> perPixel(count);
     std::atomic<size_t> solves{ 0 };
@@ -412,7 +409,7 @@ private:
         solves += local;
       });
     this->Report.newtonSolves += solves;
-    this->appendHits(perPixel);
+    this->appendPixelHits(perPixel);
   }
 
   const std::vector<BezierVolume<double>>& Patches;

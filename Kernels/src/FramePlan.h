@@ -50,8 +50,8 @@ bool usableShape(const int* degree, int channels, const Settings& settings);
 void checkIndexable(size_t count, const char* what = "(pixel, patch) pairs");
 
 /// Bytes a (pixel, node) pair of the sweep takes at its peak in either driver: the pair, the
-/// grouping's scratch copy (sort) and the work item it becomes.
-constexpr size_t kBytesPerSweepPair = 20;
+/// sort's scratch copy, the work item it becomes and its run start (pixelRuns).
+constexpr size_t kBytesPerSweepPair = 24;
 
 /// The bands of rows a frame is drawn in, as their starts followed by the image height: as few
 /// as keep every band's (pixel, node) pairs within the 32-bit indices and within the memory

@@ -26,6 +26,7 @@
 #include "ParallelFor.h"
 #include "StageClock.h"
 #include "iga/sst/Tree.h"
+#include "sst/PixelRuns.h"
 
 #include <algorithm>
 #include <numeric>
@@ -165,10 +166,7 @@ struct CpuExec
   {
     this->sortByPixel(tuples, n, pixelCount);
     Buffer<uint32_t> runs(n + 1);
-    const size_t runCount = this->select(
-      n, [&](size_t k) { return k == 0 || tuples[k].pixel != tuples[k - 1].pixel; },
-      [](size_t k) { return k; }, runs.data());
-    runs[runCount] = uint32_t(n);
+    const size_t runCount = pixelRuns(*this, tuples, n, runs.data());
     parallelFor(
       runCount, this->threads,
       [&](size_t begin, size_t end)

@@ -18,10 +18,7 @@ void gBufferStage(LoopState<Exec>& s)
   RawHit* raws = raw(s.Hits);
   s.exec.sortByPixel(raws, hitCount, s.pixelCount);
   uint32_t* runStarts = sized(s.RunStarts, hitCount + 1);
-  const size_t runCount = s.exec.select(
-    hitCount, [=] IGA_HD(size_t h) { return h == 0 || raws[h].pixel != raws[h - 1].pixel; },
-    [] IGA_HD(size_t h) { return h; }, runStarts);
-  s.exec.fill(runStarts + runCount, 1, uint32_t(hitCount));
+  const size_t runCount = pixelRuns(s.exec, raws, hitCount, runStarts);
   // A pixel's hits by one thread: a handful in all-hits mode, one or two in first-hit mode.
   const PatchShape* shapes = s.shapes;
   const double* shadingPool = s.shadingPool;

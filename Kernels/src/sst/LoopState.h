@@ -6,6 +6,7 @@
 
 #include "FramePlan.h"
 #include "iga/sst/Tree.h"
+#include "sst/PixelRuns.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -230,10 +231,12 @@ size_t fixedBytes(const LoopState<Exec>& s)
          bytesOf(s.BestDepth) + bytesOf(s.Unresolved) + bytesOf(s.PixelSolves) + bytesOf(s.Hits);
 }
 
+/// Records the working set's peaks; `extra`: bytes of a reference method's own besides the
+/// loop's arrays.
 template<class Exec>
-void trackMemory(LoopState<Exec>& s)
+void trackMemory(LoopState<Exec>& s, size_t extra = 0)
 {
-  const size_t budgeted = budgetedBytes(s);
+  const size_t budgeted = budgetedBytes(s) + extra;
   s.peakBudgeted = std::max(s.peakBudgeted, budgeted);
   s.peak = std::max(s.peak, budgeted + fixedBytes(s));
 }

@@ -56,10 +56,7 @@ void sweepAndGroup(LoopState<Exec>& s)
   s.exec.forEach(total, [=] IGA_HD(size_t k) { itemNodes[k] = items[k].node; });
   // Runs of items by pixel: the pixels with work and where their items start.
   uint32_t* runStarts = sized(s.Index, total + 1);
-  const size_t runCount = s.exec.select(
-    total, [=] IGA_HD(size_t k) { return k == 0 || items[k].pixel != items[k - 1].pixel; },
-    [] IGA_HD(size_t k) { return k; }, runStarts);
-  s.exec.fill(runStarts + runCount, 1, uint32_t(total));
+  const size_t runCount = pixelRuns(s.exec, items, total, runStarts);
   uint32_t* active = sized(s.Active, runCount);
   s.exec.forEach(runCount, [=] IGA_HD(size_t r) { active[r] = items[runStarts[r]].pixel; });
   uint32_t* offsets = raw(s.ItemOffsets);
