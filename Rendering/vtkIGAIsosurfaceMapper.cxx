@@ -369,16 +369,16 @@ struct ShadingLight
 {
   vtkLight* light;
   bool positional;
-  double position[3];  ///< positional lights
-  double towards[3];   ///< directional lights: unit vector towards the light
-  double direction[3]; ///< positional lights: unit direction the light shines along
+  glm::dvec3 position;  ///< positional lights
+  glm::dvec3 towards;   ///< directional lights: unit vector towards the light
+  glm::dvec3 direction; ///< positional lights: unit direction the light shines along
   double cosCone;
 };
 
 /// Phong shading of one hit with VTK's property and the renderer's lights (vtkLight semantics:
 /// directional, or positional with attenuation and spot cone).
 void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* property,
-  const std::vector<ShadingLight>& lights, const double* toEye, float* rgba)
+  const std::vector<ShadingLight>& lights, const glm::dvec3& toEye, float* rgba)
 {
   double colour[3];
   const double ambient = property->GetAmbient(), diffuse = property->GetDiffuse(),
@@ -394,29 +394,22 @@ void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* propert
     double lightColour[3];
     light.light->GetDiffuseColor(lightColour);
     double intensity = light.light->GetIntensity();
-    double L[3] = { light.towards[0], light.towards[1], light.towards[2] };
+    glm::dvec3 L = light.towards;
     if (light.positional)
     {
-      double distance2 = 0;
-      for (int d = 0; d < 3; ++d)
-      {
-        L[d] = light.position[d] - hit.position[d];
-        distance2 += L[d] * L[d];
-      }
-      iga::normalize3(L);
+      L = light.position - hit.position;
+      const double distance2 = glm::dot(L, L), distance = std::sqrt(distance2);
+      L = iga::normalizedOrZero(L);
       const double* a = light.light->GetAttenuationValues();
-      const double distance = std::sqrt(distance2);
       intensity /= std::max(1e-12, a[0] + a[1] * distance + a[2] * distance2);
       if (light.cosCone > -1)
       {
-        const double spot = -iga::dot3(L, light.direction);
+        const double spot = -glm::dot(L, light.direction);
         intensity *= spot < light.cosCone ? 0.0 : std::pow(spot, light.light->GetExponent());
       }
     }
-    const double ndotl = std::max(0.0, iga::dot3(hit.normal, L));
-    double halfway[3] = { L[0] + toEye[0], L[1] + toEye[1], L[2] + toEye[2] };
-    iga::normalize3(halfway);
-    const double ndoth = std::max(0.0, iga::dot3(hit.normal, halfway));
+    const double ndotl = std::max(0.0, glm::dot(hit.normal, L));
+    const double ndoth = std::max(0.0, glm::dot(hit.normal, iga::normalizedOrZero(L + toEye)));
     const double shine = ndotl > 0 ? std::pow(ndoth, power) : 0.0;
     for (int c = 0; c < 3; ++c)
     {
@@ -552,12 +545,12 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   {
     for (int j = 0; j < 4; ++j)
     {
-      view.worldToClip.m[i][j] = worldToClip->GetElement(i, j);
+      view.worldToClip[j][i] = worldToClip->GetElement(i, j);
     }
   }
-  camera->GetPosition(view.eye);
-  frame.Key.insert(frame.Key.end(), view.eye, view.eye + 3);
-  camera->GetDirectionOfProjection(view.forward);
+  camera->GetPosition(glm::value_ptr(view.eye));
+  frame.Key.insert(frame.Key.end(), glm::value_ptr(view.eye), glm::value_ptr(view.eye) + 3);
+  camera->GetDirectionOfProjection(glm::value_ptr(view.forward));
   view.parallel = camera->GetParallelProjection() != 0;
   view.pixelFootprint =
     view.parallel
@@ -611,25 +604,21 @@ void vtkIGAIsosurfaceMapper::DescribeLights(vtkRenderer* renderer, Frame& frame)
       continue;
     }
     ShadingLight shading{ light, light->GetPositional() != 0, {}, {}, {}, -2 };
-    double focal[3], colour[3];
-    light->GetTransformedPosition(shading.position);
-    light->GetTransformedFocalPoint(focal);
+    glm::dvec3 focal;
+    double colour[3];
+    light->GetTransformedPosition(glm::value_ptr(shading.position));
+    light->GetTransformedFocalPoint(glm::value_ptr(focal));
     light->GetDiffuseColor(colour);
-    for (int d = 0; d < 3; ++d)
-    {
-      shading.towards[d] = shading.position[d] - focal[d];
-      shading.direction[d] = -shading.towards[d];
-    }
-    iga::normalize3(shading.towards);
-    iga::normalize3(shading.direction);
+    shading.towards = iga::normalizedOrZero(shading.position - focal);
+    shading.direction = -shading.towards;
     if (shading.positional && light->GetConeAngle() < 90)
     {
       shading.cosCone = std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle()));
     }
     frame.Lights.push_back(shading);
     std::vector<double>& key = frame.Key;
-    key.insert(key.end(), shading.position, shading.position + 3);
-    key.insert(key.end(), focal, focal + 3);
+    key.insert(key.end(), glm::value_ptr(shading.position), glm::value_ptr(shading.position) + 3);
+    key.insert(key.end(), glm::value_ptr(focal), glm::value_ptr(focal) + 3);
     key.insert(key.end(), colour, colour + 3);
     key.insert(key.end(), light->GetAttenuationValues(), light->GetAttenuationValues() + 3);
     key.insert(key.end(), { light->GetIntensity(), double(shading.positional),
@@ -822,12 +811,8 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
           base[c] = mapped[c] / 255.0;
         }
       }
-      double toEye[3];
-      for (int d = 0; d < 3; ++d)
-      {
-        toEye[d] = view.parallel ? -view.forward[d] : view.eye[d] - hit->position[d];
-      }
-      iga::normalize3(toEye);
+      const glm::dvec3 toEye =
+        iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit->position);
       shadeHit(*hit, base, property, frame.Lights, toEye, &in.Colour[4 * p]);
       in.Depth[p] = float(0.5 * (hit->ndcDepth + 1.0));
     }

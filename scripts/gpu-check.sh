@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # On a GPU machine without VTK (the device tool's machines): build the VTK-free Kernels with
 # CUDA, run the GPU tests (CUDA engine against the CPU engine) and the GPU benchmark.
-# GoogleTest sources must be in .deps/googletest (git-ignored; copy /usr/src/googletest there
-# and pass .deps through the device tool's `carry`). Results go to $OUT (or ./gpu-results).
+# GoogleTest sources must be in .deps/googletest and GLM's headers in .deps/glm (git-ignored;
+# copy them there and pass .deps through the device tool's `carry`). Results go to $OUT (or ./gpu-results).
 # Where the CUDA toolkit has them, compute-sanitizer then checks the GPU tests for memory errors
 # and Nsight Systems profiles the deforming 10k blade (kernel and transfer summaries), in the
 # same call: the device machine is given back after half a minute idle, and a fresh one
 # rebuilds.
 #
-#   mkdir -p .deps && cp -r /usr/src/googletest .deps/     # once, on the development machine
+#   mkdir -p .deps && cp -r /usr/src/googletest /usr/include/glm .deps/   # once, here
 #   scripts/gpu-check.sh [--quick]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -45,8 +45,7 @@ iga::Camera frame(const iga::VolumeSet<double>& set)
 {
   double bounds[6];
   iga::sst::patchBounds(set.patches, bounds);
-  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
-  return iga::frameBounds(bounds, direction, up, 30);
+  return iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
 }
 
 /// Renders frame r of a measurement with the settings given (data version set) into a G-buffer.

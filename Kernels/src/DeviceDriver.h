@@ -427,7 +427,7 @@ struct Driver
     const double* world = raw(this->World);
     double* screen = sized(this->InitialPool, this->ScreenValues);
     double* shading = sized(this->ShadingPool, this->ScreenValues);
-    const Matrix4<double> windowFromWorld = plan.windowFromWorld;
+    const glm::dmat4 windowFromWorld = plan.windowFromWorld;
     const int surface = kFirstAttributeChannel + settings.surfaceAttribute;
     const int colour =
       settings.colorAttribute >= 0 ? kFirstAttributeChannel + settings.colorAttribute : -1;

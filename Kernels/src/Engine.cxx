@@ -430,11 +430,8 @@ View makeView(const Camera& camera, int width, int height)
 {
   View view;
   view.worldToClip = worldToClip(camera, double(width) / double(height));
-  viewDirection(camera, view.forward);
-  for (int d = 0; d < 3; ++d)
-  {
-    view.eye[d] = camera.position[d];
-  }
+  view.forward = viewDirection(camera);
+  view.eye = camera.position;
   view.parallel = camera.parallelProjection;
   view.pixelFootprint =
     camera.parallelProjection

@@ -280,25 +280,25 @@ FramePlan planView(const View& view, const Settings& s, double attributeRange, F
 
   // Window coordinates: x, y in pixels (pixel i covers [i, i+1]), z the NDC depth.
   const double W = s.width, H = s.height;
-  Matrix4<double> window = Matrix4<double>::identity();
-  window.m[0][0] = 0.5 * W;
-  window.m[0][3] = 0.5 * W;
-  window.m[1][1] = 0.5 * H;
-  window.m[1][3] = 0.5 * H;
-  plan.windowFromWorld = multiply(window, view.worldToClip);
+  glm::dmat4 window(1.0);
+  window[0][0] = 0.5 * W;
+  window[3][0] = 0.5 * W;
+  window[1][1] = 0.5 * H;
+  window[3][1] = 0.5 * H;
+  plan.windowFromWorld = window * view.worldToClip;
   plan.frame.clip.count = 0;
   for (const auto& plane : s.clipPlanes)
   {
     const bool finite = std::isfinite(plane[0]) && std::isfinite(plane[1]) &&
                         std::isfinite(plane[2]) && std::isfinite(plane[3]);
+    glm::dvec4 window;
     if (!finite || (plane[0] == 0 && plane[1] == 0 && plane[2] == 0) ||
-        !transformPlane(
-          plan.windowFromWorld, plane.data(), plan.frame.clip.plane[plan.frame.clip.count]))
+        !transformPlane(plan.windowFromWorld, glm::make_vec4(plane.data()), window))
     {
       throw std::invalid_argument(
         "clipping plane " + std::to_string(plan.frame.clip.count) + " is not a finite plane");
     }
-    ++plan.frame.clip.count;
+    std::copy_n(glm::value_ptr(window), 4, plan.frame.clip.plane[plan.frame.clip.count++]);
   }
   plan.frame.width = s.width;
   plan.frame.height = s.height;

@@ -17,7 +17,7 @@ namespace sst
 struct FramePlan
 {
   FrameConstants frame{}; ///< its isovalues point into the settings
-  Matrix4<double> windowFromWorld;
+  glm::dmat4 windowFromWorld;
   int threads = 1;
   /// Roots (one per patch and isovalue with a possible sign change, in front of the eye) and
   /// their screen coefficients.

@@ -325,18 +325,16 @@ iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& s
   double bounds[6];
   iga::sst::patchBounds(set.patches, bounds);
   // Default view: from the front right and above, z up, framing the data like ResetCamera.
-  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
-  iga::Camera camera = iga::frameBounds(bounds, direction, up, options.viewAngle);
+  iga::Camera camera =
+    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, options.viewAngle);
   if (options.hasFocal)
-    std::copy(options.focal, options.focal + 3, camera.focalPoint);
+    camera.focalPoint = glm::make_vec3(options.focal);
   if (options.hasPosition)
-    std::copy(options.position, options.position + 3, camera.position);
+    camera.position = glm::make_vec3(options.position);
   if (options.hasViewUp)
-    std::copy(options.viewUp, options.viewUp + 3, camera.viewUp);
-  double forward[3], side[3];
-  iga::viewDirection(camera, forward);
-  iga::cross3(forward, camera.viewUp, side);
-  if (iga::dot3(side, side) < 1e-20)
+    camera.viewUp = glm::make_vec3(options.viewUp);
+  const glm::dvec3 side = glm::cross(iga::viewDirection(camera), camera.viewUp);
+  if (glm::dot(side, side) < 1e-20)
   {
     fail("the view-up direction is parallel to the view direction");
   }
@@ -535,9 +533,9 @@ int main(int argc, char** argv)
   renderer->SetBackground2(0.32, 0.36, 0.42);
   renderer->GradientBackgroundOn();
   vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(view.position);
-  camera->SetFocalPoint(view.focalPoint);
-  camera->SetViewUp(view.viewUp);
+  camera->SetPosition(glm::value_ptr(view.position));
+  camera->SetFocalPoint(glm::value_ptr(view.focalPoint));
+  camera->SetViewUp(glm::value_ptr(view.viewUp));
   camera->SetViewAngle(view.viewAngle);
   camera->SetClippingRange(view.clippingRange);
   vtkNew<vtkRenderWindow> window;

@@ -49,8 +49,7 @@ TEST(GBufferEXR, ChannelsRowsAndValuesRoundTrip)
   const auto set = iga::makeTube<double>(0.5, 0.0);
   double bounds[6];
   iga::sst::patchBounds(set.patches, bounds);
-  const double direction[3] = { -0.5, 0.7, -0.4 }, up[3] = { 0, 0, 1 };
-  iga::Camera camera = iga::frameBounds(bounds, direction, up, 30);
+  iga::Camera camera = iga::frameBounds(bounds, { -0.5, 0.7, -0.4 }, { 0, 0, 1 }, 30);
   iga::sst::Settings settings;
   settings.width = 40;
   settings.height = 30;

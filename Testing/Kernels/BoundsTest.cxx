@@ -19,7 +19,7 @@ TYPED_TEST_SUITE(BoundsTest, ScalarTypes);
 /// Perspective projection (OpenGL convention, 40 degree field of view, near 0.5, far 50) after a
 /// rotation about the y axis and a translation along -z by `distance`.
 template<class T>
-iga::Matrix4<T> viewProjection(double angle, double distance)
+glm::mat<4, 4, T> viewProjection(double angle, double distance)
 {
   const double f = 1.0 / std::tan(20.0 * M_PI / 180.0), n = 0.5, fa = 50.0;
   const double P[4][4] = { { f, 0, 0, 0 }, { 0, f, 0, 0 },
@@ -27,14 +27,14 @@ iga::Matrix4<T> viewProjection(double angle, double distance)
   const double c = std::cos(angle), s = std::sin(angle);
   const double V[4][4] = { { c, 0, s, 0 }, { 0, 1, 0, 0 }, { -s, 0, c, -distance },
     { 0, 0, 0, 1 } };
-  iga::Matrix4<T> M;
+  glm::mat<4, 4, T> M;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
     {
       double sum = 0;
       for (int k = 0; k < 4; ++k)
         sum += P[i][k] * V[k][j];
-      M.m[i][j] = T(sum);
+      M[j][i] = T(sum);
     }
   return M;
 }
@@ -59,9 +59,7 @@ TYPED_TEST(BoundsTest, ProjectedBoxContainsDenseSamples)
         {
           const double u[3] = { double(i) / n, double(j) / n, double(k) / n };
           const auto v = evaluateEuclidean(patch.view(), u);
-          const T world[4] = { T(v[0]), T(v[1]), T(v[2]), T(1) };
-          T clip[4];
-          M.apply(world, clip);
+          const glm::vec<4, T> clip = M * glm::vec<4, T>(T(v[0]), T(v[1]), T(v[2]), T(1));
           for (int d = 0; d < 3; ++d)
           {
             const double ndc = double(clip[d]) / double(clip[3]);

@@ -46,16 +46,13 @@ struct Scene
   Settings settings;
 };
 
-iga::Camera lookAt(
-  const iga::VolumeSet<double>& set, const double* position, const double* focal, double angle)
+iga::Camera lookAt(const iga::VolumeSet<double>& set, const glm::dvec3& position,
+  const glm::dvec3& focal, double angle)
 {
   iga::Camera camera;
-  for (int d = 0; d < 3; ++d)
-  {
-    camera.position[d] = position[d];
-    camera.focalPoint[d] = focal[d];
-    camera.viewUp[d] = d == 2 ? 1 : 0;
-  }
+  camera.position = position;
+  camera.focalPoint = focal;
+  camera.viewUp = { 0, 0, 1 };
   camera.viewAngle = angle;
   double bounds[6];
   iga::sst::patchBounds(set.patches, bounds);
@@ -63,8 +60,8 @@ iga::Camera lookAt(
   return camera;
 }
 
-Scene scene(const std::string& name, iga::VolumeSet<double> set, const double* position,
-  const double* focal, double angle, int width, int height, std::vector<double> isovalues)
+Scene scene(const std::string& name, iga::VolumeSet<double> set, const glm::dvec3& position,
+  const glm::dvec3& focal, double angle, int width, int height, std::vector<double> isovalues)
 {
   Scene s{ name, std::move(set), {}, {} };
   s.camera = lookAt(s.set, position, focal, angle);
@@ -77,7 +74,7 @@ Scene scene(const std::string& name, iga::VolumeSet<double> set, const double* p
 /// The twisted tube coloured by its second attribute, drawn by several tests.
 Scene colouredTube(const std::string& name)
 {
-  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  const glm::dvec3 position{ 3, -3.5, 3 }, focal{ 0.2, 0, 1 };
   Scene s = scene(name, iga::makeTwistedTube<double>(0.7), position, focal, 35, 64, 64, { 0.0 });
   s.settings.colorAttribute = 1;
   return s;
@@ -86,15 +83,15 @@ Scene colouredTube(const std::string& name)
 std::vector<Scene> scenes()
 {
   std::vector<Scene> all;
-  const double origin[3] = { 0, 0, 0 };
+  const glm::dvec3 origin{ 0, 0, 0 };
   for (int degree = 2; degree <= 5; ++degree)
   {
-    const double position[3] = { 1.2, -3.5, 2.1 }, focal[3] = { 0.1, 0, 0 };
+    const glm::dvec3 position{ 1.2, -3.5, 2.1 }, focal{ 0.1, 0, 0 };
     all.push_back(scene("sphere p" + std::to_string(degree), iga::makeMarsdenSphere<double>(degree),
       position, focal, 40, 80, 64, { 0.0 }));
   }
   {
-    const double position[3] = { -0.2, -1.6, 0.9 }, focal[3] = { -0.5, 0, 0 };
+    const glm::dvec3 position{ -0.2, -1.6, 0.9 }, focal{ -0.5, 0, 0 };
     all.push_back(scene(
       "teardrop, all hits", iga::makeTeardrop<double>(1.2), position, focal, 40, 48, 40, { 0.0 }));
     all.back().settings.firstHitOnly = false;
@@ -102,24 +99,24 @@ std::vector<Scene> scenes()
   all.push_back(colouredTube("twisted tube, two isovalues, colour"));
   all.back().settings.isovalues.push_back(0.3);
   {
-    const double position[3] = { 2.6, -3.1, 3.4 }, focal[3] = { 0, 0, 1 };
+    const glm::dvec3 position{ 2.6, -3.1, 3.4 }, focal{ 0, 0, 1 };
     all.push_back(scene("exact rational cylinder, radius attribute, height colour",
       iga::makeTube<double>(0.5, 0.0), position, focal, 35, 72, 64, { 0.75 }));
     all.back().settings.surfaceAttribute = 1;
     all.back().settings.colorAttribute = 2;
   }
   {
-    const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 };
+    const glm::dvec3 position{ 1.9, -2.4, 3.6 }, focal{ 0, 0, 1 };
     all.push_back(scene("tube with a collapsed axis", iga::makeTube<double>(0.0, 0.0), position,
       focal, 38, 64, 64, { 1.0 }));
   }
   {
-    const double position[3] = { 0.1, 0.2, -0.1 }, focal[3] = { 1, 0.3, 0 };
+    const glm::dvec3 position{ 0.1, 0.2, -0.1 }, focal{ 1, 0.3, 0 };
     all.push_back(scene("camera inside the sphere", iga::makeMarsdenSphere<double>(3), position,
       focal, 60, 40, 40, { 0.0 }));
   }
   {
-    const double position[3] = { 0.6, -4, 1.1 };
+    const glm::dvec3 position{ 0.6, -4, 1.1 };
     all.push_back(scene(
       "clipping planes", iga::makeMarsdenSphere<double>(3), position, origin, 35, 64, 64, { 0.0 }));
     all.back().settings.clipPlanes = { { 1, 0.2, 0, -0.1 }, { 0, 0, -2, 1 } };
@@ -132,13 +129,13 @@ std::vector<Scene> scenes()
     {
       view.point(p)[0] = fold[p % 4];
     }
-    const double position[3] = { 0.8, -4.2, 1.6 };
+    const glm::dvec3 position{ 0.8, -4.2, 1.6 };
     all.push_back(
       scene("folded volume, all hits", std::move(set), position, origin, 40, 40, 40, { 0.0 }));
     all.back().settings.firstHitOnly = false;
   }
   {
-    const double position[3] = { 0, -4, 0 };
+    const glm::dvec3 position{ 0, -4, 0 };
     all.push_back(
       scene("depth cap", iga::makeMarsdenSphere<double>(4), position, origin, 35, 32, 32, { 0.0 }));
     all.back().settings.maxSubdivisionDepth = 3;
@@ -346,7 +343,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DeviceEngine, ::testing::Range(0, int(scenes().
 /// A budget far below the frame's needs leaves pixels unresolved and bounds the working set.
 TEST(DeviceEngineCaps, MemoryBudgetIsReportedNotExceeded)
 {
-  const double position[3] = { 0, -4, 0 }, origin[3] = { 0, 0, 0 };
+  const glm::dvec3 position{ 0, -4, 0 }, origin{ 0, 0, 0 };
   Scene s =
     scene("budget", iga::makeMarsdenSphere<double>(4), position, origin, 35, 32, 32, { 0.0 });
   s.settings.memoryBudgetBytes = 64 * 1024;
@@ -422,7 +419,7 @@ TEST(DeviceEngineCaps, CameraMoveReusesTheDeviceCopy)
   EXPECT_GE(report.uploadedBytes, patchBytes);
   expectMatchesTheCpuDriver(s, out, report);
 
-  const double moved[3] = { -2.5, -3.8, 2.2 };
+  const glm::dvec3 moved{ -2.5, -3.8, 2.2 };
   s.camera = lookAt(s.set, moved, s.camera.focalPoint, 35);
   ASSERT_TRUE(deviceRender(s, out, report, why));
   EXPECT_EQ(report.uploadedBytes, sizeof(double)); // the one isovalue
@@ -459,8 +456,7 @@ TEST(DeviceEngineCaps, TransfersGoInChunks)
   const NurbsBall ball(1.0);
   Scene n{ "NURBS ball, 4 KiB chunks", { iga::sst::extractElements(ball.volumes(0)), { "ball" } },
     {}, s.settings };
-  const double origin[3] = { 0, 0, 0 };
-  n.camera = lookAt(n.set, s.camera.position, origin, 35);
+  n.camera = lookAt(n.set, s.camera.position, { 0, 0, 0 }, 35);
   n.settings.colorAttribute = -1;
   ASSERT_GT(ball.patch.net.size() * sizeof(double), n.settings.transferChunkBytes);
   ASSERT_TRUE(deviceRenderNurbs(ball.volumes(4), n.camera, n.settings, out, report, why));
@@ -497,7 +493,7 @@ Scene slabStack(int count, double spacing, double halfWidth, int width, int heig
     const double hi[3] = { halfWidth, y + 0.5 * spacing, halfWidth };
     slabs.patches.push_back(iga::makePolynomialVolume(field, lo, hi, degrees));
   }
-  const double position[3] = { 0, 0, 0 }, focal[3] = { 0, 1, 0 };
+  const glm::dvec3 position{ 0, 0, 0 }, focal{ 0, 1, 0 };
   return scene("slabs", std::move(slabs), position, focal, 40, width, height, { 0.0 });
 }
 
@@ -510,8 +506,8 @@ TEST(DeviceEngineCaps, RoundOverTheBudgetMovesOnABandAtATime)
   auto blade = iga::makeBlade<double>(iga::bladeLayout(10000), 0.0);
   double bounds[6];
   iga::sst::patchBounds(blade.patches, bounds);
-  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
-  Scene s{ "blade, 128 KiB", std::move(blade), iga::frameBounds(bounds, direction, up, 30), {} };
+  Scene s{ "blade, 128 KiB", std::move(blade),
+    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30), {} };
   s.settings.width = 160;
   s.settings.height = 120;
   s.settings.isovalues = { 0.3 };
@@ -544,9 +540,8 @@ TEST(DeviceEngineCaps, LargeChunksAreCopiedOnSeveralThreads)
   auto blade = iga::makeBlade<double>(iga::bladeLayout(10000), 0.0);
   double bounds[6];
   iga::sst::patchBounds(blade.patches, bounds);
-  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
-  Scene s{ "blade, 2 MiB chunks", std::move(blade), iga::frameBounds(bounds, direction, up, 30),
-    {} };
+  Scene s{ "blade, 2 MiB chunks", std::move(blade),
+    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30), {} };
   s.settings.width = 1920;
   s.settings.height = 1080;
   s.settings.isovalues = { 0.3 };
@@ -764,7 +759,7 @@ TEST(DeviceEngineCaps, HostSequenceCopiesAnyRange)
 Scene ballScene(const NurbsBall& ball, uint64_t dataVersion)
 {
   Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {} };
-  const double position[3] = { 2.8, -3.6, 2.2 }, origin[3] = { 0, 0, 0 };
+  const glm::dvec3 position{ 2.8, -3.6, 2.2 }, origin{ 0, 0, 0 };
   s.camera = lookAt(s.set, position, origin, 35);
   s.settings.width = 72;
   s.settings.height = 64;
@@ -797,7 +792,7 @@ TEST(DeviceEngineCaps, NurbsVolumesExtractedOnTheDevice)
   expectMatchesTheCpuDriver(s, out, report);
 
   // The camera moves: nothing but the isovalue.
-  const double moved[3] = { -3.0, -2.9, 1.4 }, origin[3] = { 0, 0, 0 };
+  const glm::dvec3 moved{ -3.0, -2.9, 1.4 }, origin{ 0, 0, 0 };
   s.camera = lookAt(s.set, moved, origin, 35);
   ASSERT_TRUE(deviceRenderNurbs(stretched.volumes(3), s.camera, s.settings, out, report, why));
   EXPECT_EQ(report.uploadedBytes, sizeof(double));
@@ -866,7 +861,7 @@ TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
 /// point values, the host the rest), and leaves the device ready for the next good frame.
 TEST(DeviceEngineCaps, BadInputIsRejected)
 {
-  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  const glm::dvec3 position{ 3, -3.5, 3 }, focal{ 0.2, 0, 1 };
   const Scene good =
     scene("bad", iga::makeTwistedTube<double>(0.7), position, focal, 35, 48, 48, { 0.0 });
   ASSERT_EQ(good.set.patches.size(), 8u);

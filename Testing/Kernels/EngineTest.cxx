@@ -16,47 +16,39 @@ using iga::sst::GBuffer;
 using iga::sst::Method;
 using iga::sst::Settings;
 
-iga::Camera makeCamera(
-  const double* position, const double* focal, const double* up, double angle, const double* bounds)
+iga::Camera makeCamera(const glm::dvec3& position, const glm::dvec3& focal, const glm::dvec3& up,
+  double angle, const double* bounds)
 {
   iga::Camera camera;
-  for (int d = 0; d < 3; ++d)
-  {
-    camera.position[d] = position[d];
-    camera.focalPoint[d] = focal[d];
-    camera.viewUp[d] = up[d];
-  }
+  camera.position = position;
+  camera.focalPoint = focal;
+  camera.viewUp = up;
   camera.viewAngle = angle;
   iga::fitClippingRange(camera, bounds);
   return camera;
 }
 
 /// A z-up camera at `position` looking at `focal`, clipping planes around the set's bounds.
-iga::Camera cameraFor(
-  const iga::VolumeSet<double>& set, const double* position, const double* focal, double angle)
+iga::Camera cameraFor(const iga::VolumeSet<double>& set, const glm::dvec3& position,
+  const glm::dvec3& focal, double angle)
 {
   double bounds[6];
   iga::sst::patchBounds(set.patches, bounds);
-  const double up[3] = { 0, 0, 1 };
+  const glm::dvec3 up{ 0, 0, 1 };
   return makeCamera(position, focal, up, angle, bounds);
 }
 
 /// The ray through pixel (i, j)'s centre from the camera's geometry (not from its matrices).
-void pixelRay(
-  const iga::Camera& camera, int width, int height, int i, int j, double* origin, double* direction)
+void pixelRay(const iga::Camera& camera, int width, int height, int i, int j, glm::dvec3& origin,
+  glm::dvec3& direction)
 {
-  double forward[3], side[3], up[3];
-  iga::viewDirection(camera, forward);
-  iga::cross3(forward, camera.viewUp, side);
-  iga::normalize3(side);
-  iga::cross3(side, forward, up);
+  const glm::dvec3 forward = iga::viewDirection(camera);
+  const glm::dvec3 side = glm::normalize(glm::cross(forward, camera.viewUp));
+  const glm::dvec3 up = glm::cross(side, forward);
   const double t = std::tan(camera.viewAngle * M_PI / 360.0);
   const double x = (i + 0.5) / width * 2 - 1, y = (j + 0.5) / height * 2 - 1;
-  for (int d = 0; d < 3; ++d)
-  {
-    origin[d] = camera.position[d];
-    direction[d] = forward[d] + x * t * double(width) / height * side[d] + y * t * up[d];
-  }
+  origin = camera.position;
+  direction = forward + x * t * double(width) / height * side + y * t * up;
 }
 
 /// An analytic first hit: ray parameter (inf for none) and whether the ray passes so close to the
@@ -76,15 +68,15 @@ struct Comparison
 /// Compares the first hits with the truth at every pixel; `normalAt` gives the true unit normal
 /// at a point (up to sign).
 Comparison compare(const GBuffer& gbuffer, const iga::Camera& camera,
-  std::function<Truth(const double*, const double*)> truth,
-  std::function<void(const double*, double*)> normalAt)
+  std::function<Truth(const glm::dvec3&, const glm::dvec3&)> truth,
+  std::function<glm::dvec3(const glm::dvec3&)> normalAt)
 {
   Comparison result;
   for (int j = 0; j < gbuffer.height; ++j)
   {
     for (int i = 0; i < gbuffer.width; ++i)
     {
-      double o[3], dir[3];
+      glm::dvec3 o, dir;
       pixelRay(camera, gbuffer.width, gbuffer.height, i, j, o, dir);
       const Truth expected = truth(o, dir);
       const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
@@ -101,16 +93,12 @@ Comparison compare(const GBuffer& gbuffer, const iga::Camera& camera,
       if (!hit)
         continue;
       ++result.covered;
-      double n[3], p[3];
+      const glm::dvec3 p = o + expected.t * dir;
+      const glm::dvec3 n = normalAt(p);
+      double error = 0;
       for (int d = 0; d < 3; ++d)
-        p[d] = o[d] + expected.t * dir[d];
-      normalAt(p, n);
-      double error = 0, dotn = 0;
-      for (int d = 0; d < 3; ++d)
-      {
         error = std::max(error, std::abs(hit->position[d] - p[d]));
-        dotn += hit->normal[d] * n[d];
-      }
+      const double dotn = glm::dot(hit->normal, n);
       result.maxPositionError = std::max(result.maxPositionError, error);
       result.maxNormalError = std::max(result.maxNormalError, 1 - std::abs(dotn));
     }
@@ -133,9 +121,9 @@ double firstRoot(
   return INFINITY;
 }
 
-Truth sphereTruth(const double* o, const double* d)
+Truth sphereTruth(const glm::dvec3& o, const glm::dvec3& d)
 {
-  const double a = iga::dot3(d, d), b = 2 * iga::dot3(o, d), c = iga::dot3(o, o) - 1;
+  const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
   double disc;
   const double t = firstRoot(
     a, b, c, [](double) { return true; }, disc);
@@ -143,11 +131,9 @@ Truth sphereTruth(const double* o, const double* d)
   return { t, std::abs(disc) < 1e-6 * b * b };
 }
 
-void sphereNormal(const double* p, double* n)
+glm::dvec3 sphereNormal(const glm::dvec3& p)
 {
-  for (int d = 0; d < 3; ++d)
-    n[d] = p[d];
-  iga::normalize3(n);
+  return glm::normalize(p);
 }
 
 GBuffer renderSet(const iga::VolumeSet<double>& set, const iga::Camera& camera, Settings settings,
@@ -168,7 +154,7 @@ TEST_P(MarsdenSphere, MatchesTheAnalyticSphere)
 {
   const auto set = iga::makeMarsdenSphere<double>(GetParam());
   const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
-  const double position[3] = { 1.2, -3.5, 2.1 }, focal[3] = { 0.1, 0, 0 }, up[3] = { 0, 0, 1 };
+  const glm::dvec3 position{ 1.2, -3.5, 2.1 }, focal{ 0.1, 0, 0 }, up{ 0, 0, 1 };
   const auto camera = makeCamera(position, focal, up, 40, bounds);
   Settings settings;
   settings.width = 80;
@@ -185,15 +171,9 @@ TEST_P(MarsdenSphere, MatchesTheAnalyticSphere)
   // Depths agree with the hit's own projection.
   const auto* hit = gbuffer.firstHit(40, 32);
   ASSERT_NE(hit, nullptr);
-  double toHit[3], forward[3];
-  iga::viewDirection(camera, forward);
-  for (int d = 0; d < 3; ++d)
-    toHit[d] = hit->position[d] - camera.position[d];
-  EXPECT_NEAR(hit->eyeDepth, iga::dot3(toHit, forward), 1e-12);
-  const auto M = iga::worldToClip(camera, 80.0 / 64.0);
-  const double world[4] = { hit->position[0], hit->position[1], hit->position[2], 1 };
-  double clip[4];
-  M.apply(world, clip);
+  EXPECT_NEAR(
+    hit->eyeDepth, glm::dot(hit->position - camera.position, iga::viewDirection(camera)), 1e-12);
+  const glm::dvec4 clip = iga::worldToClip(camera, 80.0 / 64.0) * glm::dvec4(hit->position, 1);
   EXPECT_NEAR(hit->ndcDepth, clip[2] / clip[3], 1e-9);
 }
 
@@ -208,10 +188,10 @@ struct SphereView
   Settings settings;
 };
 
-SphereView sphereView(int degree, const double* position, int size)
+SphereView sphereView(int degree, const glm::dvec3& position, int size)
 {
   const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
-  const double focal[3] = { 0, 0, 0 }, up[3] = { 0, 0, 1 };
+  const glm::dvec3 focal{ 0, 0, 0 }, up{ 0, 0, 1 };
   SphereView view{ iga::makeMarsdenSphere<double>(degree),
     makeCamera(position, focal, up, 35, bounds), {} };
   view.settings.width = view.settings.height = size;
@@ -221,7 +201,7 @@ SphereView sphereView(int degree, const double* position, int size)
 
 TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
 {
-  const double position[3] = { 0, -4, 0.5 };
+  const glm::dvec3 position{ 0, -4, 0.5 };
   auto [set, camera, settings] = sphereView(2, position, 48);
   settings.firstHitOnly = false;
   const GBuffer gbuffer = renderSet(set, camera, settings);
@@ -229,7 +209,7 @@ TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
   for (int j = 0; j < 48; ++j)
     for (int i = 0; i < 48; ++i)
     {
-      double o[3], d[3];
+      glm::dvec3 o, d;
       pixelRay(camera, 48, 48, i, j, o, d);
       const Truth truth = sphereTruth(o, d);
       if (truth.ambiguous || !std::isfinite(truth.t))
@@ -251,7 +231,7 @@ TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
 /// outside is below and the order flips.
 TEST(Engine, HitsSayWhetherTheRayEntersTheRegionBelowTheIsovalue)
 {
-  const double position[3] = { 0.3, -4, 0.5 };
+  const glm::dvec3 position{ 0.3, -4, 0.5 };
   for (const char* variant : { "as made", "mirrored", "negated" })
   {
     SCOPED_TRACE(variant);
@@ -291,21 +271,21 @@ TEST(Engine, HitsSayWhetherTheRayEntersTheRegionBelowTheIsovalue)
 /// kept side of both planes, so where the front cap is cut away the ray hits the sphere's inside.
 TEST(Engine, ClippingPlanesCutTheSurfaceExactly)
 {
-  const double position[3] = { 0.6, -4, 1.1 };
+  const glm::dvec3 position{ 0.6, -4, 1.1 };
   auto [set, camera, settings] = sphereView(3, position, 64);
   // Kept: x + 0.2 y >= 0.1 and z <= 0.5.
   settings.clipPlanes = { { 1, 0.2, 0, -0.1 }, { 0, 0, -2, 1 } };
-  auto kept = [](const double* p) { return p[0] + 0.2 * p[1] - 0.1 >= 0 && p[2] <= 0.5; };
-  auto truth = [&](const double* o, const double* d) -> Truth
+  auto kept = [](const glm::dvec3& p) { return p[0] + 0.2 * p[1] - 0.1 >= 0 && p[2] <= 0.5; };
+  auto truth = [&](const glm::dvec3& o, const glm::dvec3& d) -> Truth
   {
-    const double a = iga::dot3(d, d), b = 2 * iga::dot3(o, d), c = iga::dot3(o, o) - 1;
+    const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
     double disc;
     bool nearCut = false;
     const double t = firstRoot(
       a, b, c,
       [&](double t)
       {
-        const double p[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+        const glm::dvec3 p = o + t * d;
         nearCut =
           nearCut || std::abs(p[0] + 0.2 * p[1] - 0.1) < 1e-5 || std::abs(p[2] - 0.5) < 1e-5;
         return kept(p);
@@ -332,7 +312,7 @@ TEST(Engine, ClippingPlanesCutTheSurfaceExactly)
   ASSERT_GT(brute.hits.size(), 600u);
   for (const auto& hit : brute.hits)
   {
-    EXPECT_NEAR(iga::dot3(hit.position, hit.position), 1.0, 1e-6);
+    EXPECT_NEAR(glm::dot(hit.position, hit.position), 1.0, 1e-6);
     EXPECT_TRUE(kept(hit.position))
       << hit.position[0] << " " << hit.position[1] << " " << hit.position[2];
   }
@@ -352,7 +332,7 @@ TEST(Engine, ClippingPlanesCutTheSurfaceExactly)
 
 TEST(Engine, RejectsBadClippingPlanes)
 {
-  const double position[3] = { 0, -4, 0.5 };
+  const glm::dvec3 position{ 0, -4, 0.5 };
   auto [set, camera, settings] = sphereView(2, position, 8);
   GBuffer gbuffer;
   settings.clipPlanes = { { 0, 0, 0, 1 } };
@@ -366,7 +346,7 @@ TEST(Engine, RejectsBadClippingPlanes)
 }
 
 /// First hit on the lateral surface x^2 + y^2 = r^2, z in [z0, z1].
-Truth cylinderTruth(const double* o, const double* d, double r, double z0, double z1)
+Truth cylinderTruth(const glm::dvec3& o, const glm::dvec3& d, double r, double z0, double z1)
 {
   const double a = d[0] * d[0] + d[1] * d[1], b = 2 * (o[0] * d[0] + o[1] * d[1]),
                c = o[0] * o[0] + o[1] * o[1] - r * r;
@@ -384,18 +364,15 @@ Truth cylinderTruth(const double* o, const double* d, double r, double z0, doubl
   return { t, nearRim || std::abs(disc) < 1e-6 * b * b };
 }
 
-void cylinderNormal(const double* p, double* n)
+glm::dvec3 cylinderNormal(const glm::dvec3& p)
 {
-  n[0] = p[0];
-  n[1] = p[1];
-  n[2] = 0;
-  iga::normalize3(n);
+  return glm::normalize(glm::dvec3(p[0], p[1], 0));
 }
 
 TEST(Engine, ExactRationalCylinderInTheTube)
 {
   const auto set = iga::makeTube<double>(0.5, 0.0);
-  const double position[3] = { 2.6, -3.1, 3.4 }, focal[3] = { 0, 0, 1 };
+  const glm::dvec3 position{ 2.6, -3.1, 3.4 }, focal{ 0, 0, 1 };
   const auto camera = cameraFor(set, position, focal, 35);
   Settings settings;
   settings.width = 72;
@@ -406,7 +383,7 @@ TEST(Engine, ExactRationalCylinderInTheTube)
   const GBuffer gbuffer = renderSet(set, camera, settings);
   const Comparison c = compare(
     gbuffer, camera,
-    [](const double* o, const double* d) { return cylinderTruth(o, d, 0.75, 0, 2); },
+    [](const glm::dvec3& o, const glm::dvec3& d) { return cylinderTruth(o, d, 0.75, 0, 2); },
     cylinderNormal);
   EXPECT_GT(c.covered, 800);
   EXPECT_EQ(c.mismatched, 0);
@@ -421,7 +398,7 @@ TEST(Engine, ExactRationalCylinderInTheTube)
 TEST(Engine, CollapsedAxisDiskAndCylinder)
 {
   const auto set = iga::makeTube<double>(0.0, 0.0); // inner face collapsed onto the axis
-  const double position[3] = { 1.9, -2.4, 3.6 }, focal[3] = { 0, 0, 1 };
+  const glm::dvec3 position{ 1.9, -2.4, 3.6 }, focal{ 0, 0, 1 };
   const auto camera = cameraFor(set, position, focal, 38);
   Settings settings;
   settings.width = settings.height = 64;
@@ -433,14 +410,14 @@ TEST(Engine, CollapsedAxisDiskAndCylinder)
   EXPECT_EQ(report.unresolvedPixels, 0u);
   Comparison c = compare(
     gbuffer, camera,
-    [](const double* o, const double* d)
+    [](const glm::dvec3& o, const glm::dvec3& d)
     {
       const double t = (1 - o[2]) / d[2];
       const double x = o[0] + t * d[0], y = o[1] + t * d[1];
       const double r = std::hypot(x, y);
       return Truth{ t > 0 && r <= 1 ? t : INFINITY, std::abs(r - 1) < 1e-6 };
     },
-    [](const double*, double* n) { n[0] = n[1] = 0, n[2] = 1; });
+    [](const glm::dvec3&) { return glm::dvec3(0, 0, 1); });
   EXPECT_GT(c.covered, 600);
   EXPECT_EQ(c.mismatched, 0);
   EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
@@ -452,7 +429,7 @@ TEST(Engine, CollapsedAxisDiskAndCylinder)
   gbuffer = renderSet(set, camera, settings);
   c = compare(
     gbuffer, camera,
-    [](const double* o, const double* d) { return cylinderTruth(o, d, 0.4, 0, 2); },
+    [](const glm::dvec3& o, const glm::dvec3& d) { return cylinderTruth(o, d, 0.4, 0, 2); },
     cylinderNormal);
   EXPECT_GT(c.covered, 300);
   EXPECT_EQ(c.mismatched, 0);
@@ -463,14 +440,11 @@ TEST(Engine, CameraInsideThePatchSeesTheSphereAllAround)
 {
   // The eye is inside the volume: the patch straddles the eye plane and must be split there.
   const auto set = iga::makeMarsdenSphere<double>(3);
-  const double position[3] = { 0.1, 0.2, -0.1 }, focal[3] = { 1, 0.3, 0 }, up[3] = { 0, 0, 1 };
+  const glm::dvec3 position{ 0.1, 0.2, -0.1 }, focal{ 1, 0.3, 0 }, up{ 0, 0, 1 };
   iga::Camera camera;
-  for (int d = 0; d < 3; ++d)
-  {
-    camera.position[d] = position[d];
-    camera.focalPoint[d] = focal[d];
-    camera.viewUp[d] = up[d];
-  }
+  camera.position = position;
+  camera.focalPoint = focal;
+  camera.viewUp = up;
   camera.viewAngle = 60;
   camera.clippingRange[0] = 0.05;
   camera.clippingRange[1] = 5;
@@ -515,7 +489,7 @@ void expectSameFirstHits(
 TEST(Engine, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTwistedTeardrop)
 {
   const auto set = iga::makeTeardrop<double>(1.2);
-  const double position[3] = { -0.2, -1.6, 0.9 }, focal[3] = { -0.5, 0, 0 };
+  const glm::dvec3 position{ -0.2, -1.6, 0.9 }, focal{ -0.5, 0, 0 };
   const auto camera = cameraFor(set, position, focal, 40);
   Settings settings;
   settings.width = settings.height = 40;
@@ -561,7 +535,7 @@ TEST(Engine, FoldedSelfIntersectingVolumeAgreesWithTheReferences)
     const double fold[4] = { -1.5, 3.0, -3.0, 1.5 };
     view.point(p)[0] = fold[i];
   }
-  const double position[3] = { 0.8, -4.2, 1.6 }, focal[3] = { 0, 0, 0 };
+  const glm::dvec3 position{ 0.8, -4.2, 1.6 }, focal{ 0, 0, 0 };
   const auto camera = cameraFor(set, position, focal, 40);
   Settings settings;
   settings.width = settings.height = 40;
@@ -593,7 +567,7 @@ TEST(Engine, FoldedSelfIntersectingVolumeAgreesWithTheReferences)
 TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
 {
   const auto set = iga::makeTwistedTube<double>(0.7);
-  const double position[3] = { 3, -3.5, 3 }, focal[3] = { 0.2, 0, 1 };
+  const glm::dvec3 position{ 3, -3.5, 3 }, focal{ 0.2, 0, 1 };
   const auto camera = cameraFor(set, position, focal, 35);
   Settings settings;
   settings.width = settings.height = 64;
@@ -620,7 +594,7 @@ TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
 
 TEST(Engine, DepthCapIsReportedNotLooped)
 {
-  const double position[3] = { 0, -4, 0 };
+  const glm::dvec3 position{ 0, -4, 0 };
   auto [set, camera, settings] = sphereView(4, position, 32);
   settings.maxSubdivisionDepth = 1;
   iga::sst::FrameReport report;
@@ -638,7 +612,7 @@ TEST(Engine, BadInputIsRejectedWithTheProblemNamed)
 {
   auto set = iga::makeTwistedTube<double>(0.0);
   const double bounds[6] = { -1, 1, -1, 1, 0, 2 };
-  const double position[3] = { 0, -4, 1 }, focal[3] = { 0, 0, 1 }, up[3] = { 0, 0, 1 };
+  const glm::dvec3 position{ 0, -4, 1 }, focal{ 0, 0, 1 }, up{ 0, 0, 1 };
   const auto camera = makeCamera(position, focal, up, 35, bounds);
   Settings settings;
   settings.width = settings.height = 8;

@@ -152,15 +152,15 @@ std::vector<double> pickCertifiedNode(int width, int height)
 {
   const auto set = iga::makeMarsdenSphere<double>(3);
   iga::Camera camera;
-  const double position[3] = { 3, 2.5, 2 };
-  for (int d = 0; d < 3; ++d)
-    camera.position[d] = position[d], camera.focalPoint[d] = 0, camera.viewUp[d] = d == 2;
+  camera.position = { 3, 2.5, 2 };
+  camera.focalPoint = { 0, 0, 0 };
+  camera.viewUp = { 0, 0, 1 };
   camera.clippingRange[0] = 1;
   camera.clippingRange[1] = 10;
-  iga::Matrix4<double> window = iga::Matrix4<double>::identity();
-  window.m[0][0] = window.m[0][3] = 0.5 * width;
-  window.m[1][1] = window.m[1][3] = 0.5 * height;
-  const auto M = iga::multiply(window, iga::worldToClip(camera, double(width) / height));
+  glm::dmat4 window(1.0);
+  window[0][0] = window[3][0] = 0.5 * width;
+  window[1][1] = window[3][1] = 0.5 * height;
+  const glm::dmat4 M = window * iga::worldToClip(camera, double(width) / height);
   const auto world = set.patches[0].view();
   const int count = world.pointCount() * iga::sst::kScreenChannels;
   std::vector<double> nodes(count);

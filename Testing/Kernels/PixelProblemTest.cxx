@@ -44,11 +44,10 @@ ExclusionCounts countExclusions(
       bounds[2 * d + 1] = std::max(bounds[2 * d + 1], x);
     }
   }
-  const double direction[3] = { -0.55, 0.65, -0.5 }, up[3] = { 0, 0, 1 };
-  const iga::Camera camera = iga::frameBounds(bounds, direction, up, 30);
-  iga::Matrix4<double> window = iga::Matrix4<double>::identity();
-  window.m[0][0] = window.m[0][3] = window.m[1][1] = window.m[1][3] = 0.5 * width;
-  const auto windowFromWorld = iga::multiply(window, iga::worldToClip(camera, 1.0));
+  const iga::Camera camera = iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+  glm::dmat4 window(1.0);
+  window[0][0] = window[3][0] = window[1][1] = window[3][1] = 0.5 * width;
+  const glm::dmat4 windowFromWorld = window * iga::worldToClip(camera, 1.0);
 
   const int count = view.pointCount() * iga::sst::kScreenChannels;
   std::vector<double> level(count);
@@ -103,8 +102,8 @@ ExclusionCounts countExclusions(
         }
         const bool alongRows = iga::sst::excludesPixelAlongRows(node, info, i, j, isovalue, 7);
         const bool byMean = iga::sst::excludesPixel(node, i, j, isovalue);
-        const double residual[3] = { info.centre[0] - (i + 0.5), info.centre[1] - (j + 0.5),
-          info.centre[2] - isovalue };
+        const glm::dvec3 residual(
+          info.centre[0] - (i + 0.5), info.centre[1] - (j + 0.5), info.centre[2] - isovalue);
         const bool byKrawczyk =
           info.canExclude && iga::krawczykExcludes<double, 3>(info.inverse, info.spread, residual,
                                iga::NewtonSettings<double>().domainSlack);

@@ -111,13 +111,9 @@ TEST(IsosurfaceMapper, DepthMatchesVTKsProjectionOfTheAnalyticHit)
     scene.renderer->SetDisplayPoint(i + 0.5, j + 0.5, 1);
     scene.renderer->DisplayToWorld();
     scene.renderer->GetWorldPoint(farPoint);
-    double o[3], d[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      o[k] = nearPoint[k] / nearPoint[3];
-      d[k] = farPoint[k] / farPoint[3] - o[k];
-    }
-    const double a = iga::dot3(d, d), b = 2 * iga::dot3(o, d), c = iga::dot3(o, o) - 1;
+    const glm::dvec3 o = glm::make_vec3(nearPoint) / nearPoint[3];
+    const glm::dvec3 d = glm::make_vec3(farPoint) / farPoint[3] - o;
+    const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
     const double t = (-b - std::sqrt(b * b - 4 * a * c)) / (2 * a);
     const double hit[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
     int hi, hj;
@@ -273,25 +269,22 @@ TEST(IsosurfaceMapper, PositionalSpotLightLightsOnlyItsCone)
   scene.render();
   const auto& gbuffer = scene.mapper->GetLastGBuffer();
   const auto& colours = scene.mapper->GetLastColours();
-  double axis[3] = { 0.4, 3, 0.3 };
-  iga::normalize3(axis);
+  const glm::dvec3 axis = glm::normalize(glm::dvec3(0.4, 3, 0.3));
   int lit = 0, dark = 0;
   for (int p = 0; p < gbuffer.width * gbuffer.height; ++p)
   {
     const auto* hit = gbuffer.firstHit(p % gbuffer.width, p / gbuffer.width);
     if (!hit)
       continue;
-    double toHit[3] = { hit->position[0], hit->position[1] + 3, hit->position[2] };
-    iga::normalize3(toHit);
-    const double angle = std::acos(iga::dot3(toHit, axis)) * 180 / M_PI;
+    const glm::dvec3 toHit = glm::normalize(hit->position - glm::dvec3(0, -3, 0));
+    const double angle = std::acos(glm::dot(toHit, axis)) * 180 / M_PI;
     if (std::abs(angle - 12) < 0.5)
       continue; // the cone's rim
     if (angle < 12)
     {
       // Lambert times the spot falloff cos(angle)^1 (vtkLight semantics), no attenuation.
-      double L[3] = { -toHit[0], -toHit[1], -toHit[2] };
       const double expected =
-        std::max(0.0, iga::dot3(hit->normal, L)) * std::cos(angle * M_PI / 180);
+        std::max(0.0, glm::dot(hit->normal, -toHit)) * std::cos(angle * M_PI / 180);
       EXPECT_NEAR(colours[4 * size_t(p)], expected, 1e-5) << "inside the cone, pixel " << p;
       ++lit;
     }

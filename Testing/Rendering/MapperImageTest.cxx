@@ -221,12 +221,13 @@ TEST(MapperImage, ClippingPlane)
   int inside = 0;
   for (const auto& hit : gbuffer.hits)
   {
-    const double value = plane->EvaluateFunction(const_cast<double*>(hit.position));
+    const double value = plane->EvaluateFunction(hit.position[0], hit.position[1], hit.position[2]);
     EXPECT_GE(value, -1e-9);
     nearest = std::min(nearest, value);
     double fromAxis[2] = { hit.position[0], hit.position[1] };
     inside +=
-      iga::dot3(hit.normal, scene.renderer->GetActiveCamera()->GetDirectionOfProjection()) < 0 &&
+      glm::dot(hit.normal,
+        glm::make_vec3(scene.renderer->GetActiveCamera()->GetDirectionOfProjection())) < 0 &&
           fromAxis[0] * hit.normal[0] + fromAxis[1] * hit.normal[1] < 0
         ? 1
         : 0;

@@ -4,35 +4,15 @@
 
 #include "iga/BezierPatch.h"
 
+#include <glm/common.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat2x2.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
 namespace iga
 {
-
-/// Row-major 4x4 matrix acting on column vectors (x, y, z, w).
-template<class T>
-struct Matrix4
-{
-  T m[4][4];
-
-  IGA_HD static Matrix4 identity()
-  {
-    Matrix4 r;
-    for (int i = 0; i < 4; ++i)
-    {
-      for (int j = 0; j < 4; ++j)
-      {
-        r.m[i][j] = i == j ? T(1) : T(0);
-      }
-    }
-    return r;
-  }
-  IGA_HD void apply(const T* in, T* out) const
-  {
-    for (int i = 0; i < 4; ++i)
-    {
-      out[i] = m[i][0] * in[0] + m[i][1] * in[1] + m[i][2] * in[2] + m[i][3] * in[3];
-    }
-  }
-};
 
 template<class T>
 struct Box3
@@ -54,7 +34,7 @@ enum class ProjectionStatus
 /// the patch exactly when all of them are positive; otherwise the status says why it does not.
 template<class T, int Dim>
 IGA_HD ProjectionStatus projectedBounds(
-  const PatchView<const T, Dim>& patch, const Matrix4<T>& M, Box3<T>& box)
+  const PatchView<const T, Dim>& patch, const glm::mat<4, 4, T>& M, Box3<T>& box)
 {
   int positive = 0;
   const int count = patch.pointCount();
@@ -65,8 +45,7 @@ IGA_HD ProjectionStatus projectedBounds(
   }
   for (int p = 0; p < count; ++p)
   {
-    T clip[4];
-    M.apply(patch.point(p), clip);
+    const glm::vec<4, T> clip = M * glm::make_vec4(patch.point(p));
     if (!(clip[3] > T(0)))
     {
       continue;
@@ -153,57 +132,29 @@ IGA_HD Interval<T> operator-(Interval<T> a, Interval<T> b)
   return { a.lo - b.hi, a.hi - b.lo };
 }
 
-/// Inverse of a Dim x Dim matrix (Dim 2 or 3) by cofactors; false when the determinant is zero
-/// relative to the entries' scale.
+/// Inverse of a Dim x Dim matrix (Dim 2 or 3); false when the determinant is zero relative to
+/// the entries' scale.
 template<class T, int Dim>
-IGA_HD bool invertMatrix(const T (&a)[Dim][Dim], T (&inverse)[Dim][Dim])
+IGA_HD bool invertMatrix(const glm::mat<Dim, Dim, T>& a, glm::mat<Dim, Dim, T>& inverse)
 {
   T scale = T(0);
-  for (int i = 0; i < Dim; ++i)
+  for (int c = 0; c < Dim; ++c)
   {
-    for (int j = 0; j < Dim; ++j)
+    for (int r = 0; r < Dim; ++r)
     {
-      scale = maxValue(scale, absValue(a[i][j]));
+      scale = maxValue(scale, absValue(a[c][r]));
     }
-  }
-  T det;
-  if (Dim == 2)
-  {
-    det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-    inverse[0][0] = a[1][1];
-    inverse[0][1] = -a[0][1];
-    inverse[1][0] = -a[1][0];
-    inverse[1][1] = a[0][0];
-  }
-  else
-  {
-    for (int i = 0; i < Dim; ++i)
-    {
-      for (int j = 0; j < Dim; ++j)
-      {
-        // cofactor of a[j][i] (transposed: adjugate)
-        const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
-        inverse[i][j] = a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0];
-      }
-    }
-    det = a[0][0] * inverse[0][0] + a[0][1] * inverse[1][0] + a[0][2] * inverse[2][0];
   }
   T scalePower = scale;
   for (int i = 1; i < Dim; ++i)
   {
     scalePower *= scale;
   }
-  if (!(absValue(det) > T(64) * Epsilon<T>::value * scalePower))
+  if (!(absValue(glm::determinant(a)) > T(64) * Epsilon<T>::value * scalePower))
   {
     return false;
   }
-  for (int i = 0; i < Dim; ++i)
-  {
-    for (int j = 0; j < Dim; ++j)
-    {
-      inverse[i][j] /= det;
-    }
-  }
+  inverse = glm::inverse(a);
   return true;
 }
 
@@ -280,35 +231,32 @@ IGA_HD bool rationalJacobianHull(const PatchView<const T, Dim>& patch, const Rat
   return true;
 }
 
-/// Midpoint inverse of an interval matrix and the row sums of |mid^-1| rad: the ingredients of
-/// Beeck's regularity test and of the Krawczyk operator. False when the midpoint is singular.
+/// Midpoint inverse of an interval matrix and |mid^-1| rad: the ingredients of Beeck's
+/// regularity test and of the Krawczyk operator. False when the midpoint is singular. The
+/// interval matrix is indexed [row][column], the GLM ones [column][row].
 template<class T, int Dim>
 IGA_HD bool preconditioner(
-  const Interval<T> (&M)[Dim][Dim], T (&inverse)[Dim][Dim], T (&spread)[Dim][Dim])
+  const Interval<T> (&M)[Dim][Dim], glm::mat<Dim, Dim, T>& inverse, glm::mat<Dim, Dim, T>& spread)
 {
-  T mid[Dim][Dim];
-  for (int i = 0; i < Dim; ++i)
+  glm::mat<Dim, Dim, T> mid, radius;
+  for (int r = 0; r < Dim; ++r)
   {
-    for (int j = 0; j < Dim; ++j)
+    for (int c = 0; c < Dim; ++c)
     {
-      mid[i][j] = M[i][j].mid();
+      mid[c][r] = M[r][c].mid();
+      radius[c][r] = M[r][c].radius();
     }
   }
   if (!invertMatrix<T, Dim>(mid, inverse))
   {
     return false;
   }
-  for (int i = 0; i < Dim; ++i)
+  glm::mat<Dim, Dim, T> magnitude;
+  for (int c = 0; c < Dim; ++c)
   {
-    for (int j = 0; j < Dim; ++j)
-    {
-      spread[i][j] = T(0);
-      for (int k = 0; k < Dim; ++k)
-      {
-        spread[i][j] += absValue(inverse[i][k]) * M[k][j].radius();
-      }
-    }
+    magnitude[c] = glm::abs(inverse[c]);
   }
+  spread = magnitude * radius;
   return true;
 }
 
@@ -323,20 +271,16 @@ IGA_HD bool preconditioner(
 template<class T, int Dim>
 IGA_HD bool certifyUniqueRoot(const Interval<T> (&scaled)[Dim][Dim])
 {
-  T inverse[Dim][Dim], spread[Dim][Dim];
+  glm::mat<Dim, Dim, T> inverse, spread;
   if (!preconditioner<T, Dim>(scaled, inverse, spread))
   {
     return false;
   }
-  for (int i = 0; i < Dim; ++i)
+  // Row sums; a margin below 1 absorbs the rounding of the bounds themselves.
+  const glm::vec<Dim, T> rowSums = spread * glm::vec<Dim, T>(T(1));
+  for (int r = 0; r < Dim; ++r)
   {
-    T rowSum = T(0);
-    for (int j = 0; j < Dim; ++j)
-    {
-      rowSum += spread[i][j];
-    }
-    // A margin below 1 absorbs the rounding of the bounds themselves.
-    if (!(rowSum < T(0.9)))
+    if (!(rowSums[r] < T(0.9)))
     {
       return false;
     }
@@ -357,19 +301,15 @@ IGA_HD bool certifyUniqueRoot(const PatchView<const T, Dim>& patch, const Ration
 /// root. `inverse` and `spread` come from preconditioner([J]). Proves the misses that would
 /// otherwise fail Newton and force subdivision (rays grazing a surface piece, say).
 template<class T, int Dim>
-IGA_HD bool krawczykExcludes(
-  const T (&inverse)[Dim][Dim], const T (&spread)[Dim][Dim], const T* residualAtCentre, T slack)
+IGA_HD bool krawczykExcludes(const glm::mat<Dim, Dim, T>& inverse,
+  const glm::mat<Dim, Dim, T>& spread, const glm::vec<Dim, T>& residualAtCentre, T slack)
 {
   const T half = T(0.5) + slack;
+  const glm::vec<Dim, T> step = inverse * residualAtCentre;
+  const glm::vec<Dim, T> radius = spread * glm::vec<Dim, T>(half);
   for (int i = 0; i < Dim; ++i)
   {
-    T step = T(0), radius = T(0);
-    for (int j = 0; j < Dim; ++j)
-    {
-      step += inverse[i][j] * residualAtCentre[j];
-      radius += spread[i][j] * half;
-    }
-    if (absValue(step) > radius + half)
+    if (absValue(step[i]) > radius[i] + half)
     {
       return true;
     }

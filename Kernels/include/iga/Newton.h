@@ -22,7 +22,7 @@ struct NewtonResult
 {
   NewtonStatus status = NewtonStatus::NoConvergence;
   T u[Dim] = {};
-  T residual[Dim] = {}; ///< F(u) - target at the returned u
+  glm::vec<Dim, T> residual = glm::vec<Dim, T>(T(0)); ///< F(u) - target at the returned u
   int iterations = 0;
 };
 
@@ -68,7 +68,7 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
   {
     result.iterations = iteration;
     evaluateHomogeneous(patch, result.u, values, derivatives);
-    T J[Dim][Dim];
+    glm::mat<Dim, Dim, T> gradients; // column r: the gradient of row r (J transposed)
     bool small = true, tiny = true;
     for (int r = 0; r < Dim; ++r)
     {
@@ -78,7 +78,7 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
         return result;
       }
       const T f = rationalValue<T, Dim>(
-        values, derivatives, channels, rows[r].numerator, rows[r].denominator, J[r]);
+        values, derivatives, channels, rows[r].numerator, rows[r].denominator, &gradients[r][0]);
       result.residual[r] = f - target[r];
       if (!isFinite(result.residual[r]))
       {
@@ -101,23 +101,19 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
     {
       break;
     }
-    T inverse[Dim][Dim];
-    if (!invertMatrix<T, Dim>(J, inverse))
+    glm::mat<Dim, Dim, T> inverse;
+    if (!invertMatrix<T, Dim>(glm::transpose(gradients), inverse))
     {
       result.status = NewtonStatus::SingularJacobian;
       return result;
     }
+    const glm::vec<Dim, T> step = -(inverse * result.residual);
     T stepNorm = T(0);
     bool outside = false;
     for (int d = 0; d < Dim; ++d)
     {
-      T step = T(0);
-      for (int r = 0; r < Dim; ++r)
-      {
-        step -= inverse[d][r] * result.residual[r];
-      }
-      result.u[d] += step;
-      stepNorm = maxValue(stepNorm, absValue(step));
+      result.u[d] += step[d];
+      stepNorm = maxValue(stepNorm, absValue(step[d]));
       if (result.u[d] < -settings.domainSlack || result.u[d] > T(1) + settings.domainSlack ||
           !isFinite(result.u[d]))
       {

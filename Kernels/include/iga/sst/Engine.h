@@ -120,9 +120,9 @@ struct FrameReport
 /// What the engine needs of a view: the projection VTK would apply and the eye.
 struct View
 {
-  Matrix4<double> worldToClip; ///< clip depth from -1 (near plane) to 1 (far plane)
-  double eye[3];               ///< eye position (perspective)
-  double forward[3];           ///< unit view direction
+  glm::dmat4 worldToClip; ///< clip depth from -1 (near plane) to 1 (far plane)
+  glm::dvec3 eye;         ///< eye position (perspective)
+  glm::dvec3 forward;     ///< unit view direction
   bool parallel = false;
   /// Height of a pixel in world units: at unit eye depth (perspective) or anywhere (parallel).
   double pixelFootprint = 0;

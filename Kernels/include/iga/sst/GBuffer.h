@@ -2,6 +2,8 @@
 // its own so that code which only reads or writes G-buffers needs nothing of the engine.
 #pragma once
 
+#include <glm/vec3.hpp>
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -14,13 +16,13 @@ namespace sst
 /// One ray/isosurface intersection.
 struct Hit
 {
-  double ndcDepth;    ///< NDC depth in [-1, 1]; window depth is (ndcDepth + 1) / 2
-  double eyeDepth;    ///< distance from the eye along the view direction
-  double position[3]; ///< world position
-  double normal[3];   ///< unit world normal of the isosurface, facing the viewer
-  double uvw[3];      ///< parameter in the input patch
-  int patch;          ///< input patch index
-  int isovalue;       ///< index into Settings::isovalues
+  double ndcDepth;     ///< NDC depth in [-1, 1]; window depth is (ndcDepth + 1) / 2
+  double eyeDepth;     ///< distance from the eye along the view direction
+  glm::dvec3 position; ///< world position
+  glm::dvec3 normal;   ///< unit world normal of the isosurface, facing the viewer
+  glm::dvec3 uvw;      ///< parameter in the input patch
+  int patch;           ///< input patch index
+  int isovalue;        ///< index into Settings::isovalues
   /// Whether the ray enters the region below the isovalue here (the attribute decreases along
   /// the ray), else it leaves it: what CSG and transparency classify hits by.
   bool entersBelow;

@@ -38,14 +38,13 @@ IGA_HD inline PixelRows pixelRows()
 /// attribute. `out` holds pointCount * kScreenChannels values.
 template<class T>
 IGA_HD void makeScreenPatch(const VolumeView<const double>& world,
-  const Matrix4<double>& windowFromWorld, int attributeChannel, T* out)
+  const glm::dmat4& windowFromWorld, int attributeChannel, T* out)
 {
   const int count = world.pointCount();
   for (int p = 0; p < count; ++p)
   {
     const double* cp = world.point(p);
-    double window[4];
-    windowFromWorld.apply(cp, window);
+    const glm::dvec4 window = windowFromWorld * glm::make_vec4(cp);
     T* s = out + p * kScreenChannels;
     for (int c = 0; c < 4; ++c)
     {
@@ -112,19 +111,19 @@ IGA_HD bool clippedAway(const VolumeView<const T>& node, const ClipPlanes<T>& cl
 template<class T>
 struct NodeInfo
 {
-  Box3<T> box;             ///< window x, y (pixels) and NDC depth, valid when status is InFront
-  ProjectionStatus status; ///< where the node lies relative to the eye plane
-  bool mayContainSurface;  ///< the attribute's Bernstein range contains the isovalue
-  bool visibleDepth;       ///< not entirely in front of the near or beyond the far plane,
-                           ///< nor cut away by a clipping plane
-  bool certified;          ///< at most one root for every pixel (certifyUniqueRoot)
-  bool canExclude;         ///< the Krawczyk data below is valid
-  T inverse[3][3];         ///< mid([J])^-1 of the pixel problem's Jacobian hull
-  T spread[3][3];          ///< |mid([J])^-1| rad([J])
-  bool hasCentre;          ///< the centre data below is valid
-  T centre[3];             ///< F at the parametric centre: (X/W, Y/W, A/V), no pixel offset
-  T centreInverse[3][3];   ///< J(centre)^-1
-  T centreWeights[2];      ///< W and V at the centre
+  Box3<T> box;               ///< window x, y (pixels) and NDC depth, valid when status is InFront
+  ProjectionStatus status;   ///< where the node lies relative to the eye plane
+  bool mayContainSurface;    ///< the attribute's Bernstein range contains the isovalue
+  bool visibleDepth;         ///< not entirely in front of the near or beyond the far plane,
+                             ///< nor cut away by a clipping plane
+  bool certified;            ///< at most one root for every pixel (certifyUniqueRoot)
+  bool canExclude;           ///< the Krawczyk data below is valid
+  glm::mat<3, 3, T> inverse; ///< mid([J])^-1 of the pixel problem's Jacobian hull
+  glm::mat<3, 3, T> spread;  ///< |mid([J])^-1| rad([J])
+  bool hasCentre;            ///< the centre data below is valid
+  T centre[3];               ///< F at the parametric centre: (X/W, Y/W, A/V), no pixel offset
+  glm::mat<3, 3, T> centreInverse; ///< J(centre)^-1
+  T centreWeights[2];              ///< W and V at the centre
 };
 
 /// The cheap part of a node's analysis: window box, eye-plane status, sign change, clip depth
@@ -134,7 +133,7 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(
   const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip = ClipPlanes<T>())
 {
   NodeInfo<T> info;
-  info.status = projectedBounds(node, Matrix4<T>::identity(), info.box);
+  info.status = projectedBounds(node, glm::mat<4, 4, T>(T(1)), info.box);
   T lo = T(0), hi = T(0);
   info.mayContainSurface = !rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi) ||
                            (lo <= isovalue && isovalue <= hi);
@@ -183,17 +182,18 @@ IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info
     return;
   }
   const T centre[3] = { T(0.5), T(0.5), T(0.5) };
-  T values[kScreenChannels], derivatives[3 * kScreenChannels], J[3][3];
+  T values[kScreenChannels], derivatives[3 * kScreenChannels];
+  glm::mat<3, 3, T> gradients; // column r: the gradient of row r (J transposed)
   evaluateHomogeneous<T, 3>(node, centre, values, derivatives);
   const PixelRows rows = pixelRows();
   for (int r = 0; r < 3; ++r)
   {
-    info.centre[r] = rationalValue<T, 3>(
-      values, derivatives, kScreenChannels, rows.rows[r].numerator, rows.rows[r].denominator, J[r]);
+    info.centre[r] = rationalValue<T, 3>(values, derivatives, kScreenChannels,
+      rows.rows[r].numerator, rows.rows[r].denominator, &gradients[r][0]);
   }
   info.centreWeights[0] = values[kScreenW];
   info.centreWeights[1] = values[kScreenWeight];
-  info.hasCentre = invertMatrix<T, 3>(J, info.centreInverse);
+  info.hasCentre = invertMatrix<T, 3>(glm::transpose(gradients), info.centreInverse);
 }
 
 template<class T>
@@ -263,9 +263,9 @@ IGA_HD bool excludesPixelAlongRows(
   bool positive[3], negative[3];
   for (int d = 0; d < 3; ++d)
   {
-    n[d][0] = info.centreInverse[d][0] / info.centreWeights[0];
-    n[d][1] = info.centreInverse[d][1] / info.centreWeights[0];
-    n[d][2] = info.centreInverse[d][2] / info.centreWeights[1];
+    n[d][0] = info.centreInverse[0][d] / info.centreWeights[0];
+    n[d][1] = info.centreInverse[1][d] / info.centreWeights[0];
+    n[d][2] = info.centreInverse[2][d] / info.centreWeights[1];
     positive[d] = negative[d] = (rows >> d & 1) != 0;
   }
   const int count = node.pointCount();
@@ -342,11 +342,7 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
   }
   // O(1) per tuple first: the node's centre data minus the pixel's offset.
   const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
-  T residual[3];
-  for (int r = 0; r < 3; ++r)
-  {
-    residual[r] = info.centre[r] - target[r];
-  }
+  const glm::vec<3, T> residual = glm::make_vec3(info.centre) - glm::make_vec3(target);
   const T slack = NewtonSettings<T>().domainSlack;
   if (info.canExclude && info.hasCentre &&
       krawczykExcludes<T, 3>(info.inverse, info.spread, residual, slack))
@@ -364,13 +360,10 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
   }
   // Newton's first step from the centre, then the iteration proper. A step that leaves the
   // node says along which rows the pixel most likely misses it: a proof there saves the split.
-  T start[3];
+  const glm::vec<3, T> start = glm::vec<3, T>(T(0.5)) - info.centreInverse * residual;
   int outside = 0;
   for (int d = 0; d < 3; ++d)
   {
-    start[d] =
-      T(0.5) - (info.centreInverse[d][0] * residual[0] + info.centreInverse[d][1] * residual[1] +
-                 info.centreInverse[d][2] * residual[2]);
     outside |= start[d] >= -slack && start[d] <= T(1) + slack ? 0 : 1 << d;
   }
   if (outside)
@@ -378,7 +371,7 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
     return excludesPixelAlongRows(node, info, i, j, isovalue, outside) ? TupleOutcome::Miss
                                                                        : TupleOutcome::Undecided;
   }
-  return solvePixel(node, i, j, isovalue, tolerance, start, u, ndcDepth, clip);
+  return solvePixel(node, i, j, isovalue, tolerance, glm::value_ptr(start), u, ndcDepth, clip);
 }
 
 } // namespace sst

@@ -450,8 +450,8 @@ IGA_HD inline void makeShadingPatch(
 /// The viewer as shading sees it.
 struct ShadingView
 {
-  double eye[3];
-  double forward[3];
+  glm::dvec3 eye;
+  glm::dvec3 forward;
   bool parallel;
   bool hasColor;
 };
@@ -460,11 +460,8 @@ struct ShadingView
 inline ShadingView shadingViewOf(const View& view, const Settings& settings)
 {
   ShadingView viewer{};
-  for (int d = 0; d < 3; ++d)
-  {
-    viewer.eye[d] = view.eye[d];
-    viewer.forward[d] = view.forward[d];
-  }
+  viewer.eye = view.eye;
+  viewer.forward = view.forward;
   viewer.parallel = view.parallel;
   viewer.hasColor = settings.colorAttribute >= 0;
   return viewer;
@@ -481,53 +478,34 @@ IGA_HD inline Hit shadeHit(
   hit.ndcDepth = raw.ndcDepth;
   hit.patch = raw.patch;
   hit.isovalue = raw.iso;
-  double J[3][3], gradient[3];
+  glm::dvec3 J[3], gradient; // J[d]: the gradient of world coordinate d
   for (int d = 0; d < 3; ++d)
   {
     hit.uvw[d] = raw.u[d];
     hit.position[d] = rationalValue<double, 3>(
-      values, derivatives, kShadeChannels, kShadeX + d, kShadeWeight, J[d]);
+      values, derivatives, kShadeChannels, kShadeX + d, kShadeWeight, &J[d][0]);
   }
   rationalValue<double, 3>(
-    values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, gradient);
-  // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J). The cofactor form
-  // stays defined where J is singular (collapsed faces); the orientation is fixed below.
-  double normal[3] = { 0, 0, 0 }, determinant = 0;
-  for (int r = 0; r < 3; ++r)
+    values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, &gradient[0]);
+  // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J), the rows of cof(J)
+  // cross products of J's. The cofactor form stays defined where J is singular (collapsed
+  // faces); the orientation is fixed below.
+  const glm::dvec3 cofactors[3] = { glm::cross(J[1], J[2]), glm::cross(J[2], J[0]),
+    glm::cross(J[0], J[1]) };
+  const double determinant = glm::dot(J[0], cofactors[0]);
+  const glm::dvec3 toEye = viewer.parallel ? -viewer.forward : viewer.eye - hit.position;
+  glm::dvec3 normal = normalizedOrZero(glm::dvec3(glm::dot(cofactors[0], gradient),
+    glm::dot(cofactors[1], gradient), glm::dot(cofactors[2], gradient)));
+  if (glm::dot(normal, normal) == 0 || !isFinite(normal[0]))
   {
-    for (int c = 0; c < 3; ++c)
-    {
-      const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
-      const double cofactor = J[r0][c0] * J[r1][c1] - J[r0][c1] * J[r1][c0];
-      normal[r] += cofactor * gradient[c];
-      determinant += r == 0 ? J[0][c] * cofactor : 0;
-    }
+    normal = normalizedOrZero(toEye);
   }
-  double toEye[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    toEye[d] = viewer.parallel ? -viewer.forward[d] : viewer.eye[d] - hit.position[d];
-  }
-  normalize3(normal);
-  if (dot3(normal, normal) == 0 || !isFinite(normal[0]))
-  {
-    for (int d = 0; d < 3; ++d)
-    {
-      normal[d] = toEye[d];
-    }
-    normalize3(normal);
-  }
-  const double sign = dot3(normal, toEye) < 0 ? -1.0 : 1.0;
+  const double sign = glm::dot(normal, toEye) < 0 ? -1.0 : 1.0;
   // The attribute falls along the ray where its world gradient points back to the eye. Where J
   // is singular its orientation is unknown and taken as positive.
   hit.entersBelow = (determinant < 0 ? -sign : sign) > 0;
-  double offset[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    hit.normal[d] = sign * normal[d];
-    offset[d] = hit.position[d] - viewer.eye[d];
-  }
-  hit.eyeDepth = dot3(offset, viewer.forward);
+  hit.normal = sign * normal;
+  hit.eyeDepth = glm::dot(hit.position - viewer.eye, viewer.forward);
   hit.color = viewer.hasColor ? values[kShadeColor] / values[kShadeWeight] : nan("");
   return hit;
 }
