@@ -171,8 +171,19 @@ int main(int argc, char** argv)
 {
   const char* usage = "usage: igaview-generate-data OUTPUT_DIRECTORY [--series STEPS] "
                       "[--benchmark STEPS] [--blade PATCHES]\n";
-  if (argc < 2)
+  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h"))
   {
+    std::printf("%s", usage);
+    return 0;
+  }
+  if (argc < 2 || argv[1][0] == '-')
+  {
+    if (argc >= 2)
+    {
+      std::fprintf(stderr,
+        "igaview-generate-data: the first argument must be the output directory, got '%s'\n",
+        argv[1]);
+    }
     std::fprintf(stderr, "%s", usage);
     return 1;
   }
@@ -190,9 +201,11 @@ int main(int argc, char** argv)
       return 1;
     }
     const long minimum = target == &blade ? 1 : 2;
-    if (i + 1 >= argc || (*target = std::atol(argv[++i])) < minimum)
+    char* end = nullptr;
+    if (i + 1 >= argc || (*target = std::strtol(argv[++i], &end, 10)) < minimum || *end != '\0' ||
+        *target > 100000000)
     {
-      std::fprintf(stderr, "igaview-generate-data: %s needs a count of at least %ld\n%s",
+      std::fprintf(stderr, "igaview-generate-data: %s needs a whole count in %ld..100000000\n%s",
         option.c_str(), minimum, usage);
       return 1;
     }

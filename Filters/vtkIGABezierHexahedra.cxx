@@ -13,10 +13,21 @@
 
 #include "iga/Validation.h"
 
+#include <cmath>
+#include <sstream>
+
 namespace
 {
 const char* const kWeightsName = "RationalWeights";
 const char* const kDegreesName = "HigherOrderDegrees";
+
+/// A number as a user wrote it (2.9, 1e+30), not std::to_string's fixed six decimals.
+std::string formatNumber(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
 
 /// Calls fn(i, j, k, linear Kernels index, VTK point index within the cell) for every control
 /// point of a hexahedron of the given degrees.
@@ -140,6 +151,14 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
             std::to_string(degrees->GetNumberOfComponents()) + " components, expected 3";
     return false;
   }
+  const vtkIdType pointCount = grid->GetNumberOfPoints();
+  if (weights && weights->GetNumberOfComponents() != 1)
+  {
+    error = std::string("rational weights '") + (weights->GetName() ? weights->GetName() : "") +
+            "' have " + std::to_string(weights->GetNumberOfComponents()) +
+            " components, expected 1";
+    return false;
+  }
   std::vector<vtkDataArray*> attributes;
   for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
   {
@@ -150,8 +169,30 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
       set.attributeNames.emplace_back(array->GetName());
     }
   }
+  for (vtkDataArray* array : attributes)
+  {
+    if (array->GetNumberOfTuples() != pointCount)
+    {
+      error = std::string("point array '") + array->GetName() + "' has " +
+              std::to_string(array->GetNumberOfTuples()) + " values for " +
+              std::to_string(pointCount) + " points";
+      return false;
+    }
+  }
+  if (weights && weights->GetNumberOfTuples() != pointCount)
+  {
+    error = "rational weights have " + std::to_string(weights->GetNumberOfTuples()) +
+            " values for " + std::to_string(pointCount) + " points";
+    return false;
+  }
+  if (degrees && degrees->GetNumberOfTuples() != grid->GetNumberOfCells())
+  {
+    error = std::string("cell array '") + kDegreesName + "' has " +
+            std::to_string(degrees->GetNumberOfTuples()) + " tuples for " +
+            std::to_string(grid->GetNumberOfCells()) + " cells";
+    return false;
+  }
   const int channels = iga::kFirstAttributeChannel + static_cast<int>(attributes.size());
-  const vtkIdType pointCount = grid->GetNumberOfPoints();
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
     const std::string where = "cell " + std::to_string(c) + ": ";
@@ -167,10 +208,10 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
         for (int d = 0; d < 3; ++d)
         {
           const double value = degrees->GetComponent(c, d);
-          if (!(value >= 1 && value <= iga::kMaxDegree))
+          if (!(value >= 1 && value <= iga::kMaxDegree && value == std::floor(value)))
           {
-            error = where + "degree " + std::to_string(value) + " in direction " +
-                    std::to_string(d) + " is outside 1.." + std::to_string(iga::kMaxDegree);
+            error = where + "degree " + formatNumber(value) + " in direction " + std::to_string(d) +
+                    " is not a whole number in 1.." + std::to_string(iga::kMaxDegree);
             return false;
           }
           degree[d] = static_cast<int>(value);

@@ -47,7 +47,13 @@ public:
         if (this->Major < 0 &&
             std::regex_search(line, match, std::regex("nurbs (geometry|mesh) v\\.([0-9]+)")))
         {
-          this->Major = std::stoi(match[2].str());
+          const std::string version = match[2].str();
+          if (version.size() > 4)
+          {
+            throw IGAReadError(
+              number, "'nurbs " + match[1].str() + " v." + version + "' names no GeoPDEs version");
+          }
+          this->Major = std::stoi(version);
         }
         continue;
       }
@@ -261,11 +267,11 @@ void vtkIGAGeoPDEsReader::PrintSelf(ostream& os, vtkIndent indent)
 
 std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsData* data)
 {
-  GeoPDEsLines lines(text);
   iga::NurbsSet<double> set;
   set.attributeNames = iga::geometryAttributeNames();
   try
   {
+    GeoPDEsLines lines(text);
     const long headerLine = lines.peek("the header (dimensions and number of patches)").number;
     const auto header = lines.integers("header (dimensions and number of patches)", -1, 0, 1000000);
     // v.0.x: "N Np [Ni Ns]"; v.1 and later: "ndim rdim Np [Ni Ns]".

@@ -301,6 +301,41 @@ private:
   const std::string& Text;
 };
 
+/// vtkXMLDataParser that builds no element deeper than kMaxDepth: the element tree is built and
+/// destroyed recursively, so a file nested tens of thousands of levels deep would overflow the
+/// stack. G+Smo files nest a handful of levels.
+class DepthLimitedParser : public vtkXMLDataParser
+{
+public:
+  static DepthLimitedParser* New();
+  vtkTypeMacro(DepthLimitedParser, vtkXMLDataParser);
+  static constexpr int kMaxDepth = 256;
+  bool TooDeep = false;
+
+protected:
+  void StartElement(const char* name, const char** attributes) override
+  {
+    this->TooDeep = this->TooDeep || ++this->Depth > kMaxDepth;
+    if (!this->TooDeep)
+    {
+      this->Superclass::StartElement(name, attributes);
+    }
+  }
+  void EndElement(const char* name) override
+  {
+    if (!this->TooDeep)
+    {
+      this->Superclass::EndElement(name);
+    }
+    --this->Depth;
+  }
+  int ParsingComplete() override { return this->TooDeep || this->Superclass::ParsingComplete(); }
+
+private:
+  int Depth = 0;
+};
+vtkStandardNewMacro(DepthLimitedParser);
+
 void storeMessage(vtkObject*, unsigned long, void* clientData, void* callData)
 {
   auto* message = static_cast<std::string*>(clientData);
@@ -319,7 +354,7 @@ void vtkIGAGismoReader::PrintSelf(ostream& os, vtkIndent indent)
 std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsData* data)
 {
   std::istringstream stream(text);
-  vtkNew<vtkXMLDataParser> parser;
+  vtkNew<DepthLimitedParser> parser;
   parser->SetStream(&stream);
   parser->SetIgnoreCharacterData(0);
   std::string parserMessage;
@@ -327,7 +362,13 @@ std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsDat
   onError->SetCallback(storeMessage);
   onError->SetClientData(&parserMessage);
   parser->AddObserver(vtkCommand::ErrorEvent, onError);
-  if (!parser->Parse() || !parser->GetRootElement())
+  const bool parsed = parser->Parse() != 0;
+  if (parser->TooDeep)
+  {
+    return "elements are nested more than " + std::to_string(DepthLimitedParser::kMaxDepth) +
+           " levels deep";
+  }
+  if (!parsed || !parser->GetRootElement())
   {
     // vtkXMLParser says "... at line L, column C, byte index B: what".
     std::smatch match;

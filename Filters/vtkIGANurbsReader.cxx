@@ -6,7 +6,9 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <fstream>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 
 vtkIGANurbsReader::vtkIGANurbsReader()
 {
@@ -52,9 +54,7 @@ int vtkIGANurbsReader::RequestInformation(
     }
     else
     {
-      std::ostringstream text;
-      text << in.rdbuf();
-      const std::string problem = this->ReadNurbs(text.str(), this->Data);
+      const std::string problem = this->ReadGuarded(in);
       this->Error.clear();
       if (!problem.empty())
       {
@@ -67,6 +67,26 @@ int vtkIGANurbsReader::RequestInformation(
   }
   this->Data->FillTimeInformation(outputVector->GetInformationObject(0));
   return 1;
+}
+
+std::string vtkIGANurbsReader::ReadGuarded(std::istream& in)
+{
+  // Whatever a parser or an allocation throws becomes the file's error: a reader inside
+  // ParaView must not take the application down.
+  try
+  {
+    std::ostringstream text;
+    text << in.rdbuf();
+    return this->ReadNurbs(text.str(), this->Data);
+  }
+  catch (const std::bad_alloc&)
+  {
+    return "not enough memory to read the file (the sizes it gives are too large)";
+  }
+  catch (const std::exception& e)
+  {
+    return std::string("cannot be read: ") + e.what();
+  }
 }
 
 int vtkIGANurbsReader::RequestData(

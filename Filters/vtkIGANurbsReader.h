@@ -20,6 +20,7 @@
 #include "vtkUnstructuredGridAlgorithm.h"
 #include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
 
+#include <iosfwd> // for std::istream
 #include <string> // for the parse state
 
 class vtkIGANurbsData;
@@ -55,6 +56,9 @@ protected:
 private:
   vtkIGANurbsReader(const vtkIGANurbsReader&) = delete;
   void operator=(const vtkIGANurbsReader&) = delete;
+
+  /// ReadNurbs on the stream's contents, with what it throws turned into its problem.
+  std::string ReadGuarded(std::istream& in);
 
   vtkNew<vtkIGANurbsData> Data;
   std::string Error;      // of the last parse, empty when it succeeded

@@ -15,13 +15,16 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkInformation.h"
 #include "vtkInteractorStyleTrackballCamera.h"
+#include "vtkLogger.h"
 #include "vtkNew.h"
+#include "vtkOutputWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringOutputWindow.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkUnstructuredGrid.h"
@@ -36,6 +39,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <new>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -191,9 +196,11 @@ Options parseArguments(int argc, char** argv)
       options.exr = value();
     else if (arg == "--threads")
     {
-      options.threads = int(parseNumber(value(), arg));
-      if (options.threads < 1 || options.threads > 1024)
-        fail("--threads expects 1..1024");
+      const std::string text = value();
+      const double threads = parseNumber(text, arg);
+      if (!(threads >= 1 && threads <= 1024 && threads == std::floor(threads)))
+        fail("--threads expects a whole number in 1..1024, got '" + text + "'");
+      options.threads = int(threads);
     }
     else if (arg == "--backend")
     {
@@ -243,6 +250,70 @@ Options parseArguments(int argc, char** argv)
   return options;
 }
 
+/// Refuses a .vtu whose pieces claim more points or cells than this machine's memory holds:
+/// VTK's reader aborts the process when such an allocation fails.
+void checkClaimedSizes(const std::string& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  std::string head(1 << 20, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  // Bytes each point or cell needs at least: three coordinates; a connectivity entry, an
+  // offset and a type.
+  for (const auto& [name, bytes] : { std::pair<std::string, double>{ "NumberOfPoints", 24.0 },
+         std::pair<std::string, double>{ "NumberOfCells", 17.0 } })
+  {
+    double claimed = 0;
+    const std::regex attribute(name + "=\"([^\"]*)\"");
+    for (auto it = std::sregex_iterator(head.begin(), head.end(), attribute);
+         it != std::sregex_iterator(); ++it)
+    {
+      claimed += std::strtod((*it)[1].str().c_str(), nullptr);
+    }
+    if (!(claimed * bytes < memory))
+    {
+      char text[256];
+      std::snprintf(text, sizeof text,
+        "'%s' claims %.4g %s, which need at least %.3g GB, more than this machine's %.3g GB",
+        file.c_str(), claimed, name == "NumberOfPoints" ? "points" : "cells", claimed * bytes / 1e9,
+        memory / 1e9);
+      fail(text);
+    }
+  }
+}
+
+/// Updates the producer with VTK's messages collected rather than printed (several lines each,
+/// from the reader and its arrays and compressors); returns the first one's text. What the
+/// reader throws (a header's sizes nothing can hold) ends the run with the input's name.
+std::string updateQuietly(vtkAlgorithm* producer, const std::string& name)
+{
+  const vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+  vtkNew<vtkStringOutputWindow> collected;
+  vtkOutputWindow::SetInstance(collected);
+  const vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // VTK's log repeats each message
+  try
+  {
+    producer->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    fail(name + ": not enough memory to read it (the sizes it gives are too large)");
+  }
+  catch (const std::exception& e)
+  {
+    fail(name + ": cannot be read: " + e.what());
+  }
+  vtkLogger::SetStderrVerbosity(verbosity);
+  vtkOutputWindow::SetInstance(previous);
+  // VTK writes "ERROR: In FILE, line N\nCLASS (ADDRESS): TEXT\n\n".
+  std::smatch match;
+  const std::string text = collected->GetOutput();
+  return std::regex_search(text, match, std::regex("\\(0x[0-9a-f]+\\): ([^\n]*)")) ? match[1].str()
+                                                                                   : "";
+}
+
 /// The input's producer (the default dataset's source or a .vtu reader), updated, and its grid
 /// checked (and described by its patches) with the mapper's own conversion.
 vtkSmartPointer<vtkAlgorithm> loadInput(const Options& options, iga::VolumeSet<double>& set)
@@ -265,15 +336,21 @@ vtkSmartPointer<vtkAlgorithm> loadInput(const Options& options, iga::VolumeSet<d
     {
       fail("cannot open '" + options.input + "'");
     }
+    checkClaimedSizes(options.input);
     auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
     reader->SetFileName(options.input.c_str());
     producer = reader;
   }
-  producer->Update();
+  const std::string readerMessage = updateQuietly(producer, name);
   vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(producer->GetOutputDataObject(0));
   if (producer->GetErrorCode() != 0 || !grid || grid->GetNumberOfCells() == 0)
   {
-    fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells");
+    fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells" +
+         (readerMessage.empty() ? "" : " (" + readerMessage + ")"));
+  }
+  if (!readerMessage.empty())
+  {
+    std::fprintf(stderr, "igaview: warning: %s: %s\n", name.c_str(), readerMessage.c_str());
   }
   std::string error;
   std::vector<std::string> warnings;

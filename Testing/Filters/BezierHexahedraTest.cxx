@@ -8,7 +8,9 @@
 #include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkGenericCell.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -138,6 +140,42 @@ TEST(BezierHexahedra, BadInputIsNamed)
     std::string::npos);
   EXPECT_NE(conversionError([](vtkUnstructuredGrid* g) { g->Initialize(); }).find("no cells"),
     std::string::npos);
+}
+
+/// What a hand-written file may hold that the converter must not coerce or read past.
+TEST(BezierHexahedra, MalformedArraysAreRefusedNotCoerced)
+{
+  EXPECT_EQ(conversionError(
+              [](vtkUnstructuredGrid* g)
+              {
+                vtkNew<vtkDoubleArray> degrees;
+                degrees->DeepCopy(g->GetCellData()->GetHigherOrderDegrees());
+                degrees->SetComponent(0, 0, 2.9);
+                g->GetCellData()->SetHigherOrderDegrees(degrees);
+              }),
+    "cell 0: degree 2.9 in direction 0 is not a whole number in 1..16");
+  EXPECT_EQ(conversionError(
+              [](vtkUnstructuredGrid* g)
+              {
+                vtkNew<vtkDoubleArray> weights;
+                weights->SetName("RationalWeights");
+                weights->SetNumberOfComponents(3);
+                weights->SetNumberOfTuples(g->GetNumberOfPoints());
+                weights->Fill(1.0);
+                // VTK takes no such array as the active weights: found by its name.
+                g->GetPointData()->RemoveArray("RationalWeights");
+                g->GetPointData()->AddArray(weights);
+              }),
+    "rational weights 'RationalWeights' have 3 components, expected 1");
+  vtkIdType points = 0;
+  EXPECT_EQ(conversionError([&](vtkUnstructuredGrid* g) { points = g->GetNumberOfPoints(); }), "");
+  EXPECT_EQ(conversionError([&](vtkUnstructuredGrid* g)
+              { g->GetPointData()->GetArray("pressure")->SetNumberOfTuples(points - 1); }),
+    "point array 'pressure' has " + std::to_string(points - 1) + " values for " +
+      std::to_string(points) + " points");
+  EXPECT_EQ(conversionError([](vtkUnstructuredGrid* g)
+              { g->GetPointData()->GetRationalWeights()->SetNumberOfTuples(3); }),
+    "rational weights have 3 values for " + std::to_string(points) + " points");
 }
 
 TEST(BezierHexahedra, InactiveWeightsAreUsedWithAWarning)

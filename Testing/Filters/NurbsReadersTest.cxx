@@ -321,6 +321,14 @@ TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
   const std::string blocks = slurp(kData + "/gismo_two_blocks.xml");
   expectError<R>("ids.xml", replaced(blocks, "10 11</patches>", "10 13</patches>"),
     ":72: <patches> refers to geometry id 13, which no top-level <Geometry> has");
+  // Nested deeper than any G+Smo file: refused before the parser's tree (built and destroyed
+  // recursively) could overflow the stack.
+  std::string deep = "<xml>";
+  for (int level = 0; level < 30000; ++level)
+    deep += "<a>";
+  for (int level = 0; level < 30000; ++level)
+    deep += "</a>";
+  expectError<R>("deep.xml", deep + "</xml>", "elements are nested more than 256 levels deep");
   std::vector<std::string> errors;
   read<R>(testing::TempDir() + "/no_such_file.xml", &errors);
   ASSERT_EQ(errors.size(), 1u);
@@ -344,6 +352,8 @@ TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
   expectError<R>("dimension.txt", replaced(good, "3 3 1\n", "1 3 1\n"),
     ":4: header: parametric dimension 1 in physical dimension 3 is not supported");
   expectError<R>("junk.txt", good + "JUNK 1\n", ":15: 'JUNK 1' follows the patches");
+  expectError<R>("version.txt", replaced(good, "v.2.1", "v.99999999999.1"),
+    ":1: 'nurbs geometry v.99999999999' names no GeoPDEs version");
   const std::string cubes = slurp(kData + "/geopdes_two_cubes_v07.txt");
   expectError<R>("interfaces.txt", replaced(cubes, "3 2 1 1\n", "3 2 2 1\n"),
     "the header announces 2 interfaces, the file has 1");
