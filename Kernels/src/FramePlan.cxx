@@ -272,6 +272,13 @@ void checkSettings(const Settings& s)
 FramePlan planView(const View& view, const Settings& s, double attributeRange, FrameReport& report)
 {
   checkSettings(s);
+  const double determinant = glm::determinant(view.worldToClip);
+  if (!(std::isfinite(determinant) && determinant != 0))
+  {
+    throw std::invalid_argument(
+      "the view's world-to-clip matrix is singular or not finite in double precision: the "
+      "camera's clipping range and distances must lie within 1e-100 .. 1e+100");
+  }
   FramePlan plan;
   plan.threads = threadCount(s);
   report.threads = plan.threads;

@@ -133,24 +133,23 @@ IGA_HD Interval<T> operator-(Interval<T> a, Interval<T> b)
 }
 
 /// Inverse of a Dim x Dim matrix (Dim 2 or 3); false when the determinant is zero relative to
-/// the entries' scale.
+/// the product of the rows' largest entries, a measure that scaling a row leaves alone: the
+/// pixel problem's rows are in pixels and in attribute units, and the homogeneous ones scale
+/// with the distance to the eye.
 template<class T, int Dim>
 IGA_HD bool invertMatrix(const glm::mat<Dim, Dim, T>& a, glm::mat<Dim, Dim, T>& inverse)
 {
-  T scale = T(0);
-  for (int c = 0; c < Dim; ++c)
+  T rowScales = T(1);
+  for (int r = 0; r < Dim; ++r)
   {
-    for (int r = 0; r < Dim; ++r)
+    T largest = T(0);
+    for (int c = 0; c < Dim; ++c)
     {
-      scale = maxValue(scale, absValue(a[c][r]));
+      largest = maxValue(largest, absValue(a[c][r]));
     }
+    rowScales *= largest;
   }
-  T scalePower = scale;
-  for (int i = 1; i < Dim; ++i)
-  {
-    scalePower *= scale;
-  }
-  if (!(absValue(glm::determinant(a)) > T(64) * Epsilon<T>::value * scalePower))
+  if (!(absValue(glm::determinant(a)) > T(64) * Epsilon<T>::value * rowScales))
   {
     return false;
   }

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace iga
@@ -86,13 +87,15 @@ inline Camera frameBounds(
 {
   Camera camera;
   const glm::dvec3 dir = normalizedOrZero(direction);
-  double radius = 0;
+  glm::dvec3 extent;
   for (int d = 0; d < 3; ++d)
   {
-    camera.focalPoint[d] = 0.5 * (bounds[2 * d] + bounds[2 * d + 1]);
-    radius += 0.25 * (bounds[2 * d + 1] - bounds[2 * d]) * (bounds[2 * d + 1] - bounds[2 * d]);
+    camera.focalPoint[d] = 0.5 * bounds[2 * d] + 0.5 * bounds[2 * d + 1];
+    extent[d] = bounds[2 * d + 1] - bounds[2 * d];
   }
-  radius = std::sqrt(radius);
+  // Half the diagonal, its squares taken at unit scale (1e-200 squared would be 0).
+  const double largest = std::max({ extent[0], extent[1], extent[2] });
+  double radius = largest > 0 ? 0.5 * largest * glm::length(extent / largest) : 0;
   if (radius == 0)
   {
     radius = 0.5;
@@ -123,8 +126,9 @@ inline void fitClippingRange(Camera& camera, const double* bounds)
     lo = std::min(lo, depth);
     hi = std::max(hi, depth);
   }
-  const double margin = 0.01 * (hi - lo) + 1e-9;
-  camera.clippingRange[1] = std::max(hi + margin, 1e-3);
+  // Margins and floors relative to the depths, whatever the data's units.
+  const double margin = 0.01 * (hi - lo) + 1e-9 * std::max(std::abs(lo), std::abs(hi));
+  camera.clippingRange[1] = hi + margin > 0 ? hi + margin : std::max(hi - lo, 1e-300);
   camera.clippingRange[0] = std::max(lo - margin, 1e-3 * camera.clippingRange[1]);
 }
 

@@ -68,6 +68,15 @@ struct Epsilon<double>
   static constexpr double value = 2.220446049250313e-16;
 };
 
+/// The power of two that brings a magnitude into [0.5, 1), exactly (1 for 0 and non-finite
+/// values): scaling by it changes no quotient and keeps products of such values in range.
+IGA_HD inline double unitPowerOfTwo(double magnitude)
+{
+  int exponent = 0;
+  frexp(magnitude, &exponent);
+  return magnitude > 0 && isFinite(magnitude) ? ldexp(1.0, -exponent) : 1.0;
+}
+
 /// Binomial coefficient C(n, k) for the small n used by Bernstein bases (exact in double up to
 /// n = 66).
 IGA_HD inline double binomial(int n, int k)

@@ -4,12 +4,25 @@
 
 #include "iga/BezierPatch.h"
 
+#include <cstdio>
 #include <string>
 
 namespace iga
 {
 
-/// The first control point with a non-finite value or a non-positive weight, or -1.
+/// Largest coordinate magnitude the engine frames: squares of coordinates and of the camera's
+/// distances must stay finite in double precision.
+constexpr double kMaxCoordinate = 1e100;
+
+/// Whether a control point's Euclidean coordinate (weighted value / weight) is too large.
+template<class T>
+IGA_HD bool beyondFraming(const T* point, int d)
+{
+  return absValue(point[d]) > T(kMaxCoordinate) * point[kWeightChannel];
+}
+
+/// The first control point with a non-finite value, a non-positive weight or a coordinate
+/// beyond kMaxCoordinate, or -1.
 template<class T, int Dim>
 IGA_HD int firstInvalidPoint(const PatchView<const T, Dim>& patch)
 {
@@ -24,7 +37,8 @@ IGA_HD int firstInvalidPoint(const PatchView<const T, Dim>& patch)
         return p;
       }
     }
-    if (!(point[kWeightChannel] > T(0)))
+    if (!(point[kWeightChannel] > T(0)) || beyondFraming(point, 0) || beyondFraming(point, 1) ||
+        beyondFraming(point, 2))
     {
       return p;
     }
@@ -65,8 +79,17 @@ std::string checkPatch(const PatchView<const T, Dim>& patch)
              std::to_string(c);
     }
   }
-  return "control point " + std::to_string(p) + " has non-positive weight " +
-         std::to_string(point[kWeightChannel]);
+  if (!(point[kWeightChannel] > T(0)))
+  {
+    return "control point " + std::to_string(p) + " has non-positive weight " +
+           std::to_string(point[kWeightChannel]);
+  }
+  char coordinates[128];
+  std::snprintf(coordinates, sizeof coordinates, "(%.3g, %.3g, %.3g)",
+    double(point[0] / point[kWeightChannel]), double(point[1] / point[kWeightChannel]),
+    double(point[2] / point[kWeightChannel]));
+  return "control point " + std::to_string(p) + " at " + coordinates +
+         " lies beyond 1e+100, farther than double precision can frame";
 }
 
 } // namespace iga

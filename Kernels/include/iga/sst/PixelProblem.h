@@ -9,6 +9,8 @@
 
 #include "iga/Newton.h"
 
+#include <glm/gtc/matrix_access.hpp>
+
 namespace iga
 {
 namespace sst
@@ -40,11 +42,21 @@ template<class T>
 IGA_HD void makeScreenPatch(const VolumeView<const double>& world,
   const glm::dmat4& windowFromWorld, int attributeChannel, T* out)
 {
+  // The homogeneous window coordinates scale with the distance to the eye; a power of two
+  // brings the largest |W| near 1, exactly, so that the solver's products of them neither
+  // overflow nor underflow whatever the data's scale (the quotients X/W, Y/W, Z/W are unchanged).
   const int count = world.pointCount();
+  double largestW = 0;
+  for (int p = 0; p < count; ++p)
+  {
+    largestW = maxValue(
+      largestW, absValue(glm::dot(glm::row(windowFromWorld, 3), glm::make_vec4(world.point(p)))));
+  }
+  const double normalise = unitPowerOfTwo(largestW);
   for (int p = 0; p < count; ++p)
   {
     const double* cp = world.point(p);
-    const glm::dvec4 window = windowFromWorld * glm::make_vec4(cp);
+    const glm::dvec4 window = normalise * (windowFromWorld * glm::make_vec4(cp));
     T* s = out + p * kScreenChannels;
     for (int c = 0; c < 4; ++c)
     {

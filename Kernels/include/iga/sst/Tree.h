@@ -487,6 +487,17 @@ IGA_HD inline Hit shadeHit(
   }
   rationalValue<double, 3>(
     values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, &gradient[0]);
+  // Only the normal's direction and the determinant's sign matter: powers of two bring J and
+  // the gradient near 1, exactly, so that their products neither overflow nor underflow.
+  auto largest = [](const glm::dvec3& v)
+  { return maxValue(maxValue(absValue(v.x), absValue(v.y)), absValue(v.z)); };
+  const double unitJ =
+    unitPowerOfTwo(maxValue(maxValue(largest(J[0]), largest(J[1])), largest(J[2])));
+  for (glm::dvec3& row : J)
+  {
+    row *= unitJ;
+  }
+  gradient *= unitPowerOfTwo(largest(gradient));
   // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J), the rows of cof(J)
   // cross products of J's. The cofactor form stays defined where J is singular (collapsed
   // faces); the orientation is fixed below.
