@@ -181,7 +181,11 @@ TEST_P(Scaled, GivesTheUnscaledFrame)
 
 INSTANTIATE_TEST_SUITE_P(Scales, Scaled, ::testing::Values(1e-6, 1e-3, 1e3, 1e6));
 
-TEST_P(Scaled, AttributeGivesTheUnscaledFrame)
+class AttributeScaled : public ::testing::TestWithParam<double>
+{
+};
+
+TEST_P(AttributeScaled, GivesTheUnscaledFrame)
 {
   for (const Scene& scene : scenes())
   {
@@ -189,6 +193,8 @@ TEST_P(Scaled, AttributeGivesTheUnscaledFrame)
     expectSameFrame(scene, attributeScaled(scene, GetParam()), 1.0);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Scales, AttributeScaled, ::testing::Values(1e-12, 1e-6, 1e6, 1e12));
 
 TEST(Scale, DataBeyondDoublePrecisionFramingIsRefused)
 {
