@@ -12,8 +12,7 @@
 //   device every test reports SKIPPED. GPU arithmetic (fused multiply-adds) may move a root by
 //   rounding, so positions are compared to the CPU tests' tolerance and a few silhouette pixels
 //   may differ.
-#include "iga/Datasets.h"
-#include "iga/sst/Engine.h"
+#include "EngineScenes.h"
 
 #ifdef IGAVIEW_DEVICE_LOGIC
 #include "DeviceDriver.h"
@@ -38,38 +37,9 @@ using iga::sst::FrameReport;
 using iga::sst::GBuffer;
 using iga::sst::Settings;
 
-struct Scene
-{
-  std::string name;
-  iga::VolumeSet<double> set;
-  iga::Camera camera;
-  Settings settings;
-};
-
-iga::Camera lookAt(const iga::VolumeSet<double>& set, const glm::dvec3& position,
-  const glm::dvec3& focal, double angle)
-{
-  iga::Camera camera;
-  camera.position = position;
-  camera.focalPoint = focal;
-  camera.viewUp = { 0, 0, 1 };
-  camera.viewAngle = angle;
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  iga::fitClippingRange(camera, bounds);
-  return camera;
-}
-
-Scene scene(const std::string& name, iga::VolumeSet<double> set, const glm::dvec3& position,
-  const glm::dvec3& focal, double angle, int width, int height, std::vector<double> isovalues)
-{
-  Scene s{ name, std::move(set), {}, {} };
-  s.camera = lookAt(s.set, position, focal, angle);
-  s.settings.width = width;
-  s.settings.height = height;
-  s.settings.isovalues = std::move(isovalues);
-  return s;
-}
+using igatest::lookAt;
+using igatest::Scene;
+using igatest::scene;
 
 /// The twisted tube coloured by its second attribute, drawn by several tests.
 Scene colouredTube(const std::string& name)

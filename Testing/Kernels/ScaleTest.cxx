@@ -1,8 +1,7 @@
 // The engine does not depend on units: engine scenes scaled by 1e-6 .. 1e6 (data, camera and
 // clipping planes together), or with their attribute scaled, give the unscaled image, and data
 // beyond what double precision frames gets one clear error.
-#include "iga/Datasets.h"
-#include "iga/sst/Engine.h"
+#include "EngineScenes.h"
 
 #include <gtest/gtest.h>
 
@@ -14,59 +13,29 @@ namespace
 
 using iga::sst::GBuffer;
 using iga::sst::Method;
-using iga::sst::Settings;
 
-struct Scene
-{
-  std::string name;
-  iga::VolumeSet<double> set;
-  iga::Camera camera;
-  Settings settings;
-};
-
-iga::Camera cameraAt(const iga::VolumeSet<double>& set, const glm::dvec3& position,
-  const glm::dvec3& focal, double angle)
-{
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  iga::Camera camera;
-  camera.position = position;
-  camera.focalPoint = focal;
-  camera.viewUp = { 0, 0, 1 };
-  camera.viewAngle = angle;
-  iga::fitClippingRange(camera, bounds);
-  return camera;
-}
+using igatest::Scene;
 
 std::vector<Scene> scenes()
 {
+  using igatest::scene;
   std::vector<Scene> all;
-  auto add = [&](std::string name, iga::VolumeSet<double> set, const glm::dvec3& position,
-               const glm::dvec3& focal, double angle, std::vector<double> isovalues)
-  {
-    Scene s{ std::move(name), std::move(set), {}, {} };
-    s.camera = cameraAt(s.set, position, focal, angle);
-    s.settings.width = 64;
-    s.settings.height = 48;
-    s.settings.isovalues = std::move(isovalues);
-    all.push_back(std::move(s));
-  };
-  add(
-    "sphere p3", iga::makeMarsdenSphere<double>(3), { 1.2, -3.5, 2.1 }, { 0.1, 0, 0 }, 40, { 0.0 });
-  add("twisted tube, two isovalues", iga::makeTwistedTube<double>(0.7), { 3, -3.5, 3 },
-    { 0.2, 0, 1 }, 35, { 0.3, 0.6 });
-  add("tube with a collapsed axis", iga::makeTube<double>(0.0, 0.0), { 1.9, -2.4, 3.6 },
-    { 0, 0, 1 }, 38, { 0.4 });
+  all.push_back(scene("sphere p3", iga::makeMarsdenSphere<double>(3), { 1.2, -3.5, 2.1 },
+    { 0.1, 0, 0 }, 40, 64, 48, { 0.0 }));
+  all.push_back(scene("twisted tube, two isovalues", iga::makeTwistedTube<double>(0.7),
+    { 3, -3.5, 3 }, { 0.2, 0, 1 }, 35, 64, 48, { 0.3, 0.6 }));
+  all.push_back(scene("tube with a collapsed axis", iga::makeTube<double>(0.0, 0.0),
+    { 1.9, -2.4, 3.6 }, { 0, 0, 1 }, 38, 64, 48, { 0.4 }));
   all.back().settings.surfaceAttribute = 1;
-  add("teardrop, all hits", iga::makeTeardrop<double>(1.2), { -0.2, -1.6, 0.9 }, { -0.5, 0, 0 }, 40,
-    { 0.0 });
+  all.push_back(scene("teardrop, all hits", iga::makeTeardrop<double>(1.2), { -0.2, -1.6, 0.9 },
+    { -0.5, 0, 0 }, 40, 64, 48, { 0.0 }));
   all.back().settings.firstHitOnly = false;
-  add("sphere, clipping planes", iga::makeMarsdenSphere<double>(3), { 0.6, -4, 1.1 }, { 0, 0, 0 },
-    35, { 0.0 });
+  all.push_back(scene("sphere, clipping planes", iga::makeMarsdenSphere<double>(3),
+    { 0.6, -4, 1.1 }, { 0, 0, 0 }, 35, 64, 48, { 0.0 }));
   all.back().settings.clipPlanes = { { 1, 0.2, 0, -0.1 }, { 0, 0, -2, 1 } };
   // A far camera with a narrow view: the distance is 1e5 times the data's size.
-  add("sphere p2 from afar", iga::makeMarsdenSphere<double>(2), { 1.2e5, -3.5e5, 2.1e5 },
-    { 0, 0, 0 }, 0.0006, { 0.0 });
+  all.push_back(scene("sphere p2 from afar", iga::makeMarsdenSphere<double>(2),
+    { 1.2e5, -3.5e5, 2.1e5 }, { 0, 0, 0 }, 0.0006, 64, 48, { 0.0 }));
   return all;
 }
 
@@ -196,38 +165,28 @@ TEST_P(AttributeScaled, GivesTheUnscaledFrame)
 
 INSTANTIATE_TEST_SUITE_P(Scales, AttributeScaled, ::testing::Values(1e-12, 1e-6, 1e6, 1e12));
 
+/// Expects the scene's frame to be refused with `message`.
+void expectRefused(const Scene& scene, const std::string& message)
+{
+  GBuffer gbuffer;
+  try
+  {
+    iga::sst::render(
+      scene.set.patches, scene.camera, scene.settings, Method::SharedSubdivisionTree, gbuffer);
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+  }
+}
+
 TEST(Scale, DataBeyondDoublePrecisionFramingIsRefused)
 {
   const Scene scene = scenes().front();
-  GBuffer gbuffer;
-  const Scene huge = scaled(scene, 1e120);
-  try
-  {
-    iga::sst::render(
-      huge.set.patches, huge.camera, huge.settings, Method::SharedSubdivisionTree, gbuffer);
-    ADD_FAILURE() << "coordinates of 1e120 were accepted";
-  }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(
-      std::string(e.what()).find("lies beyond 1e+100, farther than double precision can frame"),
-      std::string::npos)
-      << e.what();
-  }
-  const Scene tiny = scaled(scene, 1e-200);
-  try
-  {
-    iga::sst::render(
-      tiny.set.patches, tiny.camera, tiny.settings, Method::SharedSubdivisionTree, gbuffer);
-    ADD_FAILURE() << "a camera at 1e-200 was accepted";
-  }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(
-      std::string(e.what()).find("the view's world-to-clip matrix is singular or not finite"),
-      std::string::npos)
-      << e.what();
-  }
+  expectRefused(
+    scaled(scene, 1e120), "lies beyond 1e+100, farther than double precision can frame");
+  expectRefused(scaled(scene, 1e-200), "the view's world-to-clip matrix is singular or not finite");
 }
 
 } // namespace
