@@ -42,6 +42,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <set>
 
@@ -747,6 +748,21 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
       vtkOutputWindowDisplayText(
         (std::string(this->GetClassName()) + ": " + report.notice + "\n").c_str());
     }
+  }
+  if (report.constantAttributeRoots > 0)
+  {
+    char value[64] = " at an isovalue";
+    if (this->Isovalues.size() == 1)
+    {
+      std::snprintf(value, sizeof value, " (= %g)", this->Isovalues[0]);
+    }
+    this->ReportOnce("constant",
+      "attribute '" + this->SurfaceArrayName + "' is constant" + value + " on " +
+        std::to_string(report.constantAttributeRoots) + " of " +
+        std::to_string(in.Set.patches.size()) +
+        " patches: a constant field has no isosurface there, so they are not drawn; not "
+        "reported again until the settings or the input change",
+      false);
   }
   if (report.unresolvedPixels == 0)
   {

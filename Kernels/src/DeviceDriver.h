@@ -464,6 +464,8 @@ struct Driver
                    : root.info.status == ProjectionStatus::InFront ? 1
                                                                    : 2;
       });
+    report.constantAttributeRoots += exec.sum(
+      rootCount, [=] IGA_HD(size_t r) { return size_t(roots[r].info.constantAttribute ? 1 : 0); });
     uint32_t* straddling = sized(this->Straddling, rootCount);
     const size_t straddlingCount = exec.select(
       rootCount, [=] IGA_HD(size_t r) { return state[r] == 2; }, [] IGA_HD(size_t r) { return r; },

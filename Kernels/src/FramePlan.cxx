@@ -68,6 +68,7 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
   {
     const VolumeView<const double> view(values, degree, kScreenChannels);
     node.info = analyzeNodeBounds(view, settings.isovalues[node.iso], plan.frame.clip);
+    report.constantAttributeRoots += node.level == 0 && node.info.constantAttribute ? 1 : 0;
     if (!worthKeeping(node.info, plan.frame))
     {
       return false;
@@ -342,13 +343,13 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
   // count.
   const size_t parts = partsFor(patches.size(), plan.threads);
   std::vector<FramePlan> found(parts);
-  std::vector<size_t> dropped(parts, 0);
+  std::vector<FrameReport> partReports(parts);
   parallelParts(patches.size(), parts, plan.threads,
     [&](size_t k, size_t begin, size_t end)
     {
       FramePlan& part = found[k];
       part.frame = plan.frame;
-      FrameReport partReport;
+      FrameReport& partReport = partReports[k];
       std::vector<double> screen;
       for (size_t p = begin; p < end; ++p)
       {
@@ -362,7 +363,6 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
           addRoot(part, world.degree, rootNode(int(p), iso), screen.data(), s, partReport);
         }
       }
-      dropped[k] = partReport.droppedAtEyePlane;
     });
   for (size_t k = 0; k < parts; ++k)
   {
@@ -374,7 +374,8 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
       node.coeff += offset;
       plan.initialNodes.push_back(node);
     }
-    report.droppedAtEyePlane += dropped[k];
+    report.droppedAtEyePlane += partReports[k].droppedAtEyePlane;
+    report.constantAttributeRoots += partReports[k].constantAttributeRoots;
   }
   return plan;
 }

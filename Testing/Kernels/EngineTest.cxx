@@ -661,4 +661,42 @@ TEST(Engine, BadInputIsRejectedWithTheProblemNamed)
   EXPECT_NE(message(set, badSize).find("image size"), std::string::npos);
 }
 
+/// A constant attribute equal to the isovalue has no isosurface (its level set is a region):
+/// its patches are recognised and counted, not subdivided to the depth cap, on one thread and
+/// on two; a constant away from the isovalue is simply empty.
+TEST(Engine, ConstantAttributeAtTheIsovalueIsCountedNotSubdivided)
+{
+  auto set = iga::makeTwistedTube<double>(0.5);
+  for (auto& patch : set.patches)
+  {
+    auto view = patch.view();
+    for (int p = 0; p < view.pointCount(); ++p)
+      view.point(p)[iga::kFirstAttributeChannel] = 0.3 * view.point(p)[iga::kWeightChannel];
+  }
+  const auto camera = cameraFor(set, { 3, -3.5, 3 }, { 0.2, 0, 1 }, 35);
+  Settings settings;
+  settings.width = settings.height = 64;
+  settings.isovalues = { 0.3 };
+  for (int threads : { 1, 2 })
+  {
+    settings.threads = threads;
+    iga::sst::FrameReport report;
+    const GBuffer gbuffer =
+      renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+    EXPECT_EQ(report.constantAttributeRoots, set.patches.size());
+    EXPECT_EQ(report.unresolvedPixels, 0u);
+    EXPECT_EQ(report.subdividedPatches, 0u);
+    EXPECT_EQ(gbuffer.coveredPixels(), 0u);
+  }
+  // Two isovalues, one at the constant: counted once per patch; none at it: nothing counted.
+  settings.isovalues = { 0.1, 0.3 };
+  iga::sst::FrameReport report;
+  renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  EXPECT_EQ(report.constantAttributeRoots, set.patches.size());
+  settings.isovalues = { 0.31 };
+  renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  EXPECT_EQ(report.constantAttributeRoots, 0u);
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+}
+
 } // namespace

@@ -221,6 +221,34 @@ TEST(IsosurfaceMapperSettings, ActorMatrixMovesTheSurface)
   }
 }
 
+/// A temperature that is 0.5 everywhere, drawn at 0.5: said once by name and value, not
+/// subdivided to the depth cap (which took 15 s and 2.5 GB).
+TEST(IsosurfaceMapperSettings, ConstantAttributeAtTheIsovalueIsSaidOnce)
+{
+  TubeScene scene;
+  auto set = iga::makeTwistedTube<double>(0.5);
+  const auto& names = set.attributeNames;
+  const int channel = iga::kFirstAttributeChannel +
+                      int(std::find(names.begin(), names.end(), "temperature") - names.begin());
+  for (auto& patch : set.patches)
+  {
+    auto view = patch.view();
+    for (int p = 0; p < view.pointCount(); ++p)
+      view.point(p)[channel] = 0.5 * view.point(p)[iga::kWeightChannel];
+  }
+  scene.mapper->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(set));
+  scene.mapper->SetIsovalue(0, 0.5);
+  scene.render();
+  EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
+  EXPECT_EQ(scene.coveredPixels(), 0u);
+  EXPECT_EQ(scene.recorder->count("attribute 'temperature' is constant (= 0.5) on 8 of 8 patches: "
+                                  "a constant field has no isosurface there"),
+    1);
+  scene.turn(4);
+  scene.render();
+  EXPECT_EQ(scene.recorder->count("is constant"), 1) << "said on every frame";
+}
+
 TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns)
 {
   TubeScene scene;

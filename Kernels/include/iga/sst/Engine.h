@@ -99,6 +99,9 @@ struct FrameReport
   size_t unresolvedAtDepthCap = 0;
   size_t unresolvedAtBudget = 0;
   size_t droppedAtEyePlane = 0; ///< sub-patches at the depth cap still straddling the eye plane
+  /// (patch, isovalue) pairs whose attribute is constant at the isovalue: a region, not a
+  /// surface, so not drawn (NodeInfo::constantAttribute).
+  size_t constantAttributeRoots = 0;
   size_t newtonSolves = 0;
   size_t subdividedPatches = 0;
   size_t maxTuples = 0;

@@ -123,17 +123,20 @@ IGA_HD bool clippedAway(const VolumeView<const T>& node, const ClipPlanes<T>& cl
 template<class T>
 struct NodeInfo
 {
-  Box3<T> box;               ///< window x, y (pixels) and NDC depth, valid when status is InFront
-  ProjectionStatus status;   ///< where the node lies relative to the eye plane
-  bool mayContainSurface;    ///< the attribute's Bernstein range contains the isovalue
-  bool visibleDepth;         ///< not entirely in front of the near or beyond the far plane,
-                             ///< nor cut away by a clipping plane
-  bool certified;            ///< at most one root for every pixel (certifyUniqueRoot)
-  bool canExclude;           ///< the Krawczyk data below is valid
-  glm::mat<3, 3, T> inverse; ///< mid([J])^-1 of the pixel problem's Jacobian hull
-  glm::mat<3, 3, T> spread;  ///< |mid([J])^-1| rad([J])
-  bool hasCentre;            ///< the centre data below is valid
-  T centre[3];               ///< F at the parametric centre: (X/W, Y/W, A/V), no pixel offset
+  Box3<T> box;             ///< window x, y (pixels) and NDC depth, valid when status is InFront
+  ProjectionStatus status; ///< where the node lies relative to the eye plane
+  bool mayContainSurface;  ///< the attribute's Bernstein range contains the isovalue
+  /// The attribute is constant (within rounding) and equal to the isovalue: its level set is a
+  /// region, no surface, which no subdivision would settle; mayContainSurface is false.
+  bool constantAttribute;
+  bool visibleDepth;               ///< not entirely in front of the near or beyond the far plane,
+                                   ///< nor cut away by a clipping plane
+  bool certified;                  ///< at most one root for every pixel (certifyUniqueRoot)
+  bool canExclude;                 ///< the Krawczyk data below is valid
+  glm::mat<3, 3, T> inverse;       ///< mid([J])^-1 of the pixel problem's Jacobian hull
+  glm::mat<3, 3, T> spread;        ///< |mid([J])^-1| rad([J])
+  bool hasCentre;                  ///< the centre data below is valid
+  T centre[3];                     ///< F at the parametric centre: (X/W, Y/W, A/V), no pixel offset
   glm::mat<3, 3, T> centreInverse; ///< J(centre)^-1
   T centreWeights[2];              ///< W and V at the centre
 };
@@ -147,8 +150,12 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(
   NodeInfo<T> info;
   info.status = projectedBounds(node, glm::mat<4, 4, T>(T(1)), info.box);
   T lo = T(0), hi = T(0);
-  info.mayContainSurface = !rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi) ||
-                           (lo <= isovalue && isovalue <= hi);
+  const bool known = rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi);
+  const bool containsIsovalue = lo <= isovalue && isovalue <= hi;
+  info.constantAttribute =
+    known && containsIsovalue &&
+    hi - lo <= T(16) * Epsilon<T>::value * maxValue(absValue(lo), absValue(hi));
+  info.mayContainSurface = !known || (containsIsovalue && !info.constantAttribute);
   // Z + W < 0 in front of the near plane, Z - W > 0 beyond the far one; both are linear in the
   // homogeneous coefficients, so all coefficients on one side put the whole node there (parts
   // behind the eye are invisible anyway). Valid whatever the signs of W.
