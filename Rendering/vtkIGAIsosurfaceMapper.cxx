@@ -251,6 +251,43 @@ void vtkIGAIsosurfaceMapper::ReportOnce(
   }
 }
 
+void vtkIGAIsosurfaceMapper::ReportEmptyFrame(const iga::sst::FrameReport& report)
+{
+  Internals& in = *this->Internal;
+  if (in.GBuffer.coveredPixels() > 0 || report.constantAttributeRoots > 0)
+  {
+    return;
+  }
+  const double lo = report.attributeRange[0], hi = report.attributeRange[1];
+  std::string isovalues;
+  bool inRange = false;
+  for (double iso : this->Isovalues)
+  {
+    char text[32];
+    std::snprintf(text, sizeof text, "%s%g", isovalues.empty() ? "" : ", ", iso);
+    isovalues += text;
+    inRange = inRange || (iso >= lo && iso <= hi);
+  }
+  char range[96];
+  std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+  const std::string surface = "'" + this->SurfaceArrayName + "' = " + isovalues;
+  if (!inRange)
+  {
+    this->ReportOnce("empty range",
+      "nothing to draw: the isosurface " + surface + " lies outside the attribute's range " +
+        range + "; not reported again until the settings or the input change",
+      false);
+  }
+  else
+  {
+    this->ReportOnce("empty view",
+      "nothing drawn: the isosurface " + surface +
+        " lies outside the view, or the clipping planes cut it away; not reported again until "
+        "the settings or the input change",
+      false);
+  }
+}
+
 int vtkIGAIsosurfaceMapper::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
@@ -764,6 +801,7 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
         "reported again until the settings or the input change",
       false);
   }
+  this->ReportEmptyFrame(report);
   if (report.unresolvedPixels == 0)
   {
     return;

@@ -233,6 +233,9 @@ private:
   bool UpdateNurbs(vtkMatrix4x4* matrix);
   /// The report's notice and caps, each said once.
   void ReportEngine(const iga::sst::FrameReport& report);
+  /// Says once why a frame drew nothing: isovalues outside the attribute's range, or a surface
+  /// outside the view or clipped away.
+  void ReportEmptyFrame(const iga::sst::FrameReport& report);
   /// Colour and window depth of every pixel from the G-buffer, with VTK's lights.
   void ShadeFrame(vtkActor* actor, const Frame& frame);
   /// Colours, or a hardware selector's ids, drawn as a full-screen pass with gl_FragDepth.

@@ -101,7 +101,7 @@ struct PatchSummary
   double hi = -std::numeric_limits<double>::infinity();
   unsigned invalid = 0; ///< patches with a non-finite value or a non-positive weight
 
-  double range() const { return hi > lo ? hi - lo : 1.0; }
+  AttributeRange range() const { return { lo, hi }; }
 };
 
 struct CombineSummaries
@@ -222,7 +222,7 @@ struct Driver
     {
       throwFirstProblem(patches, settings);
     }
-    this->AttributeRange = summary.range();
+    this->Attribute = summary.range();
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
     this->DataVersion = settings.dataVersion;
@@ -364,7 +364,7 @@ struct Driver
           first, world + shapes[e].world, scratch + 2 * shapes[e].world);
       });
     // Elements of checked nets are valid: extraction takes convex combinations.
-    this->AttributeRange = this->summarizePatches(settings.surfaceAttribute).range();
+    this->Attribute = this->summarizePatches(settings.surfaceAttribute).range();
     this->SurfaceAttribute = settings.surfaceAttribute;
     this->ColorAttribute = settings.colorAttribute;
     this->DataVersion = settings.dataVersion;
@@ -413,7 +413,7 @@ struct Driver
   /// are split on the host (addRoot) and their parts sent up.
   void prepareFrame(const View& view, const Settings& settings, FrameReport& report)
   {
-    FramePlan plan = planView(view, settings, this->AttributeRange, report);
+    FramePlan plan = planView(view, settings, this->Attribute, report);
     report.threads = 0;
     this->Isovalues = settings.isovalues;
     report.uploadedBytes += settings.isovalues.size() * sizeof(double);
@@ -634,7 +634,7 @@ struct Driver
   Array<double> Matrices, Nets, Scratch;
   Array<int> FirstBasis;
   int SurfaceAttribute = -1, ColorAttribute = -1;
-  double AttributeRange = 1;
+  AttributeRange Attribute;
   size_t ScreenValues = 0;
   Array<PatchShape> Shapes;
   Array<double> World; ///< the input patches' coefficients

@@ -145,7 +145,7 @@ void checkAttributes(int channels, const Settings& s, const std::string& name)
   }
 }
 
-double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& s)
+AttributeRange checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& s)
 {
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
   // Per part: the attribute's range, or the first bad patch and its problem. Parts are joined in
@@ -182,17 +182,17 @@ double checkPatches(const std::vector<BezierVolume<double>>& patches, const Sett
         part.hi = std::max(part.hi, hi);
       }
     });
-  double attributeLo = kInfinity, attributeHi = -kInfinity;
+  AttributeRange range;
   for (const Part& part : found)
   {
     if (!part.problem.empty())
     {
       throw std::invalid_argument(part.problem);
     }
-    attributeLo = std::min(attributeLo, part.lo);
-    attributeHi = std::max(attributeHi, part.hi);
+    range.lo = std::min(range.lo, part.lo);
+    range.hi = std::max(range.hi, part.hi);
   }
-  return attributeHi > attributeLo ? attributeHi - attributeLo : 1.0;
+  return range;
 }
 
 void checkIndexable(size_t count, const char* what)
@@ -270,7 +270,8 @@ void checkSettings(const Settings& s)
   }
 }
 
-FramePlan planView(const View& view, const Settings& s, double attributeRange, FrameReport& report)
+FramePlan planView(
+  const View& view, const Settings& s, const AttributeRange& attribute, FrameReport& report)
 {
   checkSettings(s);
   const double determinant = glm::determinant(view.worldToClip);
@@ -284,7 +285,9 @@ FramePlan planView(const View& view, const Settings& s, double attributeRange, F
   plan.threads = threadCount(s);
   report.threads = plan.threads;
   plan.frame.tolerance[0] = plan.frame.tolerance[1] = s.pixelTolerance;
-  plan.frame.tolerance[2] = s.isoTolerance * attributeRange;
+  plan.frame.tolerance[2] = s.isoTolerance * attribute.width();
+  report.attributeRange[0] = attribute.lo;
+  report.attributeRange[1] = attribute.hi;
 
   // Window coordinates: x, y in pixels (pixel i covers [i, i+1]), z the NDC depth.
   const double W = s.width, H = s.height;
@@ -322,10 +325,10 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
   const Settings& s, FrameReport& report)
 {
   const auto start = std::chrono::steady_clock::now();
-  const double attributeRange = checkPatches(patches, s);
+  const AttributeRange range = checkPatches(patches, s);
   report.msInput =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  FramePlan plan = planView(view, s, attributeRange, report);
+  FramePlan plan = planView(view, s, range, report);
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
   const int colour = s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1;
   // Shading patches go where their sizes put them.

@@ -6,6 +6,7 @@
 #include "iga/sst/Engine.h"
 #include "iga/sst/Tree.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,10 +36,20 @@ int threadCount(const Settings& settings);
 /// attributes; throws std::invalid_argument starting with `name` otherwise.
 void checkAttributes(int channels, const Settings& settings, const std::string& name);
 
+/// The surface attribute's range over all patches (their Bernstein bounds).
+struct AttributeRange
+{
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  /// What the Newton tolerance is relative to (1 for a constant attribute).
+  double width() const { return hi > lo ? hi - lo : 1.0; }
+};
+
 /// Checks every patch against the settings (degrees, values, weights, attribute indices) and
 /// returns the surface attribute's range over all patches. Throws std::invalid_argument naming
 /// the first bad patch and its problem. Runs on threadCount(settings) threads.
-double checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& settings);
+AttributeRange checkPatches(
+  const std::vector<BezierVolume<double>>& patches, const Settings& settings);
 
 /// Whether patches of these degrees and channels suit the settings: what checkPatches tests
 /// besides control point values, for drivers that test those on the device.
@@ -82,7 +93,7 @@ void checkSettings(const Settings& settings);
 /// The plan's view part (frame constants, window matrix, clipping planes), without roots.
 /// Throws std::invalid_argument for bad settings.
 FramePlan planView(
-  const View& view, const Settings& settings, double attributeRange, FrameReport& report);
+  const View& view, const Settings& settings, const AttributeRange& attribute, FrameReport& report);
 
 /// Appends a root (`coeffs`: its screen patch) to the plan's initial nodes if it may show
 /// surface. A root straddling the eye plane has no finite window box: it is split breadth first

@@ -14,6 +14,7 @@
 #include "vtkLookupTable.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
+#include "vtkPlane.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -247,6 +248,37 @@ TEST(IsosurfaceMapperSettings, ConstantAttributeAtTheIsovalueIsSaidOnce)
   scene.turn(4);
   scene.render();
   EXPECT_EQ(scene.recorder->count("is constant"), 1) << "said on every frame";
+}
+
+/// A frame that draws nothing says why, once: isovalues outside the attribute's range (with
+/// the range), or a surface that the clipping planes cut away.
+TEST(IsosurfaceMapperSettings, AnEmptyFrameSaysWhy)
+{
+  TubeScene scene;
+  scene.mapper->SetIsovalue(0, 50.0);
+  scene.render();
+  EXPECT_EQ(scene.coveredPixels(), 0u);
+  EXPECT_EQ(scene.recorder->count("nothing to draw: the isosurface 'temperature' = 50 lies "
+                                  "outside the attribute's range ["),
+    1);
+  scene.turn(4);
+  scene.render();
+  EXPECT_EQ(scene.recorder->count("nothing to draw"), 1) << "said on every frame";
+
+  scene.mapper->SetIsovalue(0, 0.0);
+  vtkNew<vtkPlane> above; // keeps z >= 100, above the tube
+  above->SetOrigin(0, 0, 100);
+  above->SetNormal(0, 0, 1);
+  scene.mapper->AddClippingPlane(above);
+  scene.render();
+  EXPECT_EQ(scene.coveredPixels(), 0u);
+  EXPECT_EQ(scene.recorder->count("nothing drawn: the isosurface 'temperature' = 0 lies outside "
+                                  "the view, or the clipping planes cut it away"),
+    1);
+  scene.mapper->RemoveAllClippingPlanes();
+  scene.render();
+  EXPECT_GT(scene.coveredPixels(), 1000u);
+  EXPECT_EQ(scene.recorder->count("nothing"), 2);
 }
 
 TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns)

@@ -102,6 +102,9 @@ struct FrameReport
   /// (patch, isovalue) pairs whose attribute is constant at the isovalue: a region, not a
   /// surface, so not drawn (NodeInfo::constantAttribute).
   size_t constantAttributeRoots = 0;
+  /// The surface attribute's range over the patches (their Bernstein bounds): where an
+  /// isovalue must lie for anything to be drawn.
+  double attributeRange[2] = { 0, 0 };
   size_t newtonSolves = 0;
   size_t subdividedPatches = 0;
   size_t maxTuples = 0;
