@@ -15,6 +15,8 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -27,6 +29,41 @@ std::string formatNumber(double value)
   std::ostringstream text;
   text << value;
   return text.str();
+}
+
+/// What is wrong with a point that iga::firstInvalidPoint refused, in the file's terms: its id,
+/// and the array or coordinate by name.
+std::string pointProblem(vtkUnstructuredGrid* grid, vtkIdType id, vtkDataArray* weights,
+  const std::vector<vtkDataArray*>& attributes)
+{
+  const std::string point = "point " + std::to_string(id);
+  const std::string weightName = std::string("rational weight ('") +
+                                 (weights && weights->GetName() ? weights->GetName() : "") + "')";
+  double x[3];
+  grid->GetPoint(id, x);
+  const double w = weights ? weights->GetComponent(id, 0) : 1.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    if (!std::isfinite(x[d]))
+    {
+      return point + ": its " + "xyz"[d] + " coordinate is " + formatNumber(x[d]);
+    }
+  }
+  if (!(w > 0) || !std::isfinite(w))
+  {
+    return point + ": its " + weightName + " is " + formatNumber(w) +
+           ", weights must be positive and finite";
+  }
+  for (vtkDataArray* array : attributes)
+  {
+    const double value = array->GetComponent(id, 0);
+    if (!std::isfinite(value))
+    {
+      return point + ": its value of '" + array->GetName() + "' is " + formatNumber(value);
+    }
+  }
+  return point + " at (" + formatNumber(x[0]) + ", " + formatNumber(x[1]) + ", " +
+         formatNumber(x[2]) + ") lies beyond 1e+100, farther than double precision can frame";
 }
 
 /// Calls fn(i, j, k, linear Kernels index, VTK point index within the cell) for every control
@@ -246,10 +283,11 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
       return false;
     }
     bool badId = false;
+    std::vector<vtkIdType> ids(static_cast<size_t>(view.pointCount()));
     forEachControlPoint(degree,
       [&](int linear, int vtkIndex)
       {
-        const vtkIdType id = pts[vtkIndex];
+        const vtkIdType id = ids[linear] = pts[vtkIndex];
         if (id < 0 || id >= pointCount)
         {
           badId = true;
@@ -274,10 +312,10 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
       error = where + "refers to a point outside 0.." + std::to_string(pointCount - 1);
       return false;
     }
-    const std::string problem = iga::checkPatch<double, 3>(view);
-    if (!problem.empty())
+    const int bad = iga::firstInvalidPoint<double, 3>(view);
+    if (bad >= 0)
     {
-      error = where + problem;
+      error = where + pointProblem(grid, ids[bad], weights, attributes);
       return false;
     }
     set.patches.push_back(std::move(patch));

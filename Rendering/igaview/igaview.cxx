@@ -410,7 +410,16 @@ iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& s
     camera.position = glm::make_vec3(options.position);
   if (options.hasViewUp)
     camera.viewUp = glm::make_vec3(options.viewUp);
-  const glm::dvec3 side = glm::cross(iga::viewDirection(camera), camera.viewUp);
+  if (camera.position == camera.focalPoint)
+  {
+    fail("the camera position is the focal point: there is no view direction");
+  }
+  if (camera.viewUp == glm::dvec3(0.0))
+  {
+    fail("--view-up is the zero vector");
+  }
+  const glm::dvec3 side =
+    glm::cross(iga::viewDirection(camera), iga::normalizedOrZero(camera.viewUp));
   if (glm::dot(side, side) < 1e-20)
   {
     fail("the view-up direction is parallel to the view direction");
