@@ -276,6 +276,30 @@ vtkIdType vtkIGANurbsData::GetNumberOfBezierCells() const
   return count;
 }
 
+double vtkIGANurbsData::GetBezierCellBytes() const
+{
+  const State& s = *this->Contents;
+  // Per control point: the element's homogeneous values, the grid's coordinates, weight and
+  // attributes (as many doubles again) and its connectivity entry.
+  const double perPoint = 16.0 * s.Set.channels() + 8.0;
+  double bytes = 0;
+  auto add = [&](const auto& patches, const auto& extractions)
+  {
+    for (size_t p = 0; p < patches.size(); ++p)
+    {
+      double points = 1;
+      for (int degree : patches[p].degree)
+      {
+        points *= degree + 1;
+      }
+      bytes += double(extractions[p]->elementCount()) * points * perPoint;
+    }
+  };
+  add(s.Set.volumes, s.VolumeExtractions);
+  add(s.Set.surfaces, s.SurfaceExtractions);
+  return bytes;
+}
+
 vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int step)
 {
   const std::shared_ptr<const State> contents = this->Contents;

@@ -71,6 +71,9 @@ public:
     int volume) const;
   /// Number of Bézier cells ToUnstructuredGrid() produces.
   vtkIdType GetNumberOfBezierCells() const;
+  /// Bytes ToUnstructuredGrid() holds at its peak for one step: the extracted elements and the
+  /// grid made of them.
+  double GetBezierCellBytes() const;
 
   /// The Bézier cells of `step` with the NURBS description (see the class description). Cached:
   /// asking for the same step again returns the same grid until the contents change.

@@ -5,10 +5,12 @@
 #include "vtkInformationVector.h"
 #include "vtksys/SystemTools.hxx"
 
+#include <cstdio>
 #include <fstream>
 #include <new>
 #include <sstream>
 #include <stdexcept>
+#include <unistd.h>
 
 vtkIGANurbsReader::vtkIGANurbsReader()
 {
@@ -24,6 +26,7 @@ void vtkIGANurbsReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "MemoryLimitMB: " << this->MemoryLimitMB << "\n";
   os << indent << "Patches: " << this->Data->GetNumberOfPatches() << "\n";
 }
 
@@ -37,8 +40,9 @@ int vtkIGANurbsReader::RequestInformation(
 {
   // Errors wait for RequestData, so that a bad file gives one message, not one per pass.
   const std::string file = this->FileName ? this->FileName : "";
-  const std::string stamp =
-    file + "\n" + std::to_string(vtksys::SystemTools::ModifiedTime(file.c_str()));
+  const std::string stamp = file + "\n" +
+                            std::to_string(vtksys::SystemTools::ModifiedTime(file.c_str())) + "\n" +
+                            std::to_string(this->MemoryLimitMB);
   if (stamp != this->ParsedFile)
   {
     this->ParsedFile = stamp;
@@ -54,7 +58,11 @@ int vtkIGANurbsReader::RequestInformation(
     }
     else
     {
-      const std::string problem = this->ReadGuarded(in);
+      std::string problem = this->ReadGuarded(in);
+      if (problem.empty())
+      {
+        problem = this->MemoryProblem();
+      }
       this->Error.clear();
       if (!problem.empty())
       {
@@ -87,6 +95,24 @@ std::string vtkIGANurbsReader::ReadGuarded(std::istream& in)
   {
     return std::string("cannot be read: ") + e.what();
   }
+}
+
+std::string vtkIGANurbsReader::MemoryProblem() const
+{
+  const double limit = this->MemoryLimitMB > 0
+                         ? this->MemoryLimitMB * 1048576.0
+                         : 0.5 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  const double needed = this->Data->GetBezierCellBytes();
+  if (needed <= limit)
+  {
+    return std::string();
+  }
+  char text[256];
+  std::snprintf(text, sizeof text,
+    "its %lld Bézier cells would need %.3g GB to build, more than the reader's memory limit of "
+    "%.3g GB (MemoryLimitMB)",
+    static_cast<long long>(this->Data->GetNumberOfBezierCells()), needed / 1e9, limit / 1e9);
+  return text;
 }
 
 int vtkIGANurbsReader::RequestData(

@@ -9,8 +9,9 @@
  * advertise them (TIME_STEPS) and the requested one is put out.
  *
  * Problems with the file are reported once, by vtkErrorMacro, as "FILE:LINE: problem" (LINE is
- * left out where the file as a whole is at fault), and RequestData then returns 0. Subclasses
- * implement ReadNurbs().
+ * left out where the file as a whole is at fault), and RequestData then returns 0; so is a
+ * file whose Bézier cells would need more memory than MemoryLimitMB. Subclasses implement
+ * ReadNurbs().
  */
 #ifndef vtkIGANurbsReader_h
 #define vtkIGANurbsReader_h
@@ -37,6 +38,14 @@ public:
   vtkGetStringMacro(FileName);
   ///@}
 
+  ///@{
+  /// Most memory, in MiB, that the Bézier cells of one time step may take while they are built
+  /// (a few kilobytes of high-degree NURBS can expand to gigabytes of cells); a file needing
+  /// more is refused with the size it would need. 0, the default: half the machine's memory.
+  vtkSetClampMacro(MemoryLimitMB, double, 0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryLimitMB, double);
+  ///@}
+
   /// The patches read (empty until the reader has been updated or when the file is bad).
   VTK_WRAPEXCLUDE vtkIGANurbsData* GetNurbsData();
 
@@ -52,6 +61,7 @@ protected:
   virtual std::string ReadNurbs(const std::string& text, vtkIGANurbsData* data) = 0;
 
   char* FileName = nullptr;
+  double MemoryLimitMB = 0;
 
 private:
   vtkIGANurbsReader(const vtkIGANurbsReader&) = delete;
@@ -59,6 +69,8 @@ private:
 
   /// ReadNurbs on the stream's contents, with what it throws turned into its problem.
   std::string ReadGuarded(std::istream& in);
+  /// "" when the Bézier cells of a step fit MemoryLimitMB, else why not.
+  std::string MemoryProblem() const;
 
   vtkNew<vtkIGANurbsData> Data;
   std::string Error;      // of the last parse, empty when it succeeded

@@ -38,8 +38,8 @@ std::string slurp(const std::string& path)
 
 /// Runs a reader on a file; collects the reader's error messages.
 template<class Reader>
-vtkSmartPointer<vtkUnstructuredGrid> read(
-  const std::string& file, std::vector<std::string>* errors = nullptr, Reader** keep = nullptr)
+vtkSmartPointer<vtkUnstructuredGrid> read(const std::string& file,
+  std::vector<std::string>* errors = nullptr, Reader** keep = nullptr, double memoryLimitMB = 0)
 {
   static std::vector<std::string> ignored;
   auto reader = vtkSmartPointer<Reader>::New();
@@ -50,6 +50,7 @@ vtkSmartPointer<vtkUnstructuredGrid> read(
     { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->SetFileName(file.c_str());
+  reader->SetMemoryLimitMB(memoryLimitMB);
   reader->Update();
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   grid->ShallowCopy(reader->GetOutput());
@@ -333,6 +334,53 @@ TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
   read<R>(testing::TempDir() + "/no_such_file.xml", &errors);
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_NE(errors[0].find("no_such_file.xml: cannot open the file"), std::string::npos);
+}
+
+/// A GeoPDEs block of degree 16 in each direction, n control points each (open uniform knots).
+std::string degree16Block(int n)
+{
+  std::ostringstream text;
+  text << "# nurbs geometry v.2.1\n3 3 1\nPATCH 1\n16 16 16\n" << n << " " << n << " " << n << "\n";
+  for (int d = 0; d < 3; ++d)
+  {
+    for (int k = 0; k <= 16; ++k)
+      text << "0 ";
+    for (int k = 1; k < n - 16; ++k)
+      text << double(k) / (n - 16) << " ";
+    for (int k = 0; k <= 16; ++k)
+      text << "1 ";
+    text << "\n";
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    for (int p = 0; p < n * n * n; ++p)
+      text << (d == 0 ? p % n : d == 1 ? (p / n) % n : p / (n * n)) << " ";
+    text << "\n";
+  }
+  for (int p = 0; p < n * n * n; ++p)
+    text << "1 ";
+  return text.str() + "\n";
+}
+
+/// A few hundred kilobytes of degree-16 NURBS expand to tens of megabytes of Bézier cells: a
+/// file whose cells exceed MemoryLimitMB is refused with the size, before any is built.
+TEST(NurbsReaders, CellsBeyondTheMemoryLimitAreRefused)
+{
+  const std::string file = testing::TempDir() + "/degree16.txt";
+  std::ofstream(file) << degree16Block(20);
+  std::vector<std::string> errors;
+  const auto refused = read<vtkIGAGeoPDEsReader>(file, &errors, nullptr, 10);
+  ASSERT_EQ(errors.size(), 1u);
+  // 64 cells of 17^3 points, 168 bytes each: 10 channels (homogeneous coordinates and weight,
+  // the six geometric attributes) twice over, and a connectivity entry.
+  EXPECT_NE(errors[0].find(file + ": its 64 Bézier cells would need 0.0528 GB to build, more "
+                                  "than the reader's memory limit of 0.0105 GB (MemoryLimitMB)"),
+    std::string::npos)
+    << errors[0];
+  EXPECT_EQ(refused->GetNumberOfCells(), 0);
+  errors.clear();
+  EXPECT_EQ(read<vtkIGAGeoPDEsReader>(file, &errors, nullptr, 100)->GetNumberOfCells(), 64);
+  EXPECT_TRUE(errors.empty());
 }
 
 TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)

@@ -37,6 +37,17 @@ for reader in (gismo, geopdes):
     assert [round(b, 12) for b in bounds] == [0.0, 2.0, 0.0, 2.0, 0.0, 1.0], bounds
     assert "z" in reader.PointData.keys(), reader.PointData.keys()
 
+# The readers' memory limit: the ring's one cell fits a megabyte, not a kilobyte.
+limited = simple.IGAGeoPDEsReader(FileName=os.path.join(data_dir, "geopdes_quarter_ring.txt"))
+assert limited.MemoryLimitMB == 0.0, limited.MemoryLimitMB
+limited.MemoryLimitMB = 0.001
+limited.UpdatePipeline()
+assert servermanager.Fetch(limited).GetNumberOfCells() == 0
+limited.MemoryLimitMB = 1
+limited.UpdatePipeline()
+assert servermanager.Fetch(limited).GetNumberOfCells() > 0
+simple.Delete(limited)
+
 # Drawn by the representation: the isosurface z = 0.5 of the G+Smo file covers pixels.
 view = simple.CreateRenderView(ViewSize=[200, 160])
 iga_scene.show_surface(gismo, view, "z", 0.5)
