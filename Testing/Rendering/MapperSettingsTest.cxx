@@ -222,6 +222,18 @@ TEST(IsosurfaceMapperSettings, ActorMatrixMovesTheSurface)
   }
 }
 
+/// Renders an empty frame, then again from a turned camera: `message` is said once.
+void expectEmptyAndSaidOnce(TubeScene& scene, const std::string& message)
+{
+  scene.render();
+  EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
+  EXPECT_EQ(scene.coveredPixels(), 0u);
+  EXPECT_EQ(scene.recorder->count(message), 1);
+  scene.turn(4);
+  scene.render();
+  EXPECT_EQ(scene.recorder->count(message), 1) << "said on every frame";
+}
+
 /// A temperature that is 0.5 everywhere, drawn at 0.5: said once by name and value, not
 /// subdivided to the depth cap (which took 15 s and 2.5 GB).
 TEST(IsosurfaceMapperSettings, ConstantAttributeAtTheIsovalueIsSaidOnce)
@@ -239,15 +251,9 @@ TEST(IsosurfaceMapperSettings, ConstantAttributeAtTheIsovalueIsSaidOnce)
   }
   scene.mapper->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(set));
   scene.mapper->SetIsovalue(0, 0.5);
-  scene.render();
-  EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
-  EXPECT_EQ(scene.coveredPixels(), 0u);
-  EXPECT_EQ(scene.recorder->count("attribute 'temperature' is constant (= 0.5) on 8 of 8 patches: "
-                                  "a constant field has no isosurface there"),
-    1);
-  scene.turn(4);
-  scene.render();
-  EXPECT_EQ(scene.recorder->count("is constant"), 1) << "said on every frame";
+  expectEmptyAndSaidOnce(scene,
+    "attribute 'temperature' is constant (= 0.5) on 8 of 8 patches: a constant field has no "
+    "isosurface there");
 }
 
 /// A frame that draws nothing says why, once: isovalues outside the attribute's range (with
@@ -256,14 +262,8 @@ TEST(IsosurfaceMapperSettings, AnEmptyFrameSaysWhy)
 {
   TubeScene scene;
   scene.mapper->SetIsovalue(0, 50.0);
-  scene.render();
-  EXPECT_EQ(scene.coveredPixels(), 0u);
-  EXPECT_EQ(scene.recorder->count("nothing to draw: the isosurface 'temperature' = 50 lies "
-                                  "outside the attribute's range ["),
-    1);
-  scene.turn(4);
-  scene.render();
-  EXPECT_EQ(scene.recorder->count("nothing to draw"), 1) << "said on every frame";
+  expectEmptyAndSaidOnce(scene,
+    "nothing to draw: the isosurface 'temperature' = 50 lies outside the attribute's range [");
 
   scene.mapper->SetIsovalue(0, 0.0);
   vtkNew<vtkPlane> above; // keeps z >= 100, above the tube
