@@ -62,8 +62,15 @@ std::string pointProblem(vtkUnstructuredGrid* grid, vtkIdType id, vtkDataArray* 
       return point + ": its value of '" + array->GetName() + "' is " + formatNumber(value);
     }
   }
-  return point + " at (" + formatNumber(x[0]) + ", " + formatNumber(x[1]) + ", " +
-         formatNumber(x[2]) + ") lies beyond 1e+100, farther than double precision can frame";
+  const std::string at =
+    " at (" + formatNumber(x[0]) + ", " + formatNumber(x[1]) + ", " + formatNumber(x[2]) + ")";
+  if (std::abs(x[0]) > iga::kMaxCoordinate || std::abs(x[1]) > iga::kMaxCoordinate ||
+      std::abs(x[2]) > iga::kMaxCoordinate)
+  {
+    return point + at + " lies beyond 1e+100, farther than double precision can frame";
+  }
+  return point + at + ": its values times its " + weightName + ", " + formatNumber(w) +
+         ", pass what double precision holds";
 }
 
 /// Calls fn(i, j, k, linear Kernels index, VTK point index within the cell) for every control

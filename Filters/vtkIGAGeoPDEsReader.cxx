@@ -5,10 +5,11 @@
 #include "vtkIGANurbsData.h"
 #include "vtkObjectFactory.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <regex>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -43,17 +44,9 @@ public:
       }
       if (line[first] == '#')
       {
-        std::smatch match;
-        if (this->Major < 0 &&
-            std::regex_search(line, match, std::regex("nurbs (geometry|mesh) v\\.([0-9]+)")))
+        if (this->Major < 0)
         {
-          const std::string version = match[2].str();
-          if (version.size() > 4)
-          {
-            throw IGAReadError(
-              number, "'nurbs " + match[1].str() + " v." + version + "' names no GeoPDEs version");
-          }
-          this->Major = std::stoi(version);
+          this->Major = versionOf(line, number);
         }
         continue;
       }
@@ -65,6 +58,37 @@ public:
     {
       ++this->LastLine;
     }
+  }
+
+  /// The major version a comment names ("nurbs geometry v.2.1", "nurbs mesh v.0.7"), or -1.
+  /// Searched by hand: std::regex recurses once per character matched, and a line of a hundred
+  /// thousand digits overflowed the stack.
+  static int versionOf(const std::string& line, long number)
+  {
+    for (const char* kind : { "nurbs geometry v.", "nurbs mesh v." })
+    {
+      const size_t at = line.find(kind);
+      if (at == std::string::npos)
+      {
+        continue;
+      }
+      const size_t begin = at + std::strlen(kind);
+      size_t end = begin;
+      while (end < line.size() && end - begin <= 4 && std::isdigit((unsigned char)line[end]))
+      {
+        ++end;
+      }
+      if (end == begin)
+      {
+        continue;
+      }
+      if (end - begin > 4)
+      {
+        throw IGAReadError(number, "'" + line.substr(at, 24) + "...' names no GeoPDEs version");
+      }
+      return std::stoi(line.substr(begin, end - begin));
+    }
+    return -1;
   }
 
   /// -1 when the comments name no version.

@@ -99,9 +99,10 @@ std::string vtkIGANurbsReader::ReadGuarded(std::istream& in)
 
 std::string vtkIGANurbsReader::MemoryProblem() const
 {
-  const double limit = this->MemoryLimitMB > 0
-                         ? this->MemoryLimitMB * 1048576.0
-                         : 0.5 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+  const double limit = this->MemoryLimitMB > 0     ? this->MemoryLimitMB * 1048576.0
+                       : pages > 0 && pageSize > 0 ? 0.5 * double(pages) * double(pageSize)
+                                                   : VTK_DOUBLE_MAX;
   const double needed = this->Data->GetBezierCellBytes();
   if (needed <= limit)
   {

@@ -254,7 +254,9 @@ void vtkIGAIsosurfaceMapper::ReportOnce(
 void vtkIGAIsosurfaceMapper::ReportEmptyFrame(const iga::sst::FrameReport& report)
 {
   Internals& in = *this->Internal;
-  if (in.GBuffer.coveredPixels() > 0 || report.constantAttributeRoots > 0)
+  // Pixels left at a cap and constant fields have their own messages.
+  if (in.GBuffer.coveredPixels() > 0 || report.constantAttributeRoots > 0 ||
+      report.unresolvedPixels > 0)
   {
     return;
   }
@@ -280,10 +282,11 @@ void vtkIGAIsosurfaceMapper::ReportEmptyFrame(const iga::sst::FrameReport& repor
   }
   else
   {
+    // The range is that of the Bézier coefficients, which may pass the attribute's values.
     this->ReportOnce("empty view",
       "nothing drawn: the isosurface " + surface +
-        " lies outside the view, or the clipping planes cut it away; not reported again until "
-        "the settings or the input change",
+        " lies outside the view, the clipping planes cut it away, or the attribute does not "
+        "reach that value; not reported again until the settings or the input change",
       false);
   }
 }

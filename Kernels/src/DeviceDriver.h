@@ -99,7 +99,7 @@ struct PatchSummary
 {
   double lo = std::numeric_limits<double>::infinity();
   double hi = -std::numeric_limits<double>::infinity();
-  unsigned invalid = 0; ///< patches with a non-finite value or a non-positive weight
+  unsigned invalid = 0; ///< patches that firstInvalidPoint refuses
 
   AttributeRange range() const { return { lo, hi }; }
 };

@@ -278,8 +278,9 @@ FramePlan planView(
   if (!(std::isfinite(determinant) && determinant != 0))
   {
     throw std::invalid_argument(
-      "the view's world-to-clip matrix is singular or not finite in double precision: the "
-      "camera's clipping range and distances must lie within 1e-100 .. 1e+100");
+      "the view's world-to-clip matrix is singular or not finite: a camera at its focal point, a "
+      "view-up along the view direction, or clipping range and distances beyond what double "
+      "precision frames (1e-100 .. 1e+100)");
   }
   FramePlan plan;
   plan.threads = threadCount(s);
@@ -302,14 +303,14 @@ FramePlan planView(
   {
     const bool finite = std::isfinite(plane[0]) && std::isfinite(plane[1]) &&
                         std::isfinite(plane[2]) && std::isfinite(plane[3]);
-    glm::dvec4 window;
+    glm::dvec4 inWindow;
     if (!finite || (plane[0] == 0 && plane[1] == 0 && plane[2] == 0) ||
-        !transformPlane(plan.windowFromWorld, glm::make_vec4(plane.data()), window))
+        !transformPlane(plan.windowFromWorld, glm::make_vec4(plane.data()), inWindow))
     {
       throw std::invalid_argument(
         "clipping plane " + std::to_string(plan.frame.clip.count) + " is not a finite plane");
     }
-    std::copy_n(glm::value_ptr(window), 4, plan.frame.clip.plane[plan.frame.clip.count++]);
+    std::copy_n(glm::value_ptr(inWindow), 4, plan.frame.clip.plane[plan.frame.clip.count++]);
   }
   plan.frame.width = s.width;
   plan.frame.height = s.height;

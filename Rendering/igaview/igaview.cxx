@@ -264,12 +264,13 @@ void checkClaimedSizes(const std::string& file)
   for (const auto& [name, bytes] : { std::pair<std::string, double>{ "NumberOfPoints", 24.0 },
          std::pair<std::string, double>{ "NumberOfCells", 17.0 } })
   {
+    // Scanned by hand: std::regex recurses once per character matched, and an attribute left
+    // open over a megabyte would overflow the stack.
     double claimed = 0;
-    const std::regex attribute(name + "=\"([^\"]*)\"");
-    for (auto it = std::sregex_iterator(head.begin(), head.end(), attribute);
-         it != std::sregex_iterator(); ++it)
+    const std::string key = name + "=\"";
+    for (size_t at = head.find(key); at != std::string::npos; at = head.find(key, at + 1))
     {
-      claimed += std::strtod((*it)[1].str().c_str(), nullptr);
+      claimed += std::strtod(head.c_str() + at + key.size(), nullptr);
     }
     if (!(claimed * bytes < memory))
     {
@@ -291,6 +292,7 @@ std::string updateQuietly(vtkAlgorithm* producer, const std::string& name)
   const vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
   vtkNew<vtkStringOutputWindow> collected;
   vtkOutputWindow::SetInstance(collected);
+  // igaview logs to stderr only: the cutoff over all outputs is stderr's.
   const vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // VTK's log repeats each message
   try

@@ -130,6 +130,15 @@ TEST(BezierHexahedra, BadInputIsNamed)
     conversionError([](vtkUnstructuredGrid* g) { g->GetPoints()->SetPoint(7, 0, 1e200, 0); }),
     "cell 0: point 7 at (0, 1e+200, 0) lies beyond 1e+100, farther than double precision can "
     "frame");
+  EXPECT_NE(conversionError(
+              [](vtkUnstructuredGrid* g)
+              {
+                g->GetPointData()->GetArray("pressure")->SetComponent(7, 0, 1e308);
+                g->GetPointData()->GetRationalWeights()->SetComponent(7, 0, 10);
+              })
+              .find("): its values times its rational weight ('RationalWeights'), 10, pass "
+                    "what double precision holds"),
+    std::string::npos);
   EXPECT_NE(conversionError([](vtkUnstructuredGrid* g)
               { g->GetCellData()->GetHigherOrderDegrees()->SetComponent(1, 2, 40); })
               .find("cell 1: degree 40"),

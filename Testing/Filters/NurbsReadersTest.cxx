@@ -401,7 +401,10 @@ TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
     ":4: header: parametric dimension 1 in physical dimension 3 is not supported");
   expectError<R>("junk.txt", good + "JUNK 1\n", ":15: 'JUNK 1' follows the patches");
   expectError<R>("version.txt", replaced(good, "v.2.1", "v.99999999999.1"),
-    ":1: 'nurbs geometry v.99999999999' names no GeoPDEs version");
+    ":1: 'nurbs geometry v.9999999...' names no GeoPDEs version");
+  // A hundred thousand digits: a regex over them overflowed the stack.
+  expectError<R>("long-version.txt", replaced(good, "v.2.1", "v." + std::string(100000, '7')),
+    ":1: 'nurbs geometry v.7777777...' names no GeoPDEs version");
   const std::string cubes = slurp(kData + "/geopdes_two_cubes_v07.txt");
   expectError<R>("interfaces.txt", replaced(cubes, "3 2 1 1\n", "3 2 2 1\n"),
     "the header announces 2 interfaces, the file has 1");

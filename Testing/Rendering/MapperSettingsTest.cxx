@@ -273,7 +273,8 @@ TEST(IsosurfaceMapperSettings, AnEmptyFrameSaysWhy)
   scene.render();
   EXPECT_EQ(scene.coveredPixels(), 0u);
   EXPECT_EQ(scene.recorder->count("nothing drawn: the isosurface 'temperature' = 0 lies outside "
-                                  "the view, or the clipping planes cut it away"),
+                                  "the view, the clipping planes cut it away, or the attribute "
+                                  "does not reach that value"),
     1);
   scene.mapper->RemoveAllClippingPlanes();
   scene.render();

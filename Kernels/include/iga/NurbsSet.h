@@ -4,6 +4,7 @@
 #pragma once
 
 #include "iga/BSpline.h"
+#include "iga/Validation.h"
 
 #include <string>
 #include <vector>
@@ -38,8 +39,8 @@ size_t controlPointCount(const BSplinePatch<T, Dim>& patch)
 }
 
 /// Empty when `net` holds netSize[0] x ... x netSize[Dim-1] points of `channels` finite values
-/// with positive weights; otherwise one sentence naming the first bad control point by its
-/// indices.
+/// with positive weights and coordinates within kMaxCoordinate; otherwise one sentence naming the
+/// first bad control point by its indices.
 template<class T, int Dim>
 std::string checkControlNet(const int* netSize, int channels, const std::vector<T>& net)
 {
@@ -74,6 +75,10 @@ std::string checkControlNet(const int* netSize, int channels, const std::vector<
     if (!(point[kWeightChannel] > T(0)))
     {
       return where + " has non-positive weight " + std::to_string(point[kWeightChannel]);
+    }
+    if (beyondFraming(point, 0) || beyondFraming(point, 1) || beyondFraming(point, 2))
+    {
+      return where + " lies beyond 1e+100, farther than double precision can frame";
     }
   }
   return std::string();

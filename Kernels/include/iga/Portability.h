@@ -69,12 +69,14 @@ struct Epsilon<double>
 };
 
 /// The power of two that brings a magnitude into [0.5, 1), exactly (1 for 0 and non-finite
-/// values): scaling by it changes no quotient and keeps products of such values in range.
+/// values; subnormal magnitudes only as far as a finite factor, 2^1023, takes them): scaling by
+/// it changes no quotient and keeps products of such values in range.
 IGA_HD inline double unitPowerOfTwo(double magnitude)
 {
   int exponent = 0;
   frexp(magnitude, &exponent);
-  return magnitude > 0 && isFinite(magnitude) ? ldexp(1.0, -exponent) : 1.0;
+  return magnitude > 0 && isFinite(magnitude) ? ldexp(1.0, -exponent < 1023 ? -exponent : 1023)
+                                              : 1.0;
 }
 
 /// Binomial coefficient C(n, k) for the small n used by Bernstein bases (exact in double up to

@@ -47,8 +47,8 @@ IGA_HD int firstInvalidPoint(const PatchView<const T, Dim>& patch)
 }
 
 /// Empty when the patch (standard layout) is usable; otherwise one sentence naming the first
-/// problem: degree outside 1..kMaxDegree, too few channels, a non-finite value or a non-positive
-/// weight, with the control point's index.
+/// problem: degree outside 1..kMaxDegree, too few channels, a non-finite value, a non-positive
+/// weight or a coordinate beyond kMaxCoordinate, with the control point's index.
 template<class T, int Dim>
 std::string checkPatch(const PatchView<const T, Dim>& patch)
 {
