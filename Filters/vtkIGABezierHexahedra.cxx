@@ -90,6 +90,177 @@ void forEachControlPoint(const int* degree, Fn fn)
     }
   }
 }
+
+/// The grid's arrays the conversion reads.
+struct GridArrays
+{
+  vtkDataArray* weights = nullptr;
+  vtkDataArray* degrees = nullptr;
+  std::vector<vtkDataArray*> attributes; ///< one-component point arrays, in order
+};
+
+/// "SUBJECT N UNIT for M WHAT" when an array's size does not match the grid, else "".
+std::string sizeProblem(
+  const std::string& subject, vtkIdType count, const char* unit, vtkIdType expected, const char* of)
+{
+  return count == expected ? std::string()
+                           : subject + " " + std::to_string(count) + " " + unit + " for " +
+                               std::to_string(expected) + " " + of;
+}
+
+/// Finds the weights (active, or by their usual name with a warning), the degrees (likewise)
+/// and the attributes, and checks their shapes against the grid; returns "" or the problem.
+std::string findArrays(
+  vtkUnstructuredGrid* grid, GridArrays& arrays, std::vector<std::string>& warnings)
+{
+  vtkPointData* pd = grid->GetPointData();
+  vtkDataArray*& weights = arrays.weights;
+  weights = pd->GetRationalWeights();
+  if (!weights && (weights = pd->GetArray(kWeightsName)))
+  {
+    warnings.push_back(
+      std::string("point array '") + kWeightsName +
+      "' is not flagged as the active rational weights; VTK ignores it, IGAView uses it");
+  }
+  if (!weights)
+  {
+    warnings.push_back("no rational weights: all weights are taken as 1 (polynomial cells)");
+  }
+  vtkDataArray*& degrees = arrays.degrees;
+  degrees = grid->GetCellData()->GetHigherOrderDegrees();
+  if (!degrees && (degrees = grid->GetCellData()->GetArray(kDegreesName)))
+  {
+    warnings.push_back(
+      std::string("cell array '") + kDegreesName +
+      "' is not flagged as the active higher-order degrees; VTK ignores it, IGAView uses it");
+  }
+  if (degrees && degrees->GetNumberOfComponents() != 3)
+  {
+    return std::string("cell array '") + kDegreesName + "' has " +
+           std::to_string(degrees->GetNumberOfComponents()) + " components, expected 3";
+  }
+  if (weights && weights->GetNumberOfComponents() != 1)
+  {
+    return std::string("rational weights '") + (weights->GetName() ? weights->GetName() : "") +
+           "' have " + std::to_string(weights->GetNumberOfComponents()) + " components, expected 1";
+  }
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pd->GetArray(a);
+    if (array && array != weights && array->GetNumberOfComponents() == 1 && array->GetName())
+    {
+      arrays.attributes.push_back(array);
+    }
+  }
+  const vtkIdType points = grid->GetNumberOfPoints();
+  std::string problem;
+  for (vtkDataArray* array : arrays.attributes)
+  {
+    problem = sizeProblem(std::string("point array '") + array->GetName() + "' has",
+      array->GetNumberOfTuples(), "values", points, "points");
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  if (weights)
+  {
+    problem = sizeProblem(
+      "rational weights have", weights->GetNumberOfTuples(), "values", points, "points");
+  }
+  if (problem.empty() && degrees)
+  {
+    problem = sizeProblem(std::string("cell array '") + kDegreesName + "' has",
+      degrees->GetNumberOfTuples(), "tuples", grid->GetNumberOfCells(), "cells");
+  }
+  return problem;
+}
+
+/// The degrees of cell c: from the degrees array, or VTK's fallback (equal degrees from the
+/// point count) without one; 1 for a linear hexahedron. Returns "" or the problem.
+std::string cellDegrees(
+  vtkUnstructuredGrid* grid, vtkIdType c, vtkDataArray* degrees, vtkIdType npts, int* degree)
+{
+  const int type = grid->GetCellType(c);
+  if (type == VTK_HEXAHEDRON)
+  {
+    return std::string();
+  }
+  if (type != VTK_BEZIER_HEXAHEDRON)
+  {
+    return "cell type " + std::to_string(type) +
+           " is not a hexahedron (expected VTK_BEZIER_HEXAHEDRON = 79 or VTK_HEXAHEDRON = 12)";
+  }
+  if (!degrees)
+  {
+    const int order = static_cast<int>(std::lround(std::cbrt(static_cast<double>(npts))));
+    if (order < 2 || order * order * order != npts)
+    {
+      return std::to_string(npts) +
+             " points are no cube of an order and there is no HigherOrderDegrees array";
+    }
+    degree[0] = degree[1] = degree[2] = order - 1;
+    return std::string();
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    const double value = degrees->GetComponent(c, d);
+    if (!(value >= 1 && value <= iga::kMaxDegree && value == std::floor(value)))
+    {
+      return "degree " + formatNumber(value) + " in direction " + std::to_string(d) +
+             " is not a whole number in 1.." + std::to_string(iga::kMaxDegree);
+    }
+    degree[d] = static_cast<int>(value);
+  }
+  return std::string();
+}
+
+/// Fills `patch` (its degrees set) from the cell's points `pts` and checks them; returns "" or
+/// the problem.
+std::string readCell(vtkUnstructuredGrid* grid, vtkIdType npts, const vtkIdType* pts,
+  const GridArrays& arrays, iga::BezierVolume<double>& patch)
+{
+  const auto view = patch.view();
+  const int* degree = view.degree;
+  if (npts != view.pointCount())
+  {
+    return "has " + std::to_string(npts) + " points, degrees " + std::to_string(degree[0]) + "x" +
+           std::to_string(degree[1]) + "x" + std::to_string(degree[2]) + " need " +
+           std::to_string(view.pointCount());
+  }
+  const vtkIdType pointCount = grid->GetNumberOfPoints();
+  bool badId = false;
+  std::vector<vtkIdType> ids(static_cast<size_t>(view.pointCount()));
+  forEachControlPoint(degree,
+    [&](int linear, int vtkIndex)
+    {
+      const vtkIdType id = ids[linear] = pts[vtkIndex];
+      if (id < 0 || id >= pointCount)
+      {
+        badId = true;
+        return;
+      }
+      double x[3];
+      grid->GetPoint(id, x);
+      const double w = arrays.weights ? arrays.weights->GetComponent(id, 0) : 1.0;
+      double* cp = view.point(linear);
+      for (int d = 0; d < 3; ++d)
+      {
+        cp[d] = w * x[d];
+      }
+      cp[iga::kWeightChannel] = w;
+      for (size_t a = 0; a < arrays.attributes.size(); ++a)
+      {
+        cp[iga::kFirstAttributeChannel + a] = w * arrays.attributes[a]->GetComponent(id, 0);
+      }
+    });
+  if (badId)
+  {
+    return "refers to a point outside 0.." + std::to_string(pointCount - 1);
+  }
+  const int bad = iga::firstInvalidPoint<double, 3>(view);
+  return bad < 0 ? std::string() : pointProblem(grid, ids[bad], arrays.weights, arrays.attributes);
+}
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
@@ -170,159 +341,32 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
     error = "the grid has no cells";
     return false;
   }
-  vtkPointData* pd = grid->GetPointData();
-  vtkDataArray* weights = pd->GetRationalWeights();
-  if (!weights && (weights = pd->GetArray(kWeightsName)))
+  GridArrays arrays;
+  error = findArrays(grid, arrays, warnings);
+  if (!error.empty())
   {
-    warnings.push_back(
-      std::string("point array '") + kWeightsName +
-      "' is not flagged as the active rational weights; VTK ignores it, IGAView uses it");
-  }
-  if (!weights)
-  {
-    warnings.push_back("no rational weights: all weights are taken as 1 (polynomial cells)");
-  }
-  vtkDataArray* degrees = grid->GetCellData()->GetHigherOrderDegrees();
-  if (!degrees && (degrees = grid->GetCellData()->GetArray(kDegreesName)))
-  {
-    warnings.push_back(
-      std::string("cell array '") + kDegreesName +
-      "' is not flagged as the active higher-order degrees; VTK ignores it, IGAView uses it");
-  }
-  if (degrees && degrees->GetNumberOfComponents() != 3)
-  {
-    error = std::string("cell array '") + kDegreesName + "' has " +
-            std::to_string(degrees->GetNumberOfComponents()) + " components, expected 3";
     return false;
   }
-  const vtkIdType pointCount = grid->GetNumberOfPoints();
-  if (weights && weights->GetNumberOfComponents() != 1)
+  for (vtkDataArray* array : arrays.attributes)
   {
-    error = std::string("rational weights '") + (weights->GetName() ? weights->GetName() : "") +
-            "' have " + std::to_string(weights->GetNumberOfComponents()) +
-            " components, expected 1";
-    return false;
+    set.attributeNames.emplace_back(array->GetName());
   }
-  std::vector<vtkDataArray*> attributes;
-  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* array = pd->GetArray(a);
-    if (array && array != weights && array->GetNumberOfComponents() == 1 && array->GetName())
-    {
-      attributes.push_back(array);
-      set.attributeNames.emplace_back(array->GetName());
-    }
-  }
-  for (vtkDataArray* array : attributes)
-  {
-    if (array->GetNumberOfTuples() != pointCount)
-    {
-      error = std::string("point array '") + array->GetName() + "' has " +
-              std::to_string(array->GetNumberOfTuples()) + " values for " +
-              std::to_string(pointCount) + " points";
-      return false;
-    }
-  }
-  if (weights && weights->GetNumberOfTuples() != pointCount)
-  {
-    error = "rational weights have " + std::to_string(weights->GetNumberOfTuples()) +
-            " values for " + std::to_string(pointCount) + " points";
-    return false;
-  }
-  if (degrees && degrees->GetNumberOfTuples() != grid->GetNumberOfCells())
-  {
-    error = std::string("cell array '") + kDegreesName + "' has " +
-            std::to_string(degrees->GetNumberOfTuples()) + " tuples for " +
-            std::to_string(grid->GetNumberOfCells()) + " cells";
-    return false;
-  }
-  const int channels = iga::kFirstAttributeChannel + static_cast<int>(attributes.size());
+  const int channels = iga::kFirstAttributeChannel + static_cast<int>(arrays.attributes.size());
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    const std::string where = "cell " + std::to_string(c) + ": ";
-    const int type = grid->GetCellType(c);
     vtkIdType npts;
     const vtkIdType* pts;
     grid->GetCellPoints(c, npts, pts);
     int degree[3] = { 1, 1, 1 };
-    if (type == VTK_BEZIER_HEXAHEDRON)
-    {
-      if (degrees)
-      {
-        for (int d = 0; d < 3; ++d)
-        {
-          const double value = degrees->GetComponent(c, d);
-          if (!(value >= 1 && value <= iga::kMaxDegree && value == std::floor(value)))
-          {
-            error = where + "degree " + formatNumber(value) + " in direction " + std::to_string(d) +
-                    " is not a whole number in 1.." + std::to_string(iga::kMaxDegree);
-            return false;
-          }
-          degree[d] = static_cast<int>(value);
-        }
-      }
-      else
-      {
-        // VTK's own fallback: equal degrees from the point count.
-        const int order = static_cast<int>(std::lround(std::cbrt(static_cast<double>(npts))));
-        if (order < 2 || order * order * order != npts)
-        {
-          error = where + std::to_string(npts) +
-                  " points are no cube of an order and there is no HigherOrderDegrees array";
-          return false;
-        }
-        degree[0] = degree[1] = degree[2] = order - 1;
-      }
-    }
-    else if (type != VTK_HEXAHEDRON)
-    {
-      error = where + "cell type " + std::to_string(type) +
-              " is not a hexahedron (expected VTK_BEZIER_HEXAHEDRON = 79 or VTK_HEXAHEDRON = 12)";
-      return false;
-    }
+    std::string problem = cellDegrees(grid, c, arrays.degrees, npts, degree);
     iga::BezierVolume<double> patch(degree, channels);
-    const auto view = patch.view();
-    if (npts != view.pointCount())
+    if (problem.empty())
     {
-      error = where + "has " + std::to_string(npts) + " points, degrees " +
-              std::to_string(degree[0]) + "x" + std::to_string(degree[1]) + "x" +
-              std::to_string(degree[2]) + " need " + std::to_string(view.pointCount());
-      return false;
+      problem = readCell(grid, npts, pts, arrays, patch);
     }
-    bool badId = false;
-    std::vector<vtkIdType> ids(static_cast<size_t>(view.pointCount()));
-    forEachControlPoint(degree,
-      [&](int linear, int vtkIndex)
-      {
-        const vtkIdType id = ids[linear] = pts[vtkIndex];
-        if (id < 0 || id >= pointCount)
-        {
-          badId = true;
-          return;
-        }
-        double x[3];
-        grid->GetPoint(id, x);
-        const double w = weights ? weights->GetComponent(id, 0) : 1.0;
-        double* cp = view.point(linear);
-        for (int d = 0; d < 3; ++d)
-        {
-          cp[d] = w * x[d];
-        }
-        cp[iga::kWeightChannel] = w;
-        for (size_t a = 0; a < attributes.size(); ++a)
-        {
-          cp[iga::kFirstAttributeChannel + a] = w * attributes[a]->GetComponent(id, 0);
-        }
-      });
-    if (badId)
+    if (!problem.empty())
     {
-      error = where + "refers to a point outside 0.." + std::to_string(pointCount - 1);
-      return false;
-    }
-    const int bad = iga::firstInvalidPoint<double, 3>(view);
-    if (bad >= 0)
-    {
-      error = where + pointProblem(grid, ids[bad], weights, attributes);
+      error = "cell " + std::to_string(c) + ": " + problem;
       return false;
     }
     set.patches.push_back(std::move(patch));
