@@ -54,34 +54,26 @@ std::string checkControlNet(const int* netSize, int channels, const std::vector<
     return "control net has " + std::to_string(net.size()) + " values, expected " +
            std::to_string(points * channels);
   }
-  for (size_t p = 0; p < points; ++p)
+  // The net is laid out as a patch of degrees netSize - 1.
+  int degree[Dim];
+  for (int d = 0; d < Dim; ++d)
   {
-    std::string where = "control point (";
-    size_t rest = p;
-    for (int d = 0; d < Dim; ++d)
-    {
-      where += (d ? ", " : "") + std::to_string(rest % netSize[d]);
-      rest /= netSize[d];
-    }
-    where += ")";
-    const T* point = net.data() + p * channels;
-    for (int c = 0; c < channels; ++c)
-    {
-      if (!isFinite(point[c]))
-      {
-        return where + " has a non-finite value in channel " + std::to_string(c);
-      }
-    }
-    if (!(point[kWeightChannel] > T(0)))
-    {
-      return where + " has non-positive weight " + std::to_string(point[kWeightChannel]);
-    }
-    if (beyondFraming(point, 0) || beyondFraming(point, 1) || beyondFraming(point, 2))
-    {
-      return where + " lies beyond 1e+100, farther than double precision can frame";
-    }
+    degree[d] = netSize[d] - 1;
   }
-  return std::string();
+  const int p =
+    points > 0 ? firstInvalidPoint(PatchView<const T, Dim>(net.data(), degree, channels)) : -1;
+  if (p < 0)
+  {
+    return std::string();
+  }
+  std::string where = "control point (";
+  size_t rest = size_t(p);
+  for (int d = 0; d < Dim; ++d)
+  {
+    where += (d ? ", " : "") + std::to_string(rest % netSize[d]);
+    rest /= netSize[d];
+  }
+  return where + ")" + invalidPointProblem(net.data() + size_t(p) * channels, channels);
 }
 
 /// The same for a patch's net size and channel count.

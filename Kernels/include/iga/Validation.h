@@ -46,6 +46,31 @@ IGA_HD int firstInvalidPoint(const PatchView<const T, Dim>& patch)
   return -1;
 }
 
+/// What firstInvalidPoint found wrong with a control point of `channels` values, after its name
+/// ("control point 7"): a non-finite value, a non-positive weight or a coordinate beyond
+/// kMaxCoordinate.
+template<class T>
+std::string invalidPointProblem(const T* point, int channels)
+{
+  for (int c = 0; c < channels; ++c)
+  {
+    if (!isFinite(point[c]))
+    {
+      return " has a non-finite value in channel " + std::to_string(c);
+    }
+  }
+  if (!(point[kWeightChannel] > T(0)))
+  {
+    return " has non-positive weight " + std::to_string(point[kWeightChannel]);
+  }
+  char coordinates[128];
+  std::snprintf(coordinates, sizeof coordinates, "(%.3g, %.3g, %.3g)",
+    double(point[0] / point[kWeightChannel]), double(point[1] / point[kWeightChannel]),
+    double(point[2] / point[kWeightChannel]));
+  return std::string(" at ") + coordinates +
+         " lies beyond 1e+100, farther than double precision can frame";
+}
+
 /// Empty when the patch (standard layout) is usable; otherwise one sentence naming the first
 /// problem: degree outside 1..kMaxDegree, too few channels, a non-finite value, a non-positive
 /// weight or a coordinate beyond kMaxCoordinate, with the control point's index.
@@ -66,30 +91,9 @@ std::string checkPatch(const PatchView<const T, Dim>& patch)
            " values, need at least 4 (w*x, w*y, w*z, w)";
   }
   const int p = firstInvalidPoint(patch);
-  if (p < 0)
-  {
-    return std::string();
-  }
-  const T* point = patch.point(p);
-  for (int c = 0; c < patch.channels; ++c)
-  {
-    if (!isFinite(point[c]))
-    {
-      return "control point " + std::to_string(p) + " has a non-finite value in channel " +
-             std::to_string(c);
-    }
-  }
-  if (!(point[kWeightChannel] > T(0)))
-  {
-    return "control point " + std::to_string(p) + " has non-positive weight " +
-           std::to_string(point[kWeightChannel]);
-  }
-  char coordinates[128];
-  std::snprintf(coordinates, sizeof coordinates, "(%.3g, %.3g, %.3g)",
-    double(point[0] / point[kWeightChannel]), double(point[1] / point[kWeightChannel]),
-    double(point[2] / point[kWeightChannel]));
-  return "control point " + std::to_string(p) + " at " + coordinates +
-         " lies beyond 1e+100, farther than double precision can frame";
+  return p < 0 ? std::string()
+               : "control point " + std::to_string(p) +
+                   invalidPointProblem(patch.point(p), patch.channels);
 }
 
 } // namespace iga
