@@ -1,7 +1,6 @@
 // The isosurface engine against analytic surfaces (spheres, exact rational cylinders, planes
 // across a collapsed axis), the three methods against each other, and its failure modes.
-#include "iga/sst/Engine.h"
-#include "iga/Datasets.h"
+#include "EngineScenes.h"
 
 #include <gtest/gtest.h>
 
@@ -26,16 +25,6 @@ iga::Camera makeCamera(const glm::dvec3& position, const glm::dvec3& focal, cons
   camera.viewAngle = angle;
   iga::fitClippingRange(camera, bounds);
   return camera;
-}
-
-/// A z-up camera at `position` looking at `focal`, clipping planes around the set's bounds.
-iga::Camera cameraFor(const iga::VolumeSet<double>& set, const glm::dvec3& position,
-  const glm::dvec3& focal, double angle)
-{
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  const glm::dvec3 up{ 0, 0, 1 };
-  return makeCamera(position, focal, up, angle, bounds);
 }
 
 /// The ray through pixel (i, j)'s centre from the camera's geometry (not from its matrices).
@@ -373,7 +362,7 @@ TEST(Engine, ExactRationalCylinderInTheTube)
 {
   const auto set = iga::makeTube<double>(0.5, 0.0);
   const glm::dvec3 position{ 2.6, -3.1, 3.4 }, focal{ 0, 0, 1 };
-  const auto camera = cameraFor(set, position, focal, 35);
+  const auto camera = igatest::lookAt(set, position, focal, 35);
   Settings settings;
   settings.width = 72;
   settings.height = 64;
@@ -399,7 +388,7 @@ TEST(Engine, CollapsedAxisDiskAndCylinder)
 {
   const auto set = iga::makeTube<double>(0.0, 0.0); // inner face collapsed onto the axis
   const glm::dvec3 position{ 1.9, -2.4, 3.6 }, focal{ 0, 0, 1 };
-  const auto camera = cameraFor(set, position, focal, 38);
+  const auto camera = igatest::lookAt(set, position, focal, 38);
   Settings settings;
   settings.width = settings.height = 64;
   // The plane z = 1 crosses the collapsed axis: a disk of radius 1.
@@ -490,7 +479,7 @@ TEST(Engine, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTwistedTeardrop)
 {
   const auto set = iga::makeTeardrop<double>(1.2);
   const glm::dvec3 position{ -0.2, -1.6, 0.9 }, focal{ -0.5, 0, 0 };
-  const auto camera = cameraFor(set, position, focal, 40);
+  const auto camera = igatest::lookAt(set, position, focal, 40);
   Settings settings;
   settings.width = settings.height = 40;
   settings.isovalues = { 0.0 };
@@ -536,7 +525,7 @@ TEST(Engine, FoldedSelfIntersectingVolumeAgreesWithTheReferences)
     view.point(p)[0] = fold[i];
   }
   const glm::dvec3 position{ 0.8, -4.2, 1.6 }, focal{ 0, 0, 0 };
-  const auto camera = cameraFor(set, position, focal, 40);
+  const auto camera = igatest::lookAt(set, position, focal, 40);
   Settings settings;
   settings.width = settings.height = 40;
   settings.isovalues = { 0.0 };
@@ -568,7 +557,7 @@ TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
 {
   const auto set = iga::makeTwistedTube<double>(0.7);
   const glm::dvec3 position{ 3, -3.5, 3 }, focal{ 0.2, 0, 1 };
-  const auto camera = cameraFor(set, position, focal, 35);
+  const auto camera = igatest::lookAt(set, position, focal, 35);
   Settings settings;
   settings.width = settings.height = 64;
   settings.isovalues = { 0.0, 0.3 };
@@ -673,7 +662,7 @@ TEST(Engine, ConstantAttributeAtTheIsovalueIsCountedNotSubdivided)
     for (int p = 0; p < view.pointCount(); ++p)
       view.point(p)[iga::kFirstAttributeChannel] = 0.3 * view.point(p)[iga::kWeightChannel];
   }
-  const auto camera = cameraFor(set, { 3, -3.5, 3 }, { 0.2, 0, 1 }, 35);
+  const auto camera = igatest::lookAt(set, { 3, -3.5, 3 }, { 0.2, 0, 1 }, 35);
   Settings settings;
   settings.width = settings.height = 64;
   settings.isovalues = { 0.3 };
