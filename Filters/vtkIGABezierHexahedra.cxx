@@ -11,11 +11,13 @@
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "iga/Orientation.h"
 #include "iga/Validation.h"
 
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -73,10 +75,11 @@ std::string pointProblem(vtkUnstructuredGrid* grid, vtkIdType id, vtkDataArray* 
          ", pass what double precision holds";
 }
 
-/// Calls fn(i, j, k, linear Kernels index, VTK point index within the cell) for every control
-/// point of a hexahedron of the given degrees.
+/// Calls fn(linear Kernels index, VTK point index within the cell) for every control point of a
+/// hexahedron of the given degrees; `mirrored` puts point (i, j, k) where (degree - i, j, k) goes,
+/// which turns a left-handed patch into a right-handed cell of the same volume.
 template<class Fn>
-void forEachControlPoint(const int* degree, Fn fn)
+void forEachControlPoint(const int* degree, bool mirrored, Fn fn)
 {
   int linear = 0;
   for (int k = 0; k <= degree[2]; ++k)
@@ -85,7 +88,8 @@ void forEachControlPoint(const int* degree, Fn fn)
     {
       for (int i = 0; i <= degree[0]; ++i, ++linear)
       {
-        fn(linear, vtkHigherOrderHexahedron::PointIndexFromIJK(i, j, k, degree));
+        fn(linear,
+          vtkHigherOrderHexahedron::PointIndexFromIJK(mirrored ? degree[0] - i : i, j, k, degree));
       }
     }
   }
@@ -231,7 +235,7 @@ std::string readCell(vtkUnstructuredGrid* grid, vtkIdType npts, const vtkIdType*
   const vtkIdType pointCount = grid->GetNumberOfPoints();
   bool badId = false;
   std::vector<vtkIdType> ids(static_cast<size_t>(view.pointCount()));
-  forEachControlPoint(degree,
+  forEachControlPoint(degree, false,
     [&](int linear, int vtkIndex)
     {
       const vtkIdType id = ids[linear] = pts[vtkIndex];
@@ -264,7 +268,7 @@ std::string readCell(vtkUnstructuredGrid* grid, vtkIdType npts, const vtkIdType*
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
-  const iga::VolumeSet<double>& set)
+  const iga::VolumeSet<double>& set, bool orient)
 {
   vtkIdType total = 0;
   for (const auto& patch : set.patches)
@@ -297,7 +301,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
     const auto view = set.patches[c].view();
     const int* degree = view.degree;
     ids.resize(view.pointCount());
-    forEachControlPoint(degree,
+    forEachControlPoint(degree, orient && iga::signedVolume<double>(view) < 0,
       [&](int linear, int vtkIndex)
       {
         const double* cp = view.point(linear);
@@ -352,6 +356,7 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
     set.attributeNames.emplace_back(array->GetName());
   }
   const int channels = iga::kFirstAttributeChannel + static_cast<int>(arrays.attributes.size());
+  vtkIdType leftHanded = 0;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
     vtkIdType npts;
@@ -369,7 +374,16 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
       error = "cell " + std::to_string(c) + ": " + problem;
       return false;
     }
+    leftHanded += iga::signedVolume<double>(std::as_const(patch).view()) < 0;
     set.patches.push_back(std::move(patch));
+  }
+  if (leftHanded > 0)
+  {
+    warnings.push_back(std::to_string(leftHanded) + " of " +
+                       std::to_string(grid->GetNumberOfCells()) +
+                       " cells are inside-out for VTK (left-handed: negative Jacobian "
+                       "determinant); they are drawn as they are, but VTK's own filters "
+                       "(Contour, Clip, Integrate Variables) may fail on them");
   }
   return true;
 }

@@ -8,12 +8,15 @@
  * "RationalWeights" and a 3-component cell array "HigherOrderDegrees", both flagged as the active
  * rational weights / higher-order degrees (VTK silently ignores them otherwise), and one point
  * array per attribute. Patches do not share points: each cell owns its control points, so
- * patches of different degrees and discontinuous attributes convert without loss.
+ * patches of different degrees and discontinuous attributes convert without loss. Cells are
+ * right-handed, as VTK's filters assume: a left-handed patch (negative signed volume) becomes the
+ * cell of the same volume with its first parametric direction reversed.
  *
  * Reading accepts VTK_BEZIER_HEXAHEDRON (and linear VTK_HEXAHEDRON as degree 1). Every
  * single-component point array other than the weights becomes an attribute. Problems are
  * reported as one sentence naming the cell and the problem; missing or inactive weight and
- * degree arrays are reported as warnings, as VTK would otherwise drop them without a word.
+ * degree arrays are reported as warnings, as VTK would otherwise drop them without a word;
+ * so are left-handed (inside-out) cells, read as they are.
  */
 #ifndef vtkIGABezierHexahedra_h
 #define vtkIGABezierHexahedra_h
@@ -30,8 +33,11 @@ class vtkUnstructuredGrid;
 class IGAVIEWFILTERS_EXPORT vtkIGABezierHexahedra
 {
 public:
-  /// Patches (standard layout, every attribute named) to a grid of Bézier hexahedra.
-  static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(const iga::VolumeSet<double>& set);
+  /// Patches (standard layout, every attribute named) to a grid of Bézier hexahedra, each
+  /// left-handed patch turned right-handed unless `orient` is false (for callers that orient
+  /// whole B-spline patches and keep their elements as extracted).
+  static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(
+    const iga::VolumeSet<double>& set, bool orient = true);
 
   /// Grid to patches. Returns false and sets `error` when the grid cannot be converted; appends
   /// non-fatal notes to `warnings`.

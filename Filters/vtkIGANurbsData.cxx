@@ -16,6 +16,8 @@
 #include "vtkStringArray.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "iga/Orientation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -37,23 +39,48 @@ using Net = std::shared_ptr<const std::vector<double>>;
 template<int Dim>
 using Extraction = std::shared_ptr<const iga::BezierExtraction<double, Dim>>;
 
-/// Builds the extraction of a patch and checks its net; throws std::invalid_argument.
+/// Builds the extraction of a patch and checks its net; throws std::invalid_argument naming the
+/// patch by `name`.
 template<int Dim>
-Extraction<Dim> prepare(const iga::BSplinePatch<double, Dim>& patch, int channels)
+Extraction<Dim> prepare(
+  const iga::BSplinePatch<double, Dim>& patch, int channels, const std::string& name)
 {
-  if (patch.channels != channels)
+  try
   {
-    throw std::invalid_argument("has " + std::to_string(patch.channels) +
-                                " channels, the set has " + std::to_string(channels));
+    if (patch.channels != channels)
+    {
+      throw std::invalid_argument("has " + std::to_string(patch.channels) +
+                                  " channels, the set has " + std::to_string(channels));
+    }
+    auto extraction = std::make_shared<iga::BezierExtraction<double, Dim>>(
+      patch.knots, patch.degree, patch.netSize);
+    const std::string problem = iga::checkControlNet(patch, patch.net);
+    if (!problem.empty())
+    {
+      throw std::invalid_argument(problem);
+    }
+    return extraction;
   }
-  auto extraction =
-    std::make_shared<iga::BezierExtraction<double, Dim>>(patch.knots, patch.degree, patch.netSize);
-  const std::string problem = iga::checkControlNet(patch, patch.net);
-  if (!problem.empty())
+  catch (const std::invalid_argument& e)
   {
-    throw std::invalid_argument(problem);
+    throw std::invalid_argument(name + ": " + e.what());
   }
-  return extraction;
+}
+
+/// Checks a volume and makes it right-handed for VTK in place: one of negative signed volume
+/// gets its first parametric direction reversed (the same volume). Returns its extraction.
+Extraction<3> orientVolume(
+  iga::BSplinePatch<double, 3>& patch, int channels, const std::string& name, bool& reversed)
+{
+  const std::string named = name + " (volume)";
+  Extraction<3> extraction = prepare(patch, channels, named);
+  reversed = iga::signedVolume(*extraction, patch.net, channels) < 0;
+  if (!reversed)
+  {
+    return extraction;
+  }
+  iga::reverseDirection(patch, 0);
+  return prepare(patch, channels, named);
 }
 
 template<class Patch>
@@ -82,6 +109,7 @@ struct vtkIGANurbsData::State
   std::vector<std::vector<Net>> Nets; // [step][patch]
   std::vector<Extraction<3>> VolumeExtractions;
   std::vector<Extraction<2>> SurfaceExtractions;
+  std::vector<bool> ReversedVolumes; // first direction reversed to be right-handed
 };
 
 vtkStandardNewMacro(vtkIGANurbsData);
@@ -113,34 +141,29 @@ std::string vtkIGANurbsData::SetPatches(const iga::NurbsSet<double>& set, double
   // Left empty on error.
   this->Contents = std::make_shared<State>();
   this->Modified();
+  if (!std::isfinite(time))
+  {
+    return "time " + std::to_string(time) + " is not finite";
+  }
   auto state = std::make_shared<State>();
+  state->Set = set;
   const int channels = set.channels();
   std::vector<Net> nets;
   try
   {
     for (size_t v = 0; v < set.volumes.size(); ++v)
     {
-      try
-      {
-        state->VolumeExtractions.push_back(prepare(set.volumes[v], channels));
-      }
-      catch (const std::invalid_argument& e)
-      {
-        throw std::invalid_argument("patch " + std::to_string(v) + " (volume): " + e.what());
-      }
-      nets.push_back(std::make_shared<const std::vector<double>>(set.volumes[v].net));
+      bool reversed = false;
+      state->VolumeExtractions.push_back(
+        orientVolume(state->Set.volumes[v], channels, "patch " + std::to_string(v), reversed));
+      state->ReversedVolumes.push_back(reversed);
+      nets.push_back(std::make_shared<const std::vector<double>>(state->Set.volumes[v].net));
     }
     for (size_t s = 0; s < set.surfaces.size(); ++s)
     {
       const size_t index = set.volumes.size() + s;
-      try
-      {
-        state->SurfaceExtractions.push_back(prepare(set.surfaces[s], channels));
-      }
-      catch (const std::invalid_argument& e)
-      {
-        throw std::invalid_argument("patch " + std::to_string(index) + " (surface): " + e.what());
-      }
+      state->SurfaceExtractions.push_back(
+        prepare(set.surfaces[s], channels, "patch " + std::to_string(index) + " (surface)"));
       nets.push_back(std::make_shared<const std::vector<double>>(set.surfaces[s].net));
     }
   }
@@ -148,11 +171,6 @@ std::string vtkIGANurbsData::SetPatches(const iga::NurbsSet<double>& set, double
   {
     return e.what();
   }
-  if (!std::isfinite(time))
-  {
-    return "time " + std::to_string(time) + " is not finite";
-  }
-  state->Set = set;
   for (auto& volume : state->Set.volumes)
   {
     volume.net.clear();
@@ -199,9 +217,15 @@ std::string vtkIGANurbsData::AddTimeStep(double time, const std::vector<std::vec
   auto state = std::make_shared<State>(current);
   state->Times.push_back(time);
   state->Nets.emplace_back();
-  for (const auto& net : nets)
+  for (size_t p = 0; p < nets.size(); ++p)
   {
-    state->Nets.back().push_back(std::make_shared<const std::vector<double>>(net));
+    auto net = std::make_shared<std::vector<double>>(nets[p]);
+    if (p < volumes && current.ReversedVolumes[p])
+    {
+      iga::reverseNetDirection(
+        net->data(), current.Set.volumes[p].netSize, 3, current.Set.channels(), 0);
+    }
+    state->Nets.back().push_back(std::move(net));
   }
   this->Contents = state;
   this->Modified();
@@ -230,6 +254,12 @@ iga::NurbsSet<double> vtkIGANurbsData::GetPatches(int step) const
 int vtkIGANurbsData::GetNumberOfPatches() const
 {
   return this->Contents->Set.patchCount();
+}
+
+bool vtkIGANurbsData::IsVolumeReversed(int volume) const
+{
+  const auto& reversed = this->Contents->ReversedVolumes;
+  return volume >= 0 && volume < static_cast<int>(reversed.size()) && reversed[volume];
 }
 
 int vtkIGANurbsData::GetNumberOfTimeSteps() const
@@ -332,7 +362,8 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
       volumes.patches.push_back(std::move(patches[e]));
     }
   }
-  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(volumes);
+  // Whole patches were oriented by SetPatches; the cells stay the elements as extracted.
+  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(volumes, false);
   vtkPoints* points = grid->GetPoints();
   vtkPointData* pd = grid->GetPointData();
   vtkDataArray* weights = pd->GetRationalWeights();

@@ -23,6 +23,12 @@
  *    points of the grid's time step, channels() components, patch by patch, first direction
  *    fastest), "NurbsAttributeNames" and "NurbsTime" (the grid's time).
  *
+ * VTK's hexahedra are right-handed and its filters (Contour, Clip, Integrate Variables) rely on
+ * it, while G+Smo and GeoPDEs volumes are often left-handed. A volume of negative signed volume
+ * is therefore stored with its first parametric direction reversed (knots t -> a + b - t, net
+ * mirrored): the same volume, right-handed. GetPatches(), GetControlNet() and the grid describe
+ * the stored patches; IsVolumeReversed() says which were turned.
+ *
  * The knot vectors are fixed, so the Bézier extraction operators are built once and every time
  * step is extracted by small matrix products; the grid of the last requested step is cached.
  * Shallow copies share the (immutable) description, nets and extraction operators.
@@ -56,12 +62,16 @@ public:
   std::string SetPatches(const iga::NurbsSet<double>& set, double time = 0.0);
 
   /// Appends a time step: one control net per patch (volumes first, then surfaces), each the
-  /// size of that patch's net. Times must increase. Returns "" or the problem.
+  /// size of that patch's net and laid out like the nets given to SetPatches (reversed volumes
+  /// are turned here too). Times must increase. Returns "" or the problem.
   std::string AddTimeStep(double time, const std::vector<std::vector<double>>& nets);
 
   /// The patches with the control nets of `step`.
   iga::NurbsSet<double> GetPatches(int step = 0) const;
   int GetNumberOfPatches() const;
+  /// Whether SetPatches reversed volume `volume`'s first parametric direction (it was
+  /// left-handed).
+  bool IsVolumeReversed(int volume) const;
   int GetNumberOfTimeSteps() const;
   std::vector<double> GetTimeSteps() const;
   /// Control net of one patch at one step (empty when out of range).

@@ -1,6 +1,7 @@
 // Kernels patches <-> VTK Bézier hexahedra, checked against VTK's own rational interpolation
 // (vtkBezierHexahedron), which is an independent implementation of the point ordering and
 // the rational basis.
+#include "NurbsTestUtilities.h"
 #include "TestPatches.h"
 #include "vtkIGABezierHexahedra.h"
 
@@ -45,11 +46,14 @@ TEST(BezierHexahedra, VTKInterpolationOfConvertedCellsMatchesKernels)
   ASSERT_NE(grid->GetCellData()->GetHigherOrderDegrees(), nullptr);
   std::uniform_real_distribution<double> unit(0, 1);
   vtkNew<vtkGenericCell> cell;
+  int mirrored = 0;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
     EXPECT_EQ(grid->GetCellType(c), VTK_BEZIER_HEXAHEDRON);
     grid->GetCell(c, cell);
-    const auto view = set.patches[c].view();
+    const auto patch = rightHanded(set.patches[c]);
+    mirrored += patch.coeffs() != set.patches[c].coeffs();
+    const auto view = patch.view();
     std::vector<double> weights(cell->GetNumberOfPoints());
     for (int s = 0; s < 10; ++s)
     {
@@ -75,6 +79,8 @@ TEST(BezierHexahedra, VTKInterpolationOfConvertedCellsMatchesKernels)
       }
     }
   }
+  EXPECT_GT(mirrored, 0) << "no left-handed patch among the random ones";
+  EXPECT_LT(mirrored, 12) << "no right-handed patch among the random ones";
 }
 
 TEST(BezierHexahedra, RoundTripIsExact)
@@ -94,8 +100,9 @@ TEST(BezierHexahedra, RoundTripIsExact)
   {
     for (int d = 0; d < 3; ++d)
       EXPECT_EQ(back.patches[c].degree(d), set.patches[c].degree(d));
-    for (size_t v = 0; v < set.patches[c].coeffs().size(); ++v)
-      EXPECT_NEAR(back.patches[c].coeffs()[v], set.patches[c].coeffs()[v], 1e-12);
+    const auto expected = rightHanded(set.patches[c]);
+    for (size_t v = 0; v < expected.coeffs().size(); ++v)
+      EXPECT_NEAR(back.patches[c].coeffs()[v], expected.coeffs()[v], 1e-12);
   }
 }
 
@@ -112,6 +119,41 @@ std::string conversionError(Fn damage, std::vector<std::string>* warnings = null
   vtkIGABezierHexahedra::FromUnstructuredGrid(
     grid, set, error, warnings ? *warnings : localWarnings);
   return error;
+}
+
+TEST(BezierHexahedra, WrittenCellsAreRightHandedAndInsideOutOnesAreReadWithOneWarning)
+{
+  std::mt19937 rng(103);
+  iga::VolumeSet<double> set;
+  set.attributeNames = { "f" };
+  for (int c = 0; c < 8; ++c)
+  {
+    set.patches.push_back(nearAffinePatch<double>(rng, 0.05));
+    if (c % 2) // mirrored in x: left-handed
+    {
+      const auto view = set.patches.back().view();
+      for (int p = 0; p < view.pointCount(); ++p)
+        view.point(p)[0] = -view.point(p)[0];
+    }
+  }
+  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(set);
+  EXPECT_EQ(validatorStates(grid), std::vector<int>(8, 0));
+
+  // Mirroring space (x -> -x) turns every cell inside out; VTK says so, and so does reading.
+  for (vtkIdType p = 0; p < grid->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    grid->GetPoint(p, x);
+    grid->GetPoints()->SetPoint(p, -x[0], x[1], x[2]);
+  }
+  for (int state : validatorStates(grid))
+    EXPECT_TRUE(state & vtkCellValidator::State::FacesAreOrientedIncorrectly) << state;
+  iga::VolumeSet<double> back;
+  std::string error;
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(vtkIGABezierHexahedra::FromUnstructuredGrid(grid, back, error, warnings)) << error;
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].rfind("8 of 8 cells are inside-out for VTK", 0), 0u) << warnings[0];
 }
 
 TEST(BezierHexahedra, BadInputIsNamed)

@@ -5,6 +5,8 @@
 #include "vtkIGANurbsCells.h"
 #include "vtkIGANurbsData.h"
 
+#include "iga/Datasets.h"
+
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -86,6 +88,7 @@ vtkIdType expectedCells(const iga::NurbsSet<double>& set)
 
 TEST(NurbsData, ExtractionMatchesCoxDeBoorThroughVTKCells)
 {
+  int reversedVolumes = 0;
   for (unsigned seed = 1; seed <= 5; ++seed)
   {
     const auto set = randomSet(seed);
@@ -104,9 +107,13 @@ TEST(NurbsData, ExtractionMatchesCoxDeBoorThroughVTKCells)
       knotSpans(set.surfaces[0].knots[0]).size() * knotSpans(set.surfaces[0].knots[1]).size());
     EXPECT_EQ(hexahedra + quadrilaterals, grid->GetNumberOfCells());
     std::mt19937 rng(seed + 100);
-    const double worst = compareWithCoxDeBoor(set, grid, rng, 40);
+    const std::vector<bool> reversed = { data->IsVolumeReversed(0), data->IsVolumeReversed(1) };
+    reversedVolumes += reversed[0] + reversed[1];
+    const double worst = compareWithCoxDeBoor(set, grid, rng, 40, reversed);
     EXPECT_LT(worst, 1e-9);
   }
+  EXPECT_GT(reversedVolumes, 0) << "no left-handed volume among the random ones";
+  EXPECT_LT(reversedVolumes, 10) << "no right-handed volume among the random ones";
 }
 
 TEST(NurbsData, GridRoundTripRebuildsTheSameNurbs)
@@ -228,6 +235,30 @@ protected:
   }
 };
 vtkStandardNewMacro(NurbsSource);
+
+TEST(NurbsData, LeftHandedVolumesAreStoredRightHandedForVTK)
+{
+  iga::NurbsSet<double> set;
+  set.attributeNames = { "f" };
+  set.volumes = { iga::makeNurbsBall<double>(2, 1.0), iga::makeNurbsBall<double>(3, -1.0) };
+  vtkNew<vtkIGANurbsData> data;
+  ASSERT_EQ(data->SetPatches(set), "");
+  EXPECT_FALSE(data->IsVolumeReversed(0));
+  EXPECT_TRUE(data->IsVolumeReversed(1)) << "mirrored in x: left-handed";
+  const auto grid = data->ToUnstructuredGrid();
+  EXPECT_EQ(validatorStates(grid), std::vector<int>(grid->GetNumberOfCells(), 0));
+  std::mt19937 rng(12);
+  EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 40, { false, true }), 1e-12);
+  // A later step's nets come in the layout given to SetPatches and are turned the same way.
+  ASSERT_EQ(data->AddTimeStep(1.0, shiftedNets(set, 0.5)), "");
+  const auto moved = data->ToUnstructuredGrid(1);
+  iga::NurbsSet<double> shifted = set;
+  const auto nets = shiftedNets(set, 0.5);
+  shifted.volumes[0].net = nets[0];
+  shifted.volumes[1].net = nets[1];
+  EXPECT_LT(compareWithCoxDeBoor(shifted, moved, rng, 40, { false, true }), 1e-12);
+  EXPECT_EQ(validatorStates(moved), std::vector<int>(moved->GetNumberOfCells(), 0));
+}
 
 TEST(NurbsData, TimeStepsFollowThePipelineRequest)
 {

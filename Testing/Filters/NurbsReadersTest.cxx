@@ -265,13 +265,14 @@ TEST(NurbsReadersRealFiles, GeoPDEsTwoCubesVersion21)
   const auto cells = cellsBySpan(grid);
   for (int s = 0; s < 30; ++s)
   {
-    // Patch 1: x = 0.5 u (control 0, 0.25, 0.5), z = w; patch 2: x = 0.5 + 0.5 u.
+    // Patch 1: x = 0.5 u (control 0, 0.25, 0.5), z = w; patch 2: x = 0.5 + 0.5 u in the file,
+    // which is left-handed there and so read with u reversed.
     const double u = unit(rng), v = unit(rng), w = unit(rng);
     const auto one = at(grid, cells.at({ 0, 0, s % 2, 0 }), u, v, w);
     EXPECT_NEAR(one[0], 0.5 * u, 1e-14);
     EXPECT_NEAR(one[2], w, 1e-14);
     const auto two = at(grid, cells.at({ 1, 0, 0, s % 2 }), u, v, w);
-    EXPECT_NEAR(two[0], 0.5 + 0.5 * u, 1e-14);
+    EXPECT_NEAR(two[0], 1 - 0.5 * u, 1e-14);
   }
   EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 100), 1e-12);
 }

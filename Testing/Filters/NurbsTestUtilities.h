@@ -7,6 +7,7 @@
 #include "iga/NurbsSet.h"
 
 #include "vtkCellData.h"
+#include "vtkCellValidator.h"
 #include "vtkDataArray.h"
 #include "vtkGenericCell.h"
 #include "vtkNew.h"
@@ -71,9 +72,11 @@ inline std::map<std::tuple<int, int, int, int>, vtkIdType> cellsBySpan(vtkUnstru
 
 /// Checks that the grid's Bézier cells reproduce the Cox-de Boor evaluation of every patch of
 /// `set` (patch indices: volumes, then surfaces) at `samples` random parameters each; returns
-/// the largest difference.
-inline double compareWithCoxDeBoor(
-  const iga::NurbsSet<double>& set, vtkUnstructuredGrid* grid, std::mt19937& rng, int samples)
+/// the largest difference. Volume v with reversed[v] is expected with its first direction
+/// reversed (vtkIGANurbsData turns left-handed volumes so): parameter u of `set` is then found
+/// at the mirrored knot span and cell coordinate.
+inline double compareWithCoxDeBoor(const iga::NurbsSet<double>& set, vtkUnstructuredGrid* grid,
+  std::mt19937& rng, int samples, const std::vector<bool>& reversed = {})
 {
   const auto cells = cellsBySpan(grid);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -93,6 +96,11 @@ inline double compareWithCoxDeBoor(
         pcoords[d] = unit(rng);
         const auto [a, b] = spans[d][element[d]];
         u[d] = a + pcoords[d] * (b - a);
+      }
+      if (index < int(reversed.size()) && reversed[index])
+      {
+        element[0] = int(spans[0].size()) - 1 - element[0];
+        pcoords[0] = 1 - pcoords[0];
       }
       const auto found = cells.find({ index, element[0], element[1], element[2] });
       EXPECT_NE(found, cells.end()) << "patch " << index;
@@ -116,6 +124,20 @@ inline double compareWithCoxDeBoor(
   for (const auto& surface : set.surfaces)
     check(surface, index++, 2);
   return worst;
+}
+
+/// vtkCellValidator's verdict on every cell of `grid`, as 0 (valid) or its state bits.
+inline std::vector<int> validatorStates(vtkUnstructuredGrid* grid)
+{
+  std::vector<int> states;
+  vtkNew<vtkGenericCell> cell;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    grid->GetCell(c, cell);
+    grid->SetCellOrderAndRationalWeights(c, cell);
+    states.push_back(static_cast<int>(vtkCellValidator::Check(cell, 1e-9)));
+  }
+  return states;
 }
 
 } // namespace igatest

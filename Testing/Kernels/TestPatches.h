@@ -2,11 +2,13 @@
 #pragma once
 
 #include "iga/Bounds.h"
+#include "iga/Orientation.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace igatest
@@ -61,6 +63,17 @@ void randomDegrees(std::mt19937& rng, int* degree, int maxDegree = 4)
   {
     degree[d] = pick(rng);
   }
+}
+
+/// The patch as a VTK cell holds it: a left-handed one (negative signed volume) with its first
+/// parametric direction reversed.
+inline iga::BezierVolume<double> rightHanded(iga::BezierVolume<double> patch)
+{
+  if (iga::signedVolume<double>(std::as_const(patch).view()) < 0)
+  {
+    iga::reverseDirection(patch.view(), 0);
+  }
+  return patch;
 }
 
 /// The same patch in double precision, the reference for float tests.
