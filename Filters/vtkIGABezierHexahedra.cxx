@@ -268,7 +268,7 @@ std::string readCell(vtkUnstructuredGrid* grid, vtkIdType npts, const vtkIdType*
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
-  const iga::VolumeSet<double>& set, bool orient)
+  const iga::VolumeSet<double>& set, CellLayout layout)
 {
   vtkIdType total = 0;
   for (const auto& patch : set.patches)
@@ -294,6 +294,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
   degrees->SetNumberOfTuples(static_cast<vtkIdType>(set.patches.size()));
   vtkNew<vtkCellArray> cells;
 
+  bool uniform = true;
   vtkIdType offset = 0;
   std::vector<vtkIdType> ids;
   for (size_t c = 0; c < set.patches.size(); ++c)
@@ -301,7 +302,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
     const auto view = set.patches[c].view();
     const int* degree = view.degree;
     ids.resize(view.pointCount());
-    forEachControlPoint(degree, orient && iga::signedVolume<double>(view) < 0,
+    forEachControlPoint(degree, layout == CellLayout::ForVTK && iga::signedVolume<double>(view) < 0,
       [&](int linear, int vtkIndex)
       {
         const double* cp = view.point(linear);
@@ -317,6 +318,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
       });
     cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     degrees->SetTypedTuple(static_cast<vtkIdType>(c), degree);
+    uniform &= degree[0] == degree[1] && degree[1] == degree[2];
     offset += view.pointCount();
   }
 
@@ -332,7 +334,10 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
   {
     grid->GetPointData()->SetActiveScalars(attributes.front()->GetName());
   }
-  grid->GetCellData()->SetHigherOrderDegrees(degrees);
+  if (!(uniform && layout == CellLayout::ForVTK))
+  {
+    grid->GetCellData()->SetHigherOrderDegrees(degrees);
+  }
   return grid;
 }
 

@@ -5,12 +5,12 @@
  *
  * The grid side follows VTK's conventions: points in VTK's higher-order hexahedron ordering
  * (vtkHigherOrderHexahedron::PointIndexFromIJK), Euclidean coordinates, a point array
- * "RationalWeights" and a 3-component cell array "HigherOrderDegrees", both flagged as the active
- * rational weights / higher-order degrees (VTK silently ignores them otherwise), and one point
- * array per attribute. Patches do not share points: each cell owns its control points, so
+ * "RationalWeights" and a 3-component cell array "HigherOrderDegrees" (left out when VTK can infer
+ * the degrees, see CellLayout), both flagged as the active rational weights / higher-order
+ * degrees (VTK silently ignores them otherwise), and one point array per attribute. Patches do not share points: each cell owns its control points, so
  * patches of different degrees and discontinuous attributes convert without loss. Cells are
  * right-handed, as VTK's filters assume: a left-handed patch (negative signed volume) becomes the
- * cell of the same volume with its first parametric direction reversed.
+ * cell of the same volume with its first parametric direction reversed (see CellLayout).
  *
  * Reading accepts VTK_BEZIER_HEXAHEDRON (and linear VTK_HEXAHEDRON as degree 1). Every
  * single-component point array other than the weights becomes an attribute. Problems are
@@ -33,11 +33,24 @@ class vtkUnstructuredGrid;
 class IGAVIEWFILTERS_EXPORT vtkIGABezierHexahedra
 {
 public:
-  /// Patches (standard layout, every attribute named) to a grid of Bézier hexahedra, each
-  /// left-handed patch turned right-handed unless `orient` is false (for callers that orient
-  /// whole B-spline patches and keep their elements as extracted).
+  /// How ToUnstructuredGrid lays out the cells.
+  enum class CellLayout
+  {
+    /// For VTK's filters: right-handed cells, and no degree array when every cell has one
+    /// degree in all directions (VTK infers it from the point count). VTK 9.2's Contour and
+    /// Clip of higher-order cells read each cell's data at the input cell id from a copy that
+    /// holds only that cell's sub-cells (vtkHigherOrderHexahedron::Contour passes `cellId` to
+    /// its linear approximations with `ApproxCD`), out of bounds and, for large grids, into a
+    /// crash; a grid without cell arrays is safe from it.
+    ForVTK,
+    /// The patches as given, with the degree array (NURBS elements that carry cell data of
+    /// their own and are oriented patch by patch).
+    AsGiven,
+  };
+
+  /// Patches (standard layout, every attribute named) to a grid of Bézier hexahedra.
   static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(
-    const iga::VolumeSet<double>& set, bool orient = true);
+    const iga::VolumeSet<double>& set, CellLayout layout = CellLayout::ForVTK);
 
   /// Grid to patches. Returns false and sets `error` when the grid cannot be converted; appends
   /// non-fatal notes to `warnings`.

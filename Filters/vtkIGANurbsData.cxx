@@ -363,7 +363,8 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
     }
   }
   // Whole patches were oriented by SetPatches; the cells stay the elements as extracted.
-  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(volumes, false);
+  auto grid =
+    vtkIGABezierHexahedra::ToUnstructuredGrid(volumes, vtkIGABezierHexahedra::CellLayout::AsGiven);
   vtkPoints* points = grid->GetPoints();
   vtkPointData* pd = grid->GetPointData();
   vtkDataArray* weights = pd->GetRationalWeights();

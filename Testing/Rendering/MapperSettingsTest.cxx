@@ -282,6 +282,32 @@ TEST(IsosurfaceMapperSettings, AnEmptyFrameSaysWhy)
   EXPECT_EQ(scene.recorder->count("nothing"), 2);
 }
 
+TEST(IsosurfaceMapperSettings, InsideOutCellsAreDrawnAsTheRightHandedOnesAndSaidOnce)
+{
+  TubeScene right, insideOut;
+  // The generator's own left-handed patches, kept as they are.
+  insideOut.mapper->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(
+    iga::makeTwistedTube<double>(0.5), vtkIGABezierHexahedra::CellLayout::AsGiven));
+  right.render();
+  insideOut.render();
+  const std::string said = "8 of 8 cells are inside-out for VTK";
+  EXPECT_EQ(insideOut.recorder->count(said), 1);
+  EXPECT_EQ(right.recorder->warnings.size(), 0u);
+  // The same surface: coverage equal but for silhouette pixels, colours alike.
+  const double covered = double(right.coveredPixels());
+  EXPECT_GT(covered, 1000);
+  EXPECT_NEAR(double(insideOut.coveredPixels()), covered, 0.01 * covered);
+  int differ = 0;
+  for (int j = 0; j < 200; ++j)
+    for (int i = 0; i < 240; ++i)
+      for (int c = 0; c < 3; ++c)
+        differ += std::abs(int(right.pixel(i, j)[c]) - int(insideOut.pixel(i, j)[c])) > 8;
+  EXPECT_LT(differ, 0.02 * covered);
+  insideOut.turn(4);
+  insideOut.render();
+  EXPECT_EQ(insideOut.recorder->count(said), 1) << "said again for a new camera";
+}
+
 TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns)
 {
   TubeScene scene;
