@@ -144,6 +144,7 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: " << this->Backend << "\n";
   os << indent << "MaximumSubdivisionDepth: " << this->MaximumSubdivisionDepth << "\n";
   os << indent << "MemoryBudgetMB: " << this->MemoryBudgetMB << "\n";
+  os << indent << "FrameDeadline: " << this->FrameDeadline << "\n";
   os << indent << "LastBackend: " << this->Internal->LastBackend << "\n";
   os << indent << "LastUnresolvedPixels: " << this->LastUnresolvedPixels << "\n";
 }
@@ -575,7 +576,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
     double(actor->GetProperty()->GetMTime()), double(this->GetLookupTable()->GetMTime()),
     double(frame.Width), double(frame.Height), double(this->Backend),
     double(this->MaximumSubdivisionDepth), double(this->MemoryBudgetMB),
-    double(this->NumberOfThreads) };
+    double(this->NumberOfThreads), this->FrameDeadline };
   frame.Key.insert(frame.Key.end(), worldToClip->GetData(), worldToClip->GetData() + 16);
   frame.Key.insert(
     frame.Key.end(), actor->GetMatrix()->GetData(), actor->GetMatrix()->GetData() + 16);
@@ -617,6 +618,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   settings.colorAttribute = frame.ByScalars ? indexOf(this->ArrayName) : -1;
   settings.maxSubdivisionDepth = this->MaximumSubdivisionDepth;
   settings.memoryBudgetBytes = size_t(this->MemoryBudgetMB) << 20;
+  settings.deadlineMs = 1000 * this->FrameDeadline;
   settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu
                      : this->Backend == BACKEND_CUDA ? iga::sst::Backend::Cuda
                                                      : iga::sst::Backend::Automatic;
@@ -805,7 +807,8 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
       false);
   }
   this->ReportEmptyFrame(report);
-  if (report.unresolvedPixels == 0)
+  this->ReportDeadline(report);
+  if (report.unresolvedAtDepthCap == 0 && report.unresolvedAtBudget == 0)
   {
     return;
   }
@@ -828,6 +831,23 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
   this->ReportOnce(std::string("unresolved") + (depth ? " depth" : "") + (budget ? " budget" : ""),
     std::to_string(report.unresolvedPixels) + " pixels left unresolved" + caps +
       "; not reported again until the settings or the input change",
+    false);
+}
+
+void vtkIGAIsosurfaceMapper::ReportDeadline(const iga::sst::FrameReport& report)
+{
+  if (report.unresolvedAtDeadline == 0)
+  {
+    return;
+  }
+  this->Internal->FrameKey.clear(); // a frame cut short is computed again next time
+  char deadline[32];
+  std::snprintf(deadline, sizeof deadline, "%g", this->FrameDeadline);
+  this->ReportOnce("deadline",
+    "the frame stopped at its deadline (FrameDeadline " + std::string(deadline) +
+      " s): " + std::to_string(report.unresolvedAtDeadline) +
+      " pixels left unresolved, drawn with the hits found by then; not reported again until "
+      "the settings or the input change",
     false);
 }
 

@@ -36,11 +36,12 @@
  * Engine settings: Backend (automatic: CUDA where the library was built with it and a device
  * is usable, else CPU threads; CPU; CUDA, which falls back to CPU threads when it cannot run),
  * NumberOfThreads (CPU), MaximumSubdivisionDepth and MemoryBudgetMB (the caps at which a pixel
- * with work left is given up and counted as unresolved). Changing any of them re-runs the
- * engine. GetLastBackend() says where the last frame ran; when that is not where it was asked
- * to run, the engine's one-line notice is printed once per mapper and notice: a warning when
- * CUDA was asked for (Backend CUDA, or IGAVIEW_BACKEND=cuda) or a CUDA frame failed, a plain
- * message (vtkOutputWindow text) when the automatic choice fell back to CPU threads.
+ * with work left is given up and counted as unresolved), FrameDeadline (seconds after which a
+ * frame stops with what it has found). Changing any of them re-runs the engine. GetLastBackend()
+ * says where the last frame ran; when that is not where it was asked to run, the engine's one-line
+ * notice is printed once per mapper and notice: a warning when CUDA was asked for (Backend CUDA, or
+ * IGAVIEW_BACKEND=cuda) or a CUDA frame failed, a plain message (vtkOutputWindow text) when the
+ * automatic choice fell back to CPU threads.
  *
  * NURBS input on a GPU: when a frame is tried on a GPU and the input is one grid that carries
  * the NURBS description vtkIGANurbsData writes (the readers' and sources' output), the mapper
@@ -157,6 +158,15 @@ public:
   vtkGetMacro(MemoryBudgetMB, int);
   ///@}
 
+  ///@{
+  /// Frame deadline in seconds, 0 for none (default): a frame still being computed then stops,
+  /// draws the hits found so far and leaves the pixels with work left unresolved (said once
+  /// until the settings or the input change), so that an interactive view never waits longer.
+  /// A frame cut short is not kept: the next render computes it again.
+  vtkSetClampMacro(FrameDeadline, double, 0.0, 1e6);
+  vtkGetMacro(FrameDeadline, double);
+  ///@}
+
   /// Milliseconds the engine took for the last frame it computed.
   double GetLastEngineTime() const { return this->LastEngineTime; }
 
@@ -236,6 +246,8 @@ private:
   /// Says once why a frame drew nothing: isovalues outside the attribute's range, or a surface
   /// outside the view or clipped away.
   void ReportEmptyFrame(const iga::sst::FrameReport& report);
+  /// Says once that a frame stopped at FrameDeadline, and has the next render compute it again.
+  void ReportDeadline(const iga::sst::FrameReport& report);
   /// Colour and window depth of every pixel from the G-buffer, with VTK's lights.
   void ShadeFrame(vtkActor* actor, const Frame& frame);
   /// Colours, or a hardware selector's ids, drawn as a full-screen pass with gl_FragDepth.
@@ -255,6 +267,7 @@ private:
   int NumberOfThreads = 0;
   int Backend = BACKEND_AUTOMATIC;
   int MaximumSubdivisionDepth = 22;
+  double FrameDeadline = 0;
   int MemoryBudgetMB = 2048;
   double LastEngineTime = 0;
   vtkIdType LastUnresolvedPixels = 0;

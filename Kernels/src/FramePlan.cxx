@@ -257,6 +257,11 @@ void checkSettings(const Settings& s)
   {
     throw std::invalid_argument("maximum subdivision depth must lie in 0..40");
   }
+  if (!(s.deadlineMs >= 0 && std::isfinite(s.deadlineMs)))
+  {
+    throw std::invalid_argument("frame deadline of " + std::to_string(s.deadlineMs) +
+                                " ms is not a finite, non-negative time");
+  }
   if (s.transferChunkBytes < 4096)
   {
     throw std::invalid_argument(

@@ -210,6 +210,11 @@ void vtkIGAIsosurfaceRepresentation::SetMemoryBudget(int megabytes)
   this->Mapper->SetMemoryBudgetMB(megabytes);
 }
 
+void vtkIGAIsosurfaceRepresentation::SetFrameDeadline(double seconds)
+{
+  this->Mapper->SetFrameDeadline(seconds);
+}
+
 void vtkIGAIsosurfaceRepresentation::OnMapperProgress(vtkObject*, unsigned long, void* data)
 {
   this->UpdateProgress(*static_cast<double*>(data));

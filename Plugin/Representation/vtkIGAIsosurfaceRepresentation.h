@@ -16,7 +16,8 @@
  * vtkGeometryRepresentation).
  *
  * Engine settings go to the mapper: Backend (0 automatic, 1 CPU, 2 CUDA), CPU threads, and the
- * caps MaximumSubdivisionDepth and MemoryBudget (MiB) at which pixels are left unresolved.
+ * caps MaximumSubdivisionDepth and MemoryBudget (MiB) at which pixels are left unresolved, and
+ * the FrameDeadline (seconds) at which a frame stops with what it has found.
  *
  * Progress: the mapper's progress events while the engine runs (vtkCommand::ProgressEvent,
  * see vtkIGAIsosurfaceMapper) are re-fired as this representation's own progress
@@ -68,6 +69,8 @@ public:
   void SetMaximumSubdivisionDepth(int depth);
   /// The engine's memory budget in MiB.
   void SetMemoryBudget(int megabytes);
+  /// Seconds after which a frame stops (0: never).
+  void SetFrameDeadline(double seconds);
   ///@}
 
   ///@{

@@ -74,6 +74,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --view-up x,y,z
   --view-angle DEG       a camera that is not given is chosen to frame the data
   --threads N            CPU threads (default: all)
+  --deadline S           frame deadline in seconds, 0 for none: a frame still running then stops
+                         and shows the hits found (default: none for render, 2 for view)
   --backend B            auto, cpu or cuda (default auto: CUDA where built with it and a GPU is
                          present; the environment variable IGAVIEW_BACKEND sets auto's choice)
   -o FILE                output PNG (default igaview.png)
@@ -94,6 +96,7 @@ struct Options
   std::string surfaceBy, colorBy, output = "igaview.png", exr;
   int size[2] = { 800, 600 };
   int threads = 0;
+  double deadline = -1; ///< seconds; -1: the command's default
   iga::sst::Backend backend = iga::sst::Backend::Automatic;
   double time = 0.5;
   bool hasPosition = false, hasFocal = false, hasViewUp = false;
@@ -201,6 +204,13 @@ Options parseArguments(int argc, char** argv)
       if (!(threads >= 1 && threads <= 1024 && threads == std::floor(threads)))
         fail("--threads expects a whole number in 1..1024, got '" + text + "'");
       options.threads = int(threads);
+    }
+    else if (arg == "--deadline")
+    {
+      const std::string text = value();
+      options.deadline = parseNumber(text, arg);
+      if (!(options.deadline >= 0 && options.deadline <= 1e6))
+        fail("--deadline expects seconds in 0..1e6, got '" + text + "'");
     }
     else if (arg == "--backend")
     {
@@ -584,6 +594,8 @@ int main(int argc, char** argv)
   mapper->SetInputConnection(producer->GetOutputPort());
   mapper->SetSurfaceArrayName(set.attributeNames[surface].c_str());
   mapper->SetNumberOfThreads(options.threads);
+  // An interactive window answers within two seconds unless told otherwise.
+  mapper->SetFrameDeadline(options.deadline >= 0 ? options.deadline : options.view ? 2.0 : 0.0);
   // The mapper's BackendType follows the engine's Backend order (auto, CPU, CUDA).
   mapper->SetBackend(int(options.backend));
   for (size_t k = 0; k < isovalues.size(); ++k)

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <string>
+#include <thread>
 
 namespace
 {
@@ -595,6 +597,58 @@ TEST(Engine, DepthCapIsReportedNotLooped)
   renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
   EXPECT_GT(report.unresolvedAtBudget, 0u);
   EXPECT_LE(report.peakBytes, size_t(1) << 20);
+}
+
+/// Pixels whose first hit differs between two G-buffers of one size (or is missing in one).
+size_t differingPixels(const GBuffer& a, const GBuffer& b)
+{
+  size_t differ = 0;
+  for (int j = 0; j < a.height; ++j)
+    for (int i = 0; i < a.width; ++i)
+    {
+      const iga::sst::Hit *x = a.firstHit(i, j), *y = b.firstHit(i, j);
+      differ += (x == nullptr) != (y == nullptr) || (x && x->ndcDepth != y->ndcDepth);
+    }
+  return differ;
+}
+
+TEST(Engine, AFrameStopsAtItsDeadlineKeepingWhatIsCertain)
+{
+  const auto set = iga::makeTwistedTube<double>(0.7);
+  const auto camera = igatest::lookAt(set, { 3, -3.5, 3 }, { 0.2, 0, 1 }, 35);
+  Settings settings;
+  settings.width = settings.height = 96;
+  settings.isovalues = { 0.0 };
+  iga::sst::FrameReport full;
+  const GBuffer whole = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &full);
+  ASSERT_GT(full.iterations, 6);
+  EXPECT_EQ(full.unresolvedAtDeadline, 0u);
+
+  // Iterations slowed down to 40 ms each: a 100 ms deadline stops the frame after a few.
+  settings.deadlineMs = 100;
+  settings.progress = [](int, size_t)
+  { std::this_thread::sleep_for(std::chrono::milliseconds(40)); };
+  iga::sst::FrameReport cut;
+  const GBuffer part = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &cut);
+  EXPECT_GE(cut.iterations, 1);
+  EXPECT_LE(cut.iterations, 4);
+  EXPECT_GT(cut.unresolvedAtDeadline, 0u);
+  EXPECT_EQ(cut.unresolvedPixels, cut.unresolvedAtDeadline);
+  EXPECT_LT(part.coveredPixels(), whole.coveredPixels());
+  // Every pixel not given up is the full frame's.
+  EXPECT_LE(differingPixels(part, whole), cut.unresolvedAtDeadline);
+
+  // A deadline already passed when the loop starts gives up every pixel with work.
+  settings.deadlineMs = 1e-9;
+  settings.progress = nullptr;
+  iga::sst::FrameReport none;
+  const GBuffer empty = renderSet(set, camera, settings, Method::SharedSubdivisionTree, &none);
+  EXPECT_EQ(none.iterations, 0);
+  EXPECT_EQ(empty.coveredPixels(), 0u);
+  EXPECT_GE(none.unresolvedAtDeadline, whole.coveredPixels());
+
+  settings.deadlineMs = -1;
+  EXPECT_THROW(renderSet(set, camera, settings), std::invalid_argument);
 }
 
 TEST(Engine, BadInputIsRejectedWithTheProblemNamed)

@@ -124,6 +124,7 @@ assert display.IGABackend == "Automatic", display.IGABackend
 assert display.GetProperty("IGABackend").Available == ["Automatic", "CPU", "CUDA"]
 assert display.IGAMaximumSubdivisionDepth == 22, display.IGAMaximumSubdivisionDepth
 assert display.IGAMemoryBudget == 2048, display.IGAMemoryBudget
+assert display.IGAFrameDeadline == 0, display.IGAFrameDeadline
 # Without CUDA the automatic choice says so once, as a plain message (no warning).
 without_cuda = count_messages("built without CUDA", "TextEvent") == 1
 assert count_messages("CUDA") == 0, mapper_messages
@@ -198,9 +199,18 @@ turn_and_back()
 assert count_messages("at the memory budget (MemoryBudgetMB 16:") == 1, mapper_messages
 assert covered_in(budget_shot) < full_covered
 
-# The defaults again: the baseline image.
+# A deadline passed before the first subdivision round: nothing is found, said once.
 display.IGAMemoryBudget = 2048
+display.IGAFrameDeadline = 1e-9
+late_shot = screenshot("deadline")
+turn_and_back()
+assert count_messages("the frame stopped at its deadline (FrameDeadline 1e-09 s)") == 1, \
+    mapper_messages
+assert covered_in(late_shot) == 0
+
+# The defaults again: the baseline image.
+display.IGAFrameDeadline = 0
 assert same_pixels(screenshot("defaults_again"), shot)
-assert count_messages("pixels left unresolved") == 2, mapper_messages
+assert count_messages("pixels left unresolved") == 3, mapper_messages
 print(f"MaximumSubdivisionDepth 2: {shallow_covered} pixels covered, MemoryBudget 16 MB: "
       f"{covered_in(budget_shot)}, defaults: {full_covered}; each cap warned about once")

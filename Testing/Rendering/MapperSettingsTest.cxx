@@ -308,6 +308,33 @@ TEST(IsosurfaceMapperSettings, InsideOutCellsAreDrawnAsTheRightHandedOnesAndSaid
   EXPECT_EQ(insideOut.recorder->count(said), 1) << "said again for a new camera";
 }
 
+TEST(IsosurfaceMapperSettings, FrameDeadlineStopsTheFrameSaysSoOnceAndComputesItAgain)
+{
+  TubeScene full, cut;
+  full.mapper->SetFrameDeadline(100.0); // far beyond this frame: no effect
+  full.render();
+  EXPECT_EQ(full.recorder->warnings.size(), 0u);
+  EXPECT_GT(full.coveredPixels(), 1000u);
+  // A deadline passed before the first iteration: nothing found, every pixel with work left.
+  cut.mapper->SetFrameDeadline(1e-9);
+  cut.render();
+  const std::string said = "the frame stopped at its deadline (FrameDeadline 1e-09 s): ";
+  EXPECT_EQ(cut.recorder->count(said), 1);
+  EXPECT_EQ(cut.coveredPixels(), 0u);
+  EXPECT_GE(cut.mapper->GetLastUnresolvedPixels(), vtkIdType(full.coveredPixels()));
+  EXPECT_EQ(cut.recorder->count("pixels left unresolved at the"), 0) << "no cap was hit";
+  // The same view again is computed again, not taken from the cut frame; said once only.
+  cut.recorder->progress.clear();
+  cut.render();
+  EXPECT_FALSE(cut.recorder->progress.empty());
+  EXPECT_EQ(cut.recorder->count(said), 1);
+  // Without the deadline the frame is whole.
+  cut.mapper->SetFrameDeadline(0);
+  cut.render();
+  EXPECT_EQ(cut.coveredPixels(), full.coveredPixels());
+  EXPECT_EQ(cut.mapper->GetLastUnresolvedPixels(), 0);
+}
+
 TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns)
 {
   TubeScene scene;

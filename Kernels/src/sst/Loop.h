@@ -12,6 +12,7 @@
 #include "sst/Subdivision.h"
 #include "sst/Sweep.h"
 
+#include <chrono>
 #include <limits>
 
 namespace iga
@@ -37,7 +38,28 @@ void beginFrame(LoopState<Exec>& s)
   s.peak = s.peakBudgeted = 0;
 }
 
-/// One round's iterations over the groups in GroupBegin/GroupEnd of the active pixels.
+/// Whether the frame's deadline has passed (checked on the host between iterations).
+template<class Exec>
+bool deadlinePassed(LoopState<Exec>& s)
+{
+  s.pastDeadline = s.pastDeadline || std::chrono::steady_clock::now() >= s.deadline;
+  return s.pastDeadline;
+}
+
+/// At the deadline: the band's pixels with work left (the active ones) are given up, unresolved,
+/// with the hits found so far.
+template<class Exec>
+void giveUpActivePixels(LoopState<Exec>& s)
+{
+  uint8_t* unresolved = raw(s.Unresolved);
+  const uint32_t* active = raw(s.Active);
+  s.exec.forEach(s.Active.size(), [=] IGA_HD(size_t k) { unresolved[active[k]] = 1; });
+  s.report->unresolvedAtDeadline += s.Active.size();
+  s.Active.resize(0);
+}
+
+/// One round's iterations over the groups in GroupBegin/GroupEnd of the active pixels, until
+/// none is left or the deadline passes.
 template<class Exec>
 void solveRound(LoopState<Exec>& s)
 {
@@ -81,6 +103,10 @@ void solveRound(LoopState<Exec>& s)
     {
       (*s.progress)(report.iterations, s.TupleCount);
     }
+    if (deadlinePassed(s))
+    {
+      break;
+    }
   }
   s.Tuples.resize(0);
   // The round's Newton solves, counted per pixel.
@@ -91,7 +117,8 @@ void solveRound(LoopState<Exec>& s)
   s.exec.forEach(s.Active.size(), [=] IGA_HD(size_t k) { solves[active[k]] = 0; });
 }
 
-/// The sweep and the rounds of one band of rows (s.frame's).
+/// The sweep and the rounds of one band of rows (s.frame's); after the deadline, its pixels
+/// with work are given up.
 template<class Exec>
 void drawPass(LoopState<Exec>& s)
 {
@@ -105,7 +132,15 @@ void drawPass(LoopState<Exec>& s)
     {
       break;
     }
-    solveRound(s);
+    if (!deadlinePassed(s))
+    {
+      solveRound(s);
+    }
+    if (s.pastDeadline)
+    {
+      giveUpActivePixels(s);
+      break;
+    }
   }
 }
 

@@ -9,6 +9,7 @@
 #include "sst/PixelRuns.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 
 namespace iga
@@ -102,6 +103,10 @@ struct LoopState
   typename Exec::StageTimer stages;
   FrameReport* report = nullptr;
   uint64_t budget = 0; ///< Settings::memoryBudgetBytes
+  /// Settings::deadlineMs as a time (none when `deadline` is the clock's maximum), and whether
+  /// it has passed.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  bool pastDeadline = false;
   const std::function<void(int, size_t)>* progress = nullptr;
   /// Bytes of the driver's own copies of the input (world patches, roots) for peakBytes.
   size_t driverBytes = 0;
@@ -157,6 +162,14 @@ void setFrame(LoopState<Exec>& s, FrameReport& report, const Settings& settings,
 {
   s.report = &report;
   s.budget = settings.memoryBudgetBytes;
+  s.deadline = std::chrono::steady_clock::time_point::max();
+  s.pastDeadline = false;
+  if (settings.deadlineMs > 0)
+  {
+    s.deadline = std::chrono::steady_clock::now() +
+                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                   std::chrono::duration<double, std::milli>(settings.deadlineMs));
+  }
   s.progress = &settings.progress;
   s.pixelCount = size_t(settings.width) * settings.height;
   s.viewer = shadingViewOf(view, settings);

@@ -69,6 +69,11 @@ struct Settings
   /// Newton's acceptance window: a fraction of a pixel, and of the attribute's range.
   double pixelTolerance = 1e-3;
   double isoTolerance = 1e-7;
+  /// Frame deadline in milliseconds from the start of the frame, 0 for none: a
+  /// shared-subdivision-tree frame still running then stops between iterations, keeps the hits
+  /// found and leaves the pixels with work left unresolved (FrameReport::unresolvedAtDeadline),
+  /// so that an interactive view never waits long for a frame.
+  double deadlineMs = 0;
   /// Brute force only: uniform subdivision levels per patch.
   int bruteForceLevels = 4;
   /// Called after every SST iteration with its number and the (pixel, patch) pairs left.
@@ -98,6 +103,9 @@ struct FrameReport
   /// (pixel, sub-patch) pairs given up at each cap (a pixel may count more than once).
   size_t unresolvedAtDepthCap = 0;
   size_t unresolvedAtBudget = 0;
+  /// Pixels with work left when Settings::deadlineMs passed (drawn with the hits found by then,
+  /// which may not be their nearest).
+  size_t unresolvedAtDeadline = 0;
   size_t droppedAtEyePlane = 0; ///< sub-patches at the depth cap still straddling the eye plane
   /// (patch, isovalue) pairs whose attribute is constant at the isovalue: a region, not a
   /// surface, so not drawn (NodeInfo::constantAttribute).
