@@ -11,6 +11,7 @@ packages=(
   libopenmpi-dev mpi-default-dev libglew-dev libdouble-conversion-dev liblz4-dev libtiff-dev
   libutfcpp-dev libopenexr-dev libglm-dev libgtest-dev googletest
   xvfb xauth libgl1-mesa-dri
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -2,6 +2,7 @@
 // volumes through vtkIGAIsosurfaceMapper in an offscreen VTK render window and writes a PNG and,
 // on request, the engine's OpenEXR G-buffer of the same frame. `igaview view` shows them in an
 // interactive window (trackball camera, keys for the isovalue and time, frame-time readout).
+#include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAEXRWriter.h"
@@ -15,21 +16,18 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkInformation.h"
 #include "vtkInteractorStyleTrackballCamera.h"
-#include "vtkLogger.h"
 #include "vtkNew.h"
-#include "vtkOutputWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkStringOutputWindow.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
+#include "vtkTrivialProducer.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkWindowToImageFilter.h"
-#include "vtkXMLUnstructuredGridReader.h"
 
 #include "iga/Bounds.h"
 #include "iga/sst/Engine.h"
@@ -38,13 +36,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <new>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace
@@ -260,123 +254,43 @@ Options parseArguments(int argc, char** argv)
   return options;
 }
 
-/// Refuses a .vtu whose pieces claim more points or cells than this machine's memory holds:
-/// VTK's reader aborts the process when such an allocation fails.
-void checkClaimedSizes(const std::string& file)
-{
-  std::ifstream in(file, std::ios::binary);
-  std::string head(1 << 20, '\0');
-  in.read(&head[0], static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
-  // Bytes each point or cell needs at least: three coordinates; a connectivity entry, an
-  // offset and a type.
-  for (const auto& [name, bytes] : { std::pair<std::string, double>{ "NumberOfPoints", 24.0 },
-         std::pair<std::string, double>{ "NumberOfCells", 17.0 } })
-  {
-    // Scanned by hand: std::regex recurses once per character matched, and an attribute left
-    // open over a megabyte would overflow the stack.
-    double claimed = 0;
-    const std::string key = name + "=\"";
-    for (size_t at = head.find(key); at != std::string::npos; at = head.find(key, at + 1))
-    {
-      claimed += std::strtod(head.c_str() + at + key.size(), nullptr);
-    }
-    if (!(claimed * bytes < memory))
-    {
-      char text[256];
-      std::snprintf(text, sizeof text,
-        "'%s' claims %.4g %s, which need at least %.3g GB, more than this machine's %.3g GB",
-        file.c_str(), claimed, name == "NumberOfPoints" ? "points" : "cells", claimed * bytes / 1e9,
-        memory / 1e9);
-      fail(text);
-    }
-  }
-}
-
-/// Updates the producer with VTK's messages collected rather than printed (several lines each,
-/// from the reader and its arrays and compressors); returns the first one's text. What the
-/// reader throws (a header's sizes nothing can hold) ends the run with the input's name.
-std::string updateQuietly(vtkAlgorithm* producer, const std::string& name)
-{
-  const vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
-  vtkNew<vtkStringOutputWindow> collected;
-  vtkOutputWindow::SetInstance(collected);
-  // igaview logs to stderr only: the cutoff over all outputs is stderr's.
-  const vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
-  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // VTK's log repeats each message
-  try
-  {
-    producer->Update();
-  }
-  catch (const std::bad_alloc&)
-  {
-    fail(name + ": not enough memory to read it (the sizes it gives are too large)");
-  }
-  catch (const std::exception& e)
-  {
-    fail(name + ": cannot be read: " + e.what());
-  }
-  vtkLogger::SetStderrVerbosity(verbosity);
-  vtkOutputWindow::SetInstance(previous);
-  // VTK writes "ERROR: In FILE, line N\nCLASS (ADDRESS): TEXT\n\n".
-  std::smatch match;
-  const std::string text = collected->GetOutput();
-  return std::regex_search(text, match, std::regex("\\(0x[0-9a-f]+\\): ([^\n]*)")) ? match[1].str()
-                                                                                   : "";
-}
-
-/// The input's producer (the default dataset's source or a .vtu reader), updated, and its grid
-/// checked (and described by its patches) with the mapper's own conversion.
+/// The input's producer (the default dataset's source, or the grid of a .vtu read as the
+/// mapper would take it), updated, and its patches.
 vtkSmartPointer<vtkAlgorithm> loadInput(const Options& options, iga::VolumeSet<double>& set)
 {
+  std::string error;
+  std::vector<std::string> warnings;
   vtkSmartPointer<vtkAlgorithm> producer;
   std::string name = options.input;
   if (options.input.empty())
   {
     auto source = vtkSmartPointer<vtkIGADefaultVolumeSource>::New();
     source->SetTime(options.time);
+    source->Update();
     producer = source;
     name = "default dataset";
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
       options.time);
+    if (!vtkIGABezierHexahedra::FromUnstructuredGrid(source->GetOutput(), set, error, warnings))
+    {
+      fail(name + ": " + error);
+    }
   }
   else
   {
-    if (!std::ifstream(options.input))
+    const auto grid = vtkIGABezierFileReading::Read(options.input, nullptr, set, error, warnings);
+    if (!grid)
     {
-      fail("cannot open '" + options.input + "'");
+      fail(error);
     }
-    checkClaimedSizes(options.input);
-    auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
-    reader->SetFileName(options.input.c_str());
-    producer = reader;
-  }
-  const std::string readerMessage = updateQuietly(producer, name);
-  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(producer->GetOutputDataObject(0));
-  if (producer->GetErrorCode() != 0 || !grid || grid->GetNumberOfCells() == 0)
-  {
-    fail("'" + options.input + "' is not a readable VTK XML unstructured grid with cells" +
-         (readerMessage.empty() ? "" : " (" + readerMessage + ")"));
-  }
-  if (!readerMessage.empty())
-  {
-    std::fprintf(stderr, "igaview: warning: %s: %s\n", name.c_str(), readerMessage.c_str());
-  }
-  std::string error;
-  std::vector<std::string> warnings;
-  if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings))
-  {
-    fail(name + ": " + error);
+    auto trivial = vtkSmartPointer<vtkTrivialProducer>::New();
+    trivial->SetOutput(grid);
+    producer = trivial;
   }
   for (const auto& warning : warnings)
   {
     std::fprintf(stderr, "igaview: warning: %s: %s\n", name.c_str(), warning.c_str());
-  }
-  if (set.attributeNames.empty())
-  {
-    fail(name + ": no scalar point attribute to take an isosurface of");
   }
   return producer;
 }

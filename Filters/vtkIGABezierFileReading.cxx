@@ -1,0 +1,229 @@
+#include "vtkIGABezierFileReading.h"
+
+#include "vtkIGABezierHexahedra.h"
+
+#include "vtkLogger.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
+#include "vtkStringOutputWindow.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkXMLUnstructuredGridReader.h"
+
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <new>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace
+{
+
+/// "" or why the header's pieces claim more points or cells than `memory` bytes hold.
+std::string claimedSizesProblem(const std::string& name, const std::string& head, double memory)
+{
+  // Bytes each point or cell needs at least: three coordinates; a connectivity entry, an
+  // offset and a type.
+  for (const auto& [key, bytes] : { std::pair<std::string, double>{ "NumberOfPoints=\"", 24.0 },
+         std::pair<std::string, double>{ "NumberOfCells=\"", 17.0 } })
+  {
+    double claimed = 0;
+    for (size_t at = head.find(key); at != std::string::npos; at = head.find(key, at + 1))
+    {
+      // strtod stops at the closing quote; the head ends in a NUL, so an open one stops too.
+      claimed += std::strtod(head.c_str() + at + key.size(), nullptr);
+    }
+    if (!(claimed * bytes < memory))
+    {
+      char text[256];
+      std::snprintf(text, sizeof text,
+        "'%s' claims %.4g %s, which need at least %.3g GB, more than this machine's %.3g GB",
+        name.c_str(), claimed, key[8] == 'P' ? "points" : "cells", claimed * bytes / 1e9,
+        memory / 1e9);
+      return text;
+    }
+  }
+  return std::string();
+}
+
+/// The bytes of the base64 text at `at` (whitespace skipped) up to `count` of them.
+std::string decodeBase64(const std::string& text, size_t at, size_t count)
+{
+  std::string bytes;
+  unsigned bits = 0, value = 0;
+  for (; at < text.size() && bytes.size() < count; ++at)
+  {
+    const char c = text[at];
+    const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const char* digit = c ? std::strchr(alphabet, c) : nullptr;
+    if (std::isspace(static_cast<unsigned char>(c)))
+    {
+      continue;
+    }
+    if (!digit)
+    {
+      break;
+    }
+    value = (value << 6) | unsigned(digit - alphabet);
+    bits += 6;
+    if (bits >= 8)
+    {
+      bits -= 8;
+      bytes.push_back(char((value >> bits) & 0xff));
+    }
+  }
+  return bytes;
+}
+
+/// "" or why an inline binary array's header claims more than `memory` bytes: VTK allocates
+/// what the header says (a compressed array's table of blocks and its blocks, an uncompressed
+/// one's byte count) before it finds the data shorter.
+std::string binaryHeaderProblem(const std::string& name, const std::string& text, double memory)
+{
+  const size_t word = text.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
+  const bool compressed = text.find("compressor=\"") != std::string::npos;
+  const std::string key = "format=\"binary\"";
+  for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
+  {
+    const size_t start = text.find('>', at);
+    if (start == std::string::npos)
+    {
+      break;
+    }
+    const std::string header = decodeBase64(text, start + 1, 3 * word);
+    double words[3] = { 0, 0, 0 };
+    for (size_t w = 0; w < 3 && (w + 1) * word <= header.size(); ++w)
+    {
+      for (size_t b = word; b-- > 0;) // little-endian, as VTK writes on these machines
+      {
+        words[w] = words[w] * 256 + double(static_cast<unsigned char>(header[w * word + b]));
+      }
+    }
+    const double claimed = compressed ? words[0] * (double(word) + words[1]) : words[0];
+    if (!(claimed < memory))
+    {
+      char message[256];
+      std::snprintf(message, sizeof message,
+        "'%s': a binary data array's header claims %.3g GB, more than this machine's %.3g GB",
+        name.c_str(), claimed / 1e9, memory / 1e9);
+      return message;
+    }
+  }
+  return std::string();
+}
+
+/// The first megabyte of the input.
+std::string headOf(const std::string& name, const std::string* text)
+{
+  if (text)
+  {
+    return text->substr(0, 1 << 20);
+  }
+  std::ifstream in(name, std::ios::binary);
+  std::string head(1 << 20, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
+/// Updates the reader with VTK's messages collected rather than printed (several lines each,
+/// from the reader and its arrays and compressors); returns the first one's text, or sets
+/// `error` for what the reader throws.
+std::string updateQuietly(
+  vtkXMLUnstructuredGridReader* reader, const std::string& name, std::string& error)
+{
+  const vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+  vtkNew<vtkStringOutputWindow> collected;
+  vtkOutputWindow::SetInstance(collected);
+  const vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // VTK's log repeats each message
+  try
+  {
+    reader->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "'" + name + "': not enough memory to read it (the sizes it gives are too large)";
+  }
+  catch (const std::exception& e)
+  {
+    error = "'" + name + "': cannot be read: " + e.what();
+  }
+  vtkLogger::SetStderrVerbosity(verbosity);
+  vtkOutputWindow::SetInstance(previous);
+  // VTK writes "ERROR: In FILE, line N\nCLASS (ADDRESS): TEXT\n\n".
+  const std::string text = collected->GetOutput();
+  const size_t open = text.find("(0x");
+  const size_t start = open == std::string::npos ? open : text.find("): ", open);
+  if (start == std::string::npos)
+  {
+    return std::string();
+  }
+  return text.substr(start + 3, text.find('\n', start) - (start + 3));
+}
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierFileReading::Read(const std::string& name,
+  const std::string* text, iga::VolumeSet<double>& set, std::string& error,
+  std::vector<std::string>& warnings, double memoryLimitBytes)
+{
+  set = iga::VolumeSet<double>();
+  if (!text && !std::ifstream(name))
+  {
+    error = "cannot open '" + name + "'";
+    return nullptr;
+  }
+  const double memory = memoryLimitBytes > 0
+                          ? memoryLimitBytes
+                          : double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  const std::string head = headOf(name, text);
+  error = claimedSizesProblem(name, head, memory);
+  if (error.empty())
+  {
+    error = binaryHeaderProblem(name, text ? *text : head, memory);
+  }
+  if (!error.empty())
+  {
+    return nullptr;
+  }
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  if (text)
+  {
+    reader->ReadFromInputStringOn();
+    reader->SetInputString(*text);
+  }
+  else
+  {
+    reader->SetFileName(name.c_str());
+  }
+  const std::string readerMessage = updateQuietly(reader, name, error);
+  if (!error.empty())
+  {
+    return nullptr;
+  }
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->ShallowCopy(reader->GetOutput());
+  if (reader->GetErrorCode() != 0 || grid->GetNumberOfCells() == 0)
+  {
+    error = "'" + name + "' is not a readable VTK XML unstructured grid with cells" +
+            (readerMessage.empty() ? "" : " (" + readerMessage + ")");
+    return nullptr;
+  }
+  if (!readerMessage.empty())
+  {
+    warnings.push_back(readerMessage);
+  }
+  if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings))
+  {
+    error = "'" + name + "': " + error;
+    return nullptr;
+  }
+  if (set.attributeNames.empty())
+  {
+    error = "'" + name + "': no scalar point attribute to take an isosurface of";
+    return nullptr;
+  }
+  return grid;
+}

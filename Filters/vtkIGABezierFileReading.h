@@ -1,0 +1,39 @@
+/**
+ * @class   vtkIGABezierFileReading
+ * @brief   Reads a VTK XML unstructured grid of Bézier hexahedra into Kernels patches, refusing
+ *          what VTK's reader would crash or abort on, with one message naming the file.
+ *
+ * VTK's vtkXMLUnstructuredGridReader aborts the process when a piece claims more points or
+ * cells than it can allocate, and prints its errors over several lines. Read() first scans the
+ * header (by hand: a regex recurses per character and a megabyte-long attribute would overflow
+ * the stack) and refuses pieces claiming more than `memoryLimitBytes`, and inline binary arrays
+ * whose headers claim more (VTK allocates a compressed array's table of blocks as its header
+ * says; the first MiB of a file is scanned, all of a text), then reads with VTK's
+ * messages collected (the first is returned in the error or as a warning), catches what the
+ * reader throws, and converts the grid with vtkIGABezierHexahedra. igaview and the .vtu fuzz
+ * target read through it.
+ */
+#ifndef vtkIGABezierFileReading_h
+#define vtkIGABezierFileReading_h
+
+#include "IGAViewFiltersModule.h" // for export macro
+#include "iga/Datasets.h"         // for VolumeSet
+#include "vtkSmartPointer.h"      // for return value
+
+#include <string>
+#include <vector>
+
+class vtkUnstructuredGrid;
+
+class IGAVIEWFILTERS_EXPORT vtkIGABezierFileReading
+{
+public:
+  /// Reads `name`, a file, or `text` when given (the file's contents; `name` then names it in
+  /// messages). Returns the grid, or null with `error` set (starting with 'NAME'); non-fatal
+  /// notes go to `warnings`. `memoryLimitBytes` 0: this machine's physical memory.
+  static vtkSmartPointer<vtkUnstructuredGrid> Read(const std::string& name, const std::string* text,
+    iga::VolumeSet<double>& set, std::string& error, std::vector<std::string>& warnings,
+    double memoryLimitBytes = 0);
+};
+
+#endif
