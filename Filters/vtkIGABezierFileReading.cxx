@@ -9,7 +9,9 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkXMLUnstructuredGridReader.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -77,14 +79,38 @@ std::string decodeBase64(const std::string& text, size_t at, size_t count)
   return bytes;
 }
 
-/// "" or why an inline binary array's header claims more than `memory` bytes: VTK allocates
-/// what the header says (a compressed array's table of blocks and its blocks, an uncompressed
-/// one's byte count) before it finds the data shorter.
+/// Little-endian unsigned integers of `size` bytes each from `bytes`.
+std::vector<double> words(const std::string& bytes, size_t size)
+{
+  std::vector<double> result;
+  for (size_t at = 0; at + size <= bytes.size(); at += size)
+  {
+    double value = 0;
+    for (size_t b = size; b-- > 0;)
+    {
+      value = value * 256 + double(static_cast<unsigned char>(bytes[at + b]));
+    }
+    result.push_back(value);
+  }
+  return result;
+}
+
+/// "" or why an inline binary array's header claims more than its data or `memory` hold: VTK
+/// allocates what the header says (a compressed array's table of blocks, each compressed block,
+/// an uncompressed array's byte count) before it finds the data shorter.
 std::string binaryHeaderProblem(const std::string& name, const std::string& text, double memory)
 {
   const size_t word = text.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
   const bool compressed = text.find("compressor=\"") != std::string::npos;
   const std::string key = "format=\"binary\"";
+  auto problem = [&](const char* what, double claimed, double held)
+  {
+    char message[256];
+    std::snprintf(message, sizeof message,
+      "'%s': a binary data array's header claims %s of %.4g bytes, more than the %.0f it holds",
+      name.c_str(), what, claimed, std::floor(held));
+    return std::string(message);
+  };
   for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
   {
     const size_t start = text.find('>', at);
@@ -92,23 +118,45 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
     {
       break;
     }
-    const std::string header = decodeBase64(text, start + 1, 3 * word);
-    double words[3] = { 0, 0, 0 };
-    for (size_t w = 0; w < 3 && (w + 1) * word <= header.size(); ++w)
+    const size_t end = std::min(text.find('<', start), text.size());
+    const double held = 0.75 * double(end - start); // decoded bytes at most
+    const std::vector<double> head = words(decodeBase64(text, start + 1, 3 * word), word);
+    if (head.empty())
     {
-      for (size_t b = word; b-- > 0;) // little-endian, as VTK writes on these machines
-      {
-        words[w] = words[w] * 256 + double(static_cast<unsigned char>(header[w * word + b]));
-      }
+      continue;
     }
-    const double claimed = compressed ? words[0] * (double(word) + words[1]) : words[0];
-    if (!(claimed < memory))
+    if (!compressed)
+    {
+      if (!(head[0] <= held))
+      {
+        return problem("data", head[0], held);
+      }
+      continue;
+    }
+    const double blocks = head[0], blockSize = head.size() > 1 ? head[1] : 0;
+    if (!((3 + blocks) * double(word) <= held))
+    {
+      return problem("a table of blocks", (3 + blocks) * double(word), held);
+    }
+    if (!(blocks * blockSize < memory))
     {
       char message[256];
       std::snprintf(message, sizeof message,
-        "'%s': a binary data array's header claims %.3g GB, more than this machine's %.3g GB",
-        name.c_str(), claimed / 1e9, memory / 1e9);
+        "'%s': a binary data array's header claims %.3g GB of uncompressed blocks, more than "
+        "this machine's %.3g GB",
+        name.c_str(), blocks * blockSize / 1e9, memory / 1e9);
       return message;
+    }
+    const std::vector<double> table =
+      words(decodeBase64(text, start + 1, (3 + size_t(blocks)) * word), word);
+    double compressedBytes = 0;
+    for (size_t b = 3; b < table.size(); ++b)
+    {
+      compressedBytes += table[b];
+    }
+    if (!(compressedBytes <= held))
+    {
+      return problem("compressed blocks", compressedBytes, held);
     }
   }
   return std::string();
