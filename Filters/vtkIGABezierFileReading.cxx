@@ -133,18 +133,19 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
       }
       continue;
     }
-    const double blocks = head[0], blockSize = head.size() > 1 ? head[1] : 0;
+    const double blocks = head[0], blockSize = head.size() > 1 ? head[1] : 0,
+                 lastSize = head.size() > 2 ? head[2] : 0; // of a partial last block
     if (!((3 + blocks) * double(word) <= held))
     {
       return problem("a table of blocks", (3 + blocks) * double(word), held);
     }
-    if (!(blocks * blockSize < memory))
+    if (!(blocks * blockSize + lastSize < memory))
     {
       char message[256];
       std::snprintf(message, sizeof message,
         "'%s': a binary data array's header claims %.3g GB of uncompressed blocks, more than "
         "this machine's %.3g GB",
-        name.c_str(), blocks * blockSize / 1e9, memory / 1e9);
+        name.c_str(), (blocks * blockSize + lastSize) / 1e9, memory / 1e9);
       return message;
     }
     const std::vector<double> table =

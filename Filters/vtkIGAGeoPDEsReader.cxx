@@ -289,6 +289,13 @@ void vtkIGAGeoPDEsReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
 }
 
+bool vtkIGAGeoPDEsReader::IsOwnFormat(const std::string& head) const
+{
+  // GeoPDEs writes its format and version in the first comments.
+  return head.find("nurbs geometry v.") != std::string::npos ||
+         head.find("nurbs mesh v.") != std::string::npos;
+}
+
 std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsData* data)
 {
   iga::NurbsSet<double> set;

@@ -32,6 +32,7 @@ protected:
   ~vtkIGAGeoPDEsReader() override = default;
 
   std::string ReadNurbs(const std::string& text, vtkIGANurbsData* data) override;
+  bool IsOwnFormat(const std::string& head) const override;
 
 private:
   vtkIGAGeoPDEsReader(const vtkIGAGeoPDEsReader&) = delete;

@@ -351,6 +351,13 @@ void vtkIGAGismoReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
 }
 
+bool vtkIGAGismoReader::IsOwnFormat(const std::string& head) const
+{
+  // G+Smo's root element is <xml>, holding geometries (or a multipatch of them).
+  return head.find("<xml") != std::string::npos && (head.find("<Geometry") != std::string::npos ||
+                                                     head.find("<MultiPatch") != std::string::npos);
+}
+
 std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsData* data)
 {
   std::istringstream stream(text);

@@ -30,6 +30,15 @@ void vtkIGANurbsReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Patches: " << this->Data->GetNumberOfPatches() << "\n";
 }
 
+int vtkIGANurbsReader::CanReadFile(const char* name)
+{
+  std::ifstream in(name ? name : "", std::ios::binary);
+  std::string head(64 * 1024, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return in.gcount() > 0 && this->IsOwnFormat(head) ? 1 : 0;
+}
+
 vtkIGANurbsData* vtkIGANurbsReader::GetNurbsData()
 {
   return this->Data;

@@ -46,6 +46,10 @@ public:
   vtkGetMacro(MemoryLimitMB, double);
   ///@}
 
+  /// 1 when the start of `name` is in this reader's format, else 0. ParaView's reader factory
+  /// asks it to tell G+Smo XML from other XML and GeoPDEs text from other text.
+  int CanReadFile(const char* name);
+
   /// The patches read (empty until the reader has been updated or when the file is bad).
   VTK_WRAPEXCLUDE vtkIGANurbsData* GetNurbsData();
 
@@ -59,6 +63,8 @@ protected:
   /// Reads `text`, the contents of FileName, into `data`. Returns "" or the problem as
   /// "LINE: problem" (or just "problem" for the file as a whole).
   virtual std::string ReadNurbs(const std::string& text, vtkIGANurbsData* data) = 0;
+  /// Whether the first 64 KiB of a file are in this reader's format.
+  virtual bool IsOwnFormat(const std::string& head) const = 0;
 
   char* FileName = nullptr;
   double MemoryLimitMB = 0;

@@ -105,6 +105,21 @@ void checkQuarterRing(vtkUnstructuredGrid* grid)
   }
 }
 
+TEST(NurbsReaders, EachReaderKnowsItsOwnFormat)
+{
+  vtkNew<vtkIGAGismoReader> gismo;
+  vtkNew<vtkIGAGeoPDEsReader> geopdes;
+  const std::string xml = kData + "/gismo_quarter_ring.xml",
+                    txt = kData + "/geopdes_quarter_ring.txt";
+  EXPECT_EQ(gismo->CanReadFile(xml.c_str()), 1);
+  EXPECT_EQ(geopdes->CanReadFile(txt.c_str()), 1);
+  EXPECT_EQ(gismo->CanReadFile(txt.c_str()), 0);
+  EXPECT_EQ(geopdes->CanReadFile(xml.c_str()), 0);
+  EXPECT_EQ(gismo->CanReadFile((kData + "/CMakeLists.txt").c_str()), 0);
+  EXPECT_EQ(gismo->CanReadFile("/nonexistent.xml"), 0);
+  EXPECT_EQ(gismo->CanReadFile(nullptr), 0);
+}
+
 TEST(NurbsReaders, GismoQuarterRing)
 {
   checkQuarterRing(read<vtkIGAGismoReader>(kData + "/gismo_quarter_ring.xml"));

@@ -24,6 +24,20 @@ filters = factory.GetSupportedFileTypes(servermanager.ActiveConnection.Session)
 assert "G+Smo NURBS geometry (*.xml)" in filters, filters
 assert "GeoPDEs NURBS geometry (*.txt)" in filters, filters
 
+# OpenDataFile picks our readers for their own files, and ParaView's for other .xml and .txt.
+csv = os.path.join(work_dir, "table.txt")
+with open(csv, "w") as f:
+    f.write("x,y\n1,2\n3,4\n")
+other_xml = os.path.join(work_dir, "other.xml")
+with open(other_xml, "w") as f:
+    f.write('<?xml version="1.0"?>\n<CityModel></CityModel>\n')
+for path, expected in ((os.path.join(data_dir, "gismo_quarter_ring.xml"), "AAIGAGismoReader"),
+                       (os.path.join(data_dir, "geopdes_quarter_ring.txt"), "AAIGAGeoPDEsReader"),
+                       (csv, "CSVReader"), (other_xml, "CityGML Reader")):
+    opened = simple.OpenDataFile(path)
+    assert opened.GetXMLName() == expected, (path, opened.GetXMLName())
+    simple.Delete(opened)
+
 # The same quarter ring (radii 1..2, height 1) in both formats.
 gismo = simple.IGAGSmoReader(FileName=os.path.join(data_dir, "gismo_quarter_ring.xml"))
 geopdes = simple.IGAGeoPDEsReader(FileName=os.path.join(data_dir, "geopdes_quarter_ring.txt"))
