@@ -135,6 +135,11 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
     }
     const double blocks = head[0], blockSize = head.size() > 1 ? head[1] : 0,
                  lastSize = head.size() > 2 ? head[2] : 0; // of a partial last block
+    if (!(blockSize >= 1))
+    {
+      // VTK divides by it (a floating-point exception).
+      return "'" + name + "': a binary data array's header gives a block size of 0";
+    }
     if (!((3 + blocks) * double(word) <= held))
     {
       return problem("a table of blocks", (3 + blocks) * double(word), held);

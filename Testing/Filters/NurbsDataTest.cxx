@@ -176,7 +176,7 @@ TEST(NurbsData, BadInputIsNamed)
   set = randomSet(3);
   set.volumes[0].net[5] = NAN;
   EXPECT_NE(
-    data->SetPatches(set).find("control point (0, 0, 0) has a non-finite value in channel 5"),
+    data->SetPatches(set).find("control point (0, 0, 0) has a non-finite attribute 1 (channel 5): nan"),
     std::string::npos);
 
   ASSERT_EQ(data->SetPatches(randomSet(3), 1.0), "");

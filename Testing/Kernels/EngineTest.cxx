@@ -680,7 +680,9 @@ TEST(Engine, BadInputIsRejectedWithTheProblemNamed)
     std::string::npos);
   auto nan = set;
   nan.patches[5].view().point(0)[1] = NAN;
-  EXPECT_NE(message(nan, settings).find("patch 5: control point 0 has a non-finite value"),
+  EXPECT_NE(
+    message(nan, settings)
+      .find("patch 5: control point 0 has a non-finite weighted y coordinate (channel 1): nan"),
     std::string::npos);
   // Checked in parts on several threads: the first bad patch is named, whichever part finishes
   // first.
@@ -691,7 +693,8 @@ TEST(Engine, BadInputIsRejectedWithTheProblemNamed)
     Settings parallel = settings;
     parallel.threads = threads;
     EXPECT_EQ(
-      message(twoBad, parallel).rfind("patch 5: control point 0 has a non-finite value", 0), 0u);
+      message(twoBad, parallel).rfind("patch 5: control point 0 has a non-finite weighted y", 0),
+      0u);
   }
   Settings noIso = settings;
   noIso.isovalues.clear();

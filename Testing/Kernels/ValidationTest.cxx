@@ -31,7 +31,7 @@ TEST(PatchValidation, AcceptsGoodPatchesAndNamesEachProblem)
   auto nan = patch;
   nan.view().point(5)[1] = NAN;
   EXPECT_NE((iga::checkPatch<double, 3>(nan.view()))
-              .find("control point 5 has a non-finite value in channel 1"),
+              .find("control point 5 has a non-finite weighted y coordinate (channel 1)"),
     std::string::npos);
 
   auto inf = patch;

@@ -56,7 +56,13 @@ std::string invalidPointProblem(const T* point, int channels)
   {
     if (!isFinite(point[c]))
     {
-      return " has a non-finite value in channel " + std::to_string(c);
+      const std::string channel =
+        c < kWeightChannel
+          ? std::string("weighted ") + "xyz"[c] + " coordinate (channel " + std::to_string(c) + ")"
+        : c == kWeightChannel ? "weight (channel " + std::to_string(c) + ")"
+                              : "attribute " + std::to_string(c - kFirstAttributeChannel) +
+                                  " (channel " + std::to_string(c) + ")";
+      return " has a non-finite " + channel + ": " + std::to_string(double(point[c]));
     }
   }
   if (!(point[kWeightChannel] > T(0)))
