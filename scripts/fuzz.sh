@@ -31,9 +31,10 @@ seed "$build/corpus/engine"
 # UBSan findings are errors; leaks of VTK's singletons at exit are not ours to judge.
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export ASAN_OPTIONS="detect_leaks=0"
-limit=(-max_total_time="$seconds")
+# A fixed seed makes a short run (CI's) repeat itself; FUZZ_SEED=0 draws one.
+limit=(-max_total_time="$seconds" -seed="${FUZZ_SEED:-1}")
 if [ -n "${RUNS:-}" ]; then
-  limit=(-runs="$RUNS")
+  limit=(-runs="$RUNS" -seed="${FUZZ_SEED:-1}")
 fi
 run() { # target, corpus, dictionary (optional)
   local dict=() status=0
