@@ -95,20 +95,79 @@ std::vector<double> words(const std::string& bytes, size_t size)
   return result;
 }
 
-/// "" or why an inline binary array's header claims more than its data or `memory` hold: VTK
-/// allocates what the header says (a compressed array's table of blocks, each compressed block,
-/// an uncompressed array's byte count) before it finds the data shorter.
+/// The value of attribute `key` (e.g. `Name="`) in the tag text, or "".
+std::string attributeOf(const std::string& tag, const std::string& key)
+{
+  const size_t at = tag.find(key);
+  if (at == std::string::npos)
+  {
+    return std::string();
+  }
+  const size_t begin = at + key.size();
+  return tag.substr(begin, tag.find('"', begin) - begin);
+}
+
+/// The bytes the data array whose tag holds `at` must decode to, when its piece says (its
+/// points, point data, cell data, cell types and offsets), or -1 (connectivity, field data).
+double expectedBytes(const std::string& text, size_t at)
+{
+  const size_t piece = text.rfind("<Piece", at), tagStart = text.rfind("<DataArray", at);
+  if (piece == std::string::npos || tagStart == std::string::npos)
+  {
+    return -1;
+  }
+  size_t section = std::string::npos;
+  std::string sectionTag;
+  for (const char* tag : { "<Points", "<PointData", "<Cells", "<CellData", "<FieldData" })
+  {
+    const size_t found = text.rfind(tag, at);
+    if (found != std::string::npos && found > piece &&
+        (section == std::string::npos || found > section))
+    {
+      section = found;
+      sectionTag = tag;
+    }
+  }
+  const std::string pieceTag = text.substr(piece, text.find('>', piece) - piece);
+  const std::string tag = text.substr(tagStart, text.find('>', tagStart) - tagStart);
+  const std::string arrayName = attributeOf(tag, "Name=\"");
+  double tuples = -1;
+  if (sectionTag == "<Points" || sectionTag == "<PointData")
+  {
+    tuples = std::strtod(attributeOf(pieceTag, "NumberOfPoints=\"").c_str(), nullptr);
+  }
+  else if (sectionTag == "<CellData" ||
+           (sectionTag == "<Cells" && (arrayName == "types" || arrayName == "offsets")))
+  {
+    tuples = std::strtod(attributeOf(pieceTag, "NumberOfCells=\"").c_str(), nullptr);
+  }
+  const std::string type = attributeOf(tag, "type=\"");
+  const double size = type == "Int8" || type == "UInt8"                          ? 1
+                      : type == "Int16" || type == "UInt16"                      ? 2
+                      : type == "Int32" || type == "UInt32" || type == "Float32" ? 4
+                      : type == "Int64" || type == "UInt64" || type == "Float64" ? 8
+                                                                                 : -1;
+  const std::string components = attributeOf(tag, "NumberOfComponents=\"");
+  const double perTuple = components.empty() ? 1 : std::strtod(components.c_str(), nullptr);
+  return tuples >= 0 && size > 0 ? tuples * perTuple * size : -1;
+}
+
+/// "" or why an inline binary array's header disagrees with its data: VTK allocates what the
+/// header says (a compressed array's table of blocks, each compressed block, an uncompressed
+/// array's byte count) and copies the blocks into the array as sized by the piece, so a header
+/// claiming more than the data holds, more than `memory` or another size than the array's
+/// overflows, crashes or allocates gigabytes.
 std::string binaryHeaderProblem(const std::string& name, const std::string& text, double memory)
 {
   const size_t word = text.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
   const bool compressed = text.find("compressor=\"") != std::string::npos;
   const std::string key = "format=\"binary\"";
-  auto problem = [&](const char* what, double claimed, double held)
+  auto problem = [&](const char* what, double claimed, const char* than, double held)
   {
     char message[256];
     std::snprintf(message, sizeof message,
-      "'%s': a binary data array's header claims %s of %.4g bytes, more than the %.0f it holds",
-      name.c_str(), what, claimed, std::floor(held));
+      "'%s': a binary data array's header claims %s of %.4g bytes, %s %.0f", name.c_str(), what,
+      claimed, than, std::floor(held));
     return std::string(message);
   };
   for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
@@ -120,6 +179,7 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
     }
     const size_t end = std::min(text.find('<', start), text.size());
     const double held = 0.75 * double(end - start); // decoded bytes at most
+    const double expected = expectedBytes(text, at);
     const std::vector<double> head = words(decodeBase64(text, start + 1, 3 * word), word);
     if (head.empty())
     {
@@ -127,31 +187,33 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
     }
     if (!compressed)
     {
-      if (!(head[0] <= held))
+      if (!(head[0] <= held) || (expected >= 0 && head[0] != expected))
       {
-        return problem("data", head[0], held);
+        return problem("data", head[0], "where the array holds", expected >= 0 ? expected : held);
       }
       continue;
     }
     const double blocks = head[0], blockSize = head.size() > 1 ? head[1] : 0,
                  lastSize = head.size() > 2 ? head[2] : 0; // of a partial last block
-    if (!(blockSize >= 1))
+    if (!(blockSize >= 1) || (blocks == 0 && lastSize != 0) || !(lastSize <= blockSize))
     {
-      // VTK divides by it (a floating-point exception).
-      return "'" + name + "': a binary data array's header gives a block size of 0";
+      // VTK divides by the block size (a floating-point exception).
+      return "'" + name + "': a binary data array's header gives inconsistent block sizes";
     }
     if (!((3 + blocks) * double(word) <= held))
     {
-      return problem("a table of blocks", (3 + blocks) * double(word), held);
+      return problem(
+        "a table of blocks", (3 + blocks) * double(word), "more than the data's", held);
     }
-    if (!(blocks * blockSize + lastSize < memory))
+    const double total =
+      blocks == 0 ? 0 : (blocks - 1) * blockSize + (lastSize > 0 ? lastSize : blockSize);
+    if (!(total < memory))
     {
-      char message[256];
-      std::snprintf(message, sizeof message,
-        "'%s': a binary data array's header claims %.3g GB of uncompressed blocks, more than "
-        "this machine's %.3g GB",
-        name.c_str(), (blocks * blockSize + lastSize) / 1e9, memory / 1e9);
-      return message;
+      return problem("uncompressed blocks", total, "more than the memory's", memory);
+    }
+    if (expected >= 0 && total != expected)
+    {
+      return problem("uncompressed blocks", total, "where the array holds", expected);
     }
     const std::vector<double> table =
       words(decodeBase64(text, start + 1, (3 + size_t(blocks)) * word), word);
@@ -162,7 +224,7 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
     }
     if (!(compressedBytes <= held))
     {
-      return problem("compressed blocks", compressedBytes, held);
+      return problem("compressed blocks", compressedBytes, "more than the data's", held);
     }
   }
   return std::string();

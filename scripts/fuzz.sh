@@ -23,7 +23,7 @@ seed() { # corpus directory, then seed files (missing ones skipped)
     [ -f "$f" ] && cp -n "$f" "$corpus/" || true
   done
 }
-seed "$build/corpus/vtu" "$root"/Data/*.vtu
+seed "$build/corpus/vtu" "$root"/Data/*.vtu "$root"/Testing/Fuzz/regressions/*.vtu
 seed "$build/corpus/gismo" "$root"/Data/gismo_*.xml "$shared"/gismo/*.xml
 seed "$build/corpus/geopdes" "$root"/Data/geopdes_*.txt "$shared"/geopdes/*.txt
 seed "$build/corpus/engine"

@@ -2,6 +2,7 @@
 // version, active-attribute flags), that the NURBS description survives a .vtu round trip, and
 // that a .pvd series written by vtkIGABezierSeriesWriter reads back through ParaView's
 // vtkPVDReader with its time steps.
+#include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierSeriesWriter.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAGismoReader.h"
@@ -21,6 +22,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <regex>
 
 namespace
@@ -34,6 +37,55 @@ vtkSmartPointer<vtkUnstructuredGrid> quarterRing()
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   grid->ShallowCopy(reader->GetOutput());
   return grid;
+}
+
+/// The error of reading `text` as igaview does (within `memory` bytes, 0: the machine's), ""
+/// when it reads.
+std::string readingError(const std::string& text, double memory = 0)
+{
+  iga::VolumeSet<double> set;
+  std::string error;
+  std::vector<std::string> warnings;
+  const auto grid = vtkIGABezierFileReading::Read("test.vtu", &text, set, error, warnings, memory);
+  EXPECT_EQ(grid == nullptr, !error.empty());
+  return error;
+}
+
+std::string fileText(const std::string& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST(BezierVTU, BinaryHeadersClaimingMoreThanTheirDataAreRefused)
+{
+  const std::string sphere = fileText(IGAVIEW_DATA_DIR "/marsden_sphere_p2.vtu");
+  EXPECT_EQ(readingError(sphere), "");
+  // Its first array's header: 1 block of 32768 bytes, a last block of 648, 70 compressed.
+  const std::string header = "AQAAAACAAACIAgAARgAAAA==";
+  ASSERT_NE(sphere.find(header), std::string::npos);
+  auto with = [&](const std::string& replacement)
+  { return std::string(sphere).replace(sphere.find(header), header.size(), replacement); };
+  EXPECT_NE(readingError(with("/////wCAAACIAgAARgAAAA==")).find("claims a table of blocks"),
+    std::string::npos);
+  EXPECT_NE(readingError(with("AQAAAACAAACIAgAA////fw==")).find("claims compressed blocks"),
+    std::string::npos);
+  EXPECT_NE(readingError(with("AQAAAAAAAACIAgAARgAAAA==")).find("inconsistent block sizes"),
+    std::string::npos);
+  EXPECT_NE(readingError(with("AQAAAACAAACQAgAARgAAAA==")).find("where the array holds 648"),
+    std::string::npos);
+  // What the fuzzer found (with its 256 MiB limit), each once a crash, a buffer overflow or an
+  // allocation of gigabytes in VTK's reader.
+  for (const auto& [file, expected] : std::vector<std::pair<std::string, std::string>>{
+         { "zero-blocks-with-data.vtu", "inconsistent block sizes" },
+         { "block-size-zero.vtu", "inconsistent block sizes" },
+         { "partial-block-3gb.vtu", "where the array holds" },
+         { "block-larger-than-array.vtu", "inconsistent block sizes" } })
+  {
+    const std::string error =
+      readingError(fileText(IGAVIEW_SOURCE_DIR "/Testing/Fuzz/regressions/" + file), 256e6);
+    EXPECT_NE(error.find(expected), std::string::npos) << file << ": " << error;
+  }
 }
 
 TEST(BezierVTU, WriterVersionAndActiveFlagsSurviveARoundTrip)
