@@ -152,6 +152,61 @@ double expectedBytes(const std::string& text, size_t at)
   return tuples >= 0 && size > 0 ? tuples * perTuple * size : -1;
 }
 
+/// "'NAME': a binary data array's header claims WHAT of N bytes, THAN M".
+std::string headerClaim(
+  const std::string& name, const char* what, double claimed, const char* than, double held)
+{
+  char message[256];
+  std::snprintf(message, sizeof message,
+    "'%s': a binary data array's header claims %s of %.4g bytes, %s %.0f", name.c_str(), what,
+    claimed, than, std::floor(held));
+  return message;
+}
+
+/// "" or why a compressed array's header (base64 from `start`; its data `held` bytes at most;
+/// the array `expected` bytes, or -1 when unknown) disagrees with its data or `memory`.
+std::string compressedHeaderProblem(const std::string& name, const std::string& text, size_t start,
+  double held, double expected, size_t word, double memory)
+{
+  const std::vector<double> head = words(decodeBase64(text, start, 3 * word), word);
+  if (head.empty())
+  {
+    return std::string(); // no header: VTK's reader says so
+  }
+  const double blocks = head[0], blockSize = head.size() > 1 ? head[1] : 0,
+               lastSize = head.size() > 2 ? head[2] : 0; // of a partial last block
+  if (!(blockSize >= 1) || (blocks == 0 && lastSize != 0) || !(lastSize <= blockSize))
+  {
+    // VTK divides by the block size (a floating-point exception).
+    return "'" + name + "': a binary data array's header gives inconsistent block sizes";
+  }
+  if (!((3 + blocks) * double(word) <= held))
+  {
+    return headerClaim(
+      name, "a table of blocks", (3 + blocks) * double(word), "more than the data's", held);
+  }
+  const double total =
+    blocks == 0 ? 0 : (blocks - 1) * blockSize + (lastSize > 0 ? lastSize : blockSize);
+  if (!(total < memory))
+  {
+    return headerClaim(name, "uncompressed blocks", total, "more than the memory's", memory);
+  }
+  if (expected >= 0 && total != expected)
+  {
+    return headerClaim(name, "uncompressed blocks", total, "where the array holds", expected);
+  }
+  const std::vector<double> table =
+    words(decodeBase64(text, start, (3 + size_t(blocks)) * word), word);
+  double compressedBytes = 0;
+  for (size_t b = 3; b < table.size(); ++b)
+  {
+    compressedBytes += table[b];
+  }
+  return compressedBytes <= held
+           ? std::string()
+           : headerClaim(name, "compressed blocks", compressedBytes, "more than the data's", held);
+}
+
 /// "" or why an inline binary array's header disagrees with its data: VTK allocates what the
 /// header says (a compressed array's table of blocks, each compressed block, an uncompressed
 /// array's byte count) and copies the blocks into the array as sized by the piece, so a header
@@ -162,14 +217,6 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
   const size_t word = text.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
   const bool compressed = text.find("compressor=\"") != std::string::npos;
   const std::string key = "format=\"binary\"";
-  auto problem = [&](const char* what, double claimed, const char* than, double held)
-  {
-    char message[256];
-    std::snprintf(message, sizeof message,
-      "'%s': a binary data array's header claims %s of %.4g bytes, %s %.0f", name.c_str(), what,
-      claimed, than, std::floor(held));
-    return std::string(message);
-  };
   for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
   {
     const size_t start = text.find('>', at);
@@ -180,51 +227,24 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
     const size_t end = std::min(text.find('<', start), text.size());
     const double held = 0.75 * double(end - start); // decoded bytes at most
     const double expected = expectedBytes(text, at);
-    const std::vector<double> head = words(decodeBase64(text, start + 1, 3 * word), word);
-    if (head.empty())
+    std::string problem;
+    if (compressed)
     {
-      continue;
+      problem = compressedHeaderProblem(name, text, start + 1, held, expected, word, memory);
     }
-    if (!compressed)
+    else
     {
-      if (!(head[0] <= held) || (expected >= 0 && head[0] != expected))
+      const std::vector<double> head = words(decodeBase64(text, start + 1, word), word);
+      const double bytes = head.empty() ? 0 : head[0];
+      if (!(bytes <= held) || (expected >= 0 && bytes != expected))
       {
-        return problem("data", head[0], "where the array holds", expected >= 0 ? expected : held);
+        problem = headerClaim(
+          name, "data", bytes, "where the array holds", expected >= 0 ? expected : held);
       }
-      continue;
     }
-    const double blocks = head[0], blockSize = head.size() > 1 ? head[1] : 0,
-                 lastSize = head.size() > 2 ? head[2] : 0; // of a partial last block
-    if (!(blockSize >= 1) || (blocks == 0 && lastSize != 0) || !(lastSize <= blockSize))
+    if (!problem.empty())
     {
-      // VTK divides by the block size (a floating-point exception).
-      return "'" + name + "': a binary data array's header gives inconsistent block sizes";
-    }
-    if (!((3 + blocks) * double(word) <= held))
-    {
-      return problem(
-        "a table of blocks", (3 + blocks) * double(word), "more than the data's", held);
-    }
-    const double total =
-      blocks == 0 ? 0 : (blocks - 1) * blockSize + (lastSize > 0 ? lastSize : blockSize);
-    if (!(total < memory))
-    {
-      return problem("uncompressed blocks", total, "more than the memory's", memory);
-    }
-    if (expected >= 0 && total != expected)
-    {
-      return problem("uncompressed blocks", total, "where the array holds", expected);
-    }
-    const std::vector<double> table =
-      words(decodeBase64(text, start + 1, (3 + size_t(blocks)) * word), word);
-    double compressedBytes = 0;
-    for (size_t b = 3; b < table.size(); ++b)
-    {
-      compressedBytes += table[b];
-    }
-    if (!(compressedBytes <= held))
-    {
-      return problem("compressed blocks", compressedBytes, "more than the data's", held);
+      return problem;
     }
   }
   return std::string();
