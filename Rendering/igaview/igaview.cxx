@@ -57,7 +57,7 @@ With no INPUT both use the bundled default dataset (a twisted rational tube of 8
 patches, deforming over the time steps 0..1).
 
 INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON cells with
-                         RationalWeights and HigherOrderDegrees
+                         RationalWeights (and HigherOrderDegrees where a cell's degrees differ)
   --iso V                isovalue (repeatable; default: the middle of the attribute's range)
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour)
