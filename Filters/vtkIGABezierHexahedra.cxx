@@ -275,31 +275,42 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
   {
     total += patch.view().pointCount();
   }
+  return ToUnstructuredGrid(
+    vtkIdType(set.patches.size()), total, set.attributeNames,
+    [&](vtkIdType c) -> const iga::BezierVolume<double>& { return set.patches[size_t(c)]; },
+    layout);
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(vtkIdType cellCount,
+  vtkIdType pointCount, const std::vector<std::string>& attributeNames,
+  const std::function<const iga::BezierVolume<double>&(vtkIdType)>& cell, CellLayout layout)
+{
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(total);
+  points->SetNumberOfPoints(pointCount);
   vtkNew<vtkDoubleArray> weights;
   weights->SetName(kWeightsName);
-  weights->SetNumberOfTuples(total);
+  weights->SetNumberOfTuples(pointCount);
   std::vector<vtkSmartPointer<vtkDoubleArray>> attributes;
-  for (const auto& name : set.attributeNames)
+  for (const auto& name : attributeNames)
   {
     attributes.push_back(vtkSmartPointer<vtkDoubleArray>::New());
     attributes.back()->SetName(name.c_str());
-    attributes.back()->SetNumberOfTuples(total);
+    attributes.back()->SetNumberOfTuples(pointCount);
   }
   vtkNew<vtkIntArray> degrees;
   degrees->SetName(kDegreesName);
   degrees->SetNumberOfComponents(3);
-  degrees->SetNumberOfTuples(static_cast<vtkIdType>(set.patches.size()));
+  degrees->SetNumberOfTuples(cellCount);
   vtkNew<vtkCellArray> cells;
+  cells->AllocateExact(cellCount, pointCount);
 
   bool uniform = true;
   vtkIdType offset = 0;
   std::vector<vtkIdType> ids;
-  for (size_t c = 0; c < set.patches.size(); ++c)
+  for (vtkIdType c = 0; c < cellCount; ++c)
   {
-    const auto view = set.patches[c].view();
+    const auto view = cell(c).view();
     const int* degree = view.degree;
     ids.resize(view.pointCount());
     forEachControlPoint(degree, layout == CellLayout::ForVTK && iga::signedVolume<double>(view) < 0,
@@ -317,7 +328,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
         ids[vtkIndex] = id;
       });
     cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-    degrees->SetTypedTuple(static_cast<vtkIdType>(c), degree);
+    degrees->SetTypedTuple(c, degree);
     uniform &= degree[0] == degree[1] && degree[1] == degree[2];
     offset += view.pointCount();
   }

@@ -7,10 +7,11 @@
  * (vtkHigherOrderHexahedron::PointIndexFromIJK), Euclidean coordinates, a point array
  * "RationalWeights" and a 3-component cell array "HigherOrderDegrees" (left out when VTK can infer
  * the degrees, see CellLayout), both flagged as the active rational weights / higher-order
- * degrees (VTK silently ignores them otherwise), and one point array per attribute. Patches do not share points: each cell owns its control points, so
- * patches of different degrees and discontinuous attributes convert without loss. Cells are
- * right-handed, as VTK's filters assume: a left-handed patch (negative signed volume) becomes the
- * cell of the same volume with its first parametric direction reversed (see CellLayout).
+ * degrees (VTK silently ignores them otherwise), and one point array per attribute. Patches do not
+ * share points: each cell owns its control points, so patches of different degrees and
+ * discontinuous attributes convert without loss. Cells are right-handed, as VTK's filters assume: a
+ * left-handed patch (negative signed volume) becomes the cell of the same volume with its first
+ * parametric direction reversed (see CellLayout).
  *
  * Reading accepts VTK_BEZIER_HEXAHEDRON (and linear VTK_HEXAHEDRON as degree 1). Every
  * single-component point array other than the weights becomes an attribute. Problems are
@@ -25,6 +26,7 @@
 #include "iga/Datasets.h"         // for VolumeSet
 #include "vtkSmartPointer.h"      // for return value
 
+#include <functional> // for the cell source
 #include <string>
 #include <vector>
 
@@ -51,6 +53,12 @@ public:
   /// Patches (standard layout, every attribute named) to a grid of Bézier hexahedra.
   static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(
     const iga::VolumeSet<double>& set, CellLayout layout = CellLayout::ForVTK);
+
+  /// The same for cells made one at a time, so that only the grid and one cell are held:
+  /// `cell(c)` gives cell c (valid until the next call), `pointCount` their points in all.
+  static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(vtkIdType cellCount,
+    vtkIdType pointCount, const std::vector<std::string>& attributeNames,
+    const std::function<const iga::BezierVolume<double>&(vtkIdType)>& cell, CellLayout layout);
 
   /// Grid to patches. Returns false and sets `error` when the grid cannot be converted; appends
   /// non-fatal notes to `warnings`.

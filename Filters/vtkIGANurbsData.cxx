@@ -22,6 +22,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 namespace
 {
@@ -89,6 +90,18 @@ template<int Dim>
 struct PatchDimension<iga::BSplinePatch<double, Dim>> : std::integral_constant<int, Dim>
 {
 };
+
+/// Control points of each Bézier element of a patch.
+template<int Dim>
+vtkIdType pointsPerElement(const iga::BSplinePatch<double, Dim>& patch)
+{
+  vtkIdType points = 1;
+  for (int degree : patch.degree)
+  {
+    points *= degree + 1;
+  }
+  return points;
+}
 
 template<int Dim>
 size_t knotCount(const iga::BSplinePatch<double, Dim>& patch)
@@ -309,25 +322,28 @@ vtkIdType vtkIGANurbsData::GetNumberOfBezierCells() const
 double vtkIGANurbsData::GetBezierCellBytes() const
 {
   const State& s = *this->Contents;
-  // Per control point: the element's homogeneous values, the grid's coordinates, weight and
-  // attributes (as many doubles again) and its connectivity entry.
-  const double perPoint = 16.0 * s.Set.channels() + 8.0;
-  double bytes = 0;
-  auto add = [&](const auto& patches, const auto& extractions)
+  // Per control point the grid's coordinates, weight and attributes and its connectivity entry;
+  // the elements are made one at a time. The surfaces' points are appended to the volumes'
+  // arrays, which may double them while they grow.
+  const double perPoint = 8.0 * s.Set.channels() + 8.0;
+  auto points = [](const auto& patches, const auto& extractions)
   {
+    double count = 0;
     for (size_t p = 0; p < patches.size(); ++p)
     {
-      double points = 1;
-      for (int degree : patches[p].degree)
-      {
-        points *= degree + 1;
-      }
-      bytes += double(extractions[p]->elementCount()) * points * perPoint;
+      count += double(extractions[p]->elementCount()) * double(pointsPerElement(patches[p]));
     }
+    return count;
   };
-  add(s.Set.volumes, s.VolumeExtractions);
-  add(s.Set.surfaces, s.SurfaceExtractions);
-  return bytes;
+  const double volumes = points(s.Set.volumes, s.VolumeExtractions);
+  const double surfaces = points(s.Set.surfaces, s.SurfaceExtractions);
+  // And the grid's field-data copy of the step's control nets.
+  double netValues = 0;
+  for (const auto& net : s.Nets.empty() ? std::vector<Net>() : s.Nets.front())
+  {
+    netValues += double(net->size());
+  }
+  return perPoint * (surfaces > 0 ? 2 * (volumes + surfaces) : volumes) + 8.0 * netValues;
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int step)
@@ -347,24 +363,40 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
   spans->SetName(kSpanArray);
   spans->SetNumberOfComponents(3);
 
-  // Volumes through the shared hexahedron conversion, surfaces appended after them.
-  iga::VolumeSet<double> volumes;
-  volumes.attributeNames = s.Set.attributeNames;
+  // Volumes through the shared hexahedron conversion, one element at a time (only the grid and
+  // one element held), surfaces appended after them.
+  std::vector<vtkIdType> firstCell{ 0 };
+  vtkIdType pointCount = 0;
   for (size_t v = 0; v < volumeCount && !s.Nets.empty(); ++v)
   {
-    auto patches = s.VolumeExtractions[v]->apply(*s.Nets[step][v], channels);
-    for (size_t e = 0; e < patches.size(); ++e)
-    {
-      int span[3];
-      s.VolumeExtractions[v]->elementIndex(static_cast<int>(e), span);
-      patchIds->InsertNextValue(static_cast<int>(v));
-      spans->InsertNextTypedTuple(span);
-      volumes.patches.push_back(std::move(patches[e]));
-    }
+    const auto& extraction = *s.VolumeExtractions[v];
+    firstCell.push_back(firstCell.back() + extraction.elementCount());
+    pointCount += vtkIdType(extraction.elementCount()) * pointsPerElement(s.Set.volumes[v]);
   }
+  iga::BezierVolume<double> element;
+  std::vector<double> work;
+  size_t volume = 0;
+  auto extract = [&](vtkIdType c) -> const iga::BezierVolume<double>&
+  {
+    while (c >= firstCell[volume + 1])
+    {
+      ++volume;
+    }
+    const auto& extraction = *s.VolumeExtractions[volume];
+    const int e = int(c - firstCell[volume]);
+    element = iga::BezierVolume<double>(s.Set.volumes[volume].degree, channels);
+    work.resize(2 * element.coeffs().size());
+    extraction.extract(
+      e, s.Nets[step][volume]->data(), channels, element.coeffs().data(), work.data());
+    int span[3];
+    extraction.elementIndex(e, span);
+    patchIds->InsertNextValue(int(volume));
+    spans->InsertNextTypedTuple(span);
+    return element;
+  };
   // Whole patches were oriented by SetPatches; the cells stay the elements as extracted.
-  auto grid =
-    vtkIGABezierHexahedra::ToUnstructuredGrid(volumes, vtkIGABezierHexahedra::CellLayout::AsGiven);
+  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(firstCell.back(), pointCount,
+    s.Set.attributeNames, extract, vtkIGABezierHexahedra::CellLayout::AsGiven);
   vtkPoints* points = grid->GetPoints();
   vtkPointData* pd = grid->GetPointData();
   vtkDataArray* weights = pd->GetRationalWeights();
@@ -378,10 +410,13 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
   for (size_t f = 0; f < s.Set.surfaces.size() && !s.Nets.empty(); ++f)
   {
     const auto& extraction = *s.SurfaceExtractions[f];
-    const auto patches = extraction.apply(*s.Nets[step][volumeCount + f], channels);
-    for (size_t e = 0; e < patches.size(); ++e)
+    iga::BezierPatch<double, 2> surfaceElement(s.Set.surfaces[f].degree, channels);
+    work.resize(2 * surfaceElement.coeffs().size());
+    for (int e = 0; e < extraction.elementCount(); ++e)
     {
-      const auto view = patches[e].view();
+      extraction.extract(e, s.Nets[step][volumeCount + f]->data(), channels,
+        surfaceElement.coeffs().data(), work.data());
+      const auto view = std::as_const(surfaceElement).view();
       ids.resize(view.pointCount());
       for (int j = 0, linear = 0; j <= view.degree[1]; ++j)
       {
@@ -402,7 +437,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
         VTK_BEZIER_QUADRILATERAL, static_cast<vtkIdType>(ids.size()), ids.data());
       degrees->InsertNextTuple3(view.degree[0], view.degree[1], 0);
       int span[3] = { 0, 0, 0 };
-      extraction.elementIndex(static_cast<int>(e), span);
+      extraction.elementIndex(e, span);
       patchIds->InsertNextValue(static_cast<int>(volumeCount + f));
       spans->InsertNextTypedTuple(span);
     }

@@ -81,8 +81,8 @@ public:
     int volume) const;
   /// Number of Bézier cells ToUnstructuredGrid() produces.
   vtkIdType GetNumberOfBezierCells() const;
-  /// Bytes ToUnstructuredGrid() holds at its peak for one step: the extracted elements and the
-  /// grid made of them.
+  /// Bytes ToUnstructuredGrid() holds at its peak for one step: the grid (its elements are
+  /// extracted one at a time).
   double GetBezierCellBytes() const;
 
   /// The Bézier cells of `step` with the NURBS description (see the class description). Cached:

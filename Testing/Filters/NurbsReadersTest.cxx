@@ -378,7 +378,7 @@ std::string degree16Block(int n)
   return text.str() + "\n";
 }
 
-/// 76 KB of degree-16 NURBS expand to 53 MB of Bézier cells: a
+/// 76 KB of degree-16 NURBS expand to 28 MB of Bézier cells: a
 /// file whose cells exceed MemoryLimitMB is refused with the size, before any is built.
 TEST(NurbsReaders, CellsBeyondTheMemoryLimitAreRefused)
 {
@@ -387,16 +387,20 @@ TEST(NurbsReaders, CellsBeyondTheMemoryLimitAreRefused)
   std::vector<std::string> errors;
   const auto refused = read<vtkIGAGeoPDEsReader>(file, &errors, nullptr, 10);
   ASSERT_EQ(errors.size(), 1u);
-  // 64 cells of 17^3 points, 168 bytes each: 10 channels (homogeneous coordinates and weight,
-  // the six geometric attributes) twice over, and a connectivity entry.
-  EXPECT_NE(errors[0].find(file + ": its 64 Bézier cells would need 0.0528 GB to build, more "
+  // 64 cells of 17^3 points, 88 bytes each: the grid's 10 channels (coordinates, weight, the
+  // six geometric attributes) and a connectivity entry (elements are extracted one at a time),
+  // and the grid's copy of the 20^3-point net.
+  EXPECT_NE(errors[0].find(file + ": its 64 Bézier cells would need 0.0283 GB to build, more "
                                   "than the reader's memory limit of 0.0105 GB (MemoryLimitMB)"),
     std::string::npos)
     << errors[0];
   EXPECT_EQ(refused->GetNumberOfCells(), 0);
   errors.clear();
-  EXPECT_EQ(read<vtkIGAGeoPDEsReader>(file, &errors, nullptr, 100)->GetNumberOfCells(), 64);
+  const auto built = read<vtkIGAGeoPDEsReader>(file, &errors, nullptr, 100);
+  EXPECT_EQ(built->GetNumberOfCells(), 64);
   EXPECT_TRUE(errors.empty());
+  // The estimate is the grid's own size (VTK's count, in KiB) within a few percent.
+  EXPECT_NEAR(double(built->GetActualMemorySize()) * 1024, 0.0283e9, 0.05 * 0.0283e9);
 }
 
 TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
