@@ -55,7 +55,8 @@ public:
     const iga::VolumeSet<double>& set, CellLayout layout = CellLayout::ForVTK);
 
   /// The same for cells made one at a time, so that only the grid and one cell are held:
-  /// `cell(c)` gives cell c (valid until the next call), `pointCount` their points in all.
+  /// `cell(c)` gives cell c (valid until the next call; called for c = 0, 1, ... in order),
+  /// `pointCount` their points in all.
   static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(vtkIdType cellCount,
     vtkIdType pointCount, const std::vector<std::string>& attributeNames,
     const std::function<const iga::BezierVolume<double>&(vtkIdType)>& cell, CellLayout layout);
