@@ -175,8 +175,8 @@ TEST(NurbsData, BadInputIsNamed)
   EXPECT_NE(data->SetPatches(set).find("patch 0 (volume): control net has"), std::string::npos);
   set = randomSet(3);
   set.volumes[0].net[5] = NAN;
-  EXPECT_NE(
-    data->SetPatches(set).find("control point (0, 0, 0) has a non-finite attribute 1 (channel 5): nan"),
+  EXPECT_NE(data->SetPatches(set).find(
+              "control point (0, 0, 0) has a non-finite attribute 1 (channel 5): nan"),
     std::string::npos);
 
   ASSERT_EQ(data->SetPatches(randomSet(3), 1.0), "");

@@ -1,7 +1,8 @@
 // libFuzzer target: the engine's input checks and a small frame on patches decoded from the
-// bytes: 1..4 patches of degrees 1..16 per direction, 0..2 attributes (none is refused), control values from pairs of bytes (v / 1000, with codes for NaN, infinities,
-// 1e300 and -0), an isovalue, first-hit or all-hits, an optional clipping plane. A frame either
-// draws finite hits or throws std::invalid_argument naming the problem.
+// bytes: 1..4 patches of degrees 1..16 per direction, 0..2 attributes (none is refused), control
+// values from pairs of bytes (v / 1000, with codes for NaN, infinities, 1e300 and -0), an isovalue,
+// first-hit or all-hits, an optional clipping plane. A frame either draws finite hits or throws
+// std::invalid_argument naming the problem.
 #include "iga/sst/Engine.h"
 
 #include <cmath>
@@ -86,8 +87,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   iga::sst::GBuffer gbuffer;
   try
   {
-    iga::sst::render(
-      patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+    iga::sst::render(patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
   }
   catch (const std::invalid_argument&)
   {

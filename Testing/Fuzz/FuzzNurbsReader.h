@@ -26,8 +26,7 @@ template<class Reader>
 int fuzzNurbsReader(const uint8_t* data, size_t size, const char* extension)
 {
   vtkObject::GlobalWarningDisplayOff();
-  static const std::string file =
-    "/dev/shm/igaview-fuzz-" + std::to_string(getpid()) + extension;
+  static const std::string file = "/dev/shm/igaview-fuzz-" + std::to_string(getpid()) + extension;
   std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(data), long(size));
   vtkNew<Reader> reader;
   vtkNew<ErrorCounter> errors;
