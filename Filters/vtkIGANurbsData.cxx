@@ -346,32 +346,39 @@ double vtkIGANurbsData::GetBezierCellBytes() const
   return perPoint * (surfaces > 0 ? 2 * (volumes + surfaces) : volumes) + 8.0 * netValues;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int step)
+namespace
 {
-  const std::shared_ptr<const State> contents = this->Contents;
-  const State& s = *contents;
-  step = std::clamp(step, 0, std::max(0, static_cast<int>(s.Times.size()) - 1));
-  if (this->CachedGrid && this->CachedContents == contents && this->CachedStep == step)
-  {
-    return this->CachedGrid;
-  }
-  const int channels = s.Set.channels();
-  const size_t volumeCount = s.Set.volumes.size();
-  vtkNew<vtkIntArray> patchIds;
-  patchIds->SetName(kPatchArray);
-  vtkNew<vtkIntArray> spans;
-  spans->SetName(kSpanArray);
-  spans->SetNumberOfComponents(3);
 
-  // Volumes through the shared hexahedron conversion, one element at a time (only the grid and
-  // one element held), surfaces appended after them.
+/// The cell arrays naming each cell's patch and knot span.
+struct CellOrigins
+{
+  vtkNew<vtkIntArray> patchIds, spans;
+  CellOrigins()
+  {
+    patchIds->SetName(kPatchArray);
+    spans->SetName(kSpanArray);
+    spans->SetNumberOfComponents(3);
+  }
+  void add(int patch, const int* span)
+  {
+    patchIds->InsertNextValue(patch);
+    spans->InsertNextTypedTuple(span);
+  }
+};
+
+/// The volumes' Bézier elements as a grid of hexahedra through the shared conversion, built one
+/// element at a time (only the grid and one element held); whole patches were oriented by
+/// SetPatches, so the cells stay the elements as extracted.
+vtkSmartPointer<vtkUnstructuredGrid> volumeCells(const iga::NurbsSet<double>& set,
+  const std::vector<Extraction<3>>& extractions, const std::vector<Net>& nets, CellOrigins& origins)
+{
+  const int channels = set.channels();
   std::vector<vtkIdType> firstCell{ 0 };
   vtkIdType pointCount = 0;
-  for (size_t v = 0; v < volumeCount && !s.Nets.empty(); ++v)
+  for (size_t v = 0; v < nets.size() && v < set.volumes.size(); ++v)
   {
-    const auto& extraction = *s.VolumeExtractions[v];
-    firstCell.push_back(firstCell.back() + extraction.elementCount());
-    pointCount += vtkIdType(extraction.elementCount()) * pointsPerElement(s.Set.volumes[v]);
+    firstCell.push_back(firstCell.back() + extractions[v]->elementCount());
+    pointCount += vtkIdType(extractions[v]->elementCount()) * pointsPerElement(set.volumes[v]);
   }
   iga::BezierVolume<double> element;
   std::vector<double> work;
@@ -382,41 +389,47 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
     {
       ++volume;
     }
-    const auto& extraction = *s.VolumeExtractions[volume];
+    const auto& extraction = *extractions[volume];
     const int e = int(c - firstCell[volume]);
-    element = iga::BezierVolume<double>(s.Set.volumes[volume].degree, channels);
+    element = iga::BezierVolume<double>(set.volumes[volume].degree, channels);
     work.resize(2 * element.coeffs().size());
-    extraction.extract(
-      e, s.Nets[step][volume]->data(), channels, element.coeffs().data(), work.data());
+    extraction.extract(e, nets[volume]->data(), channels, element.coeffs().data(), work.data());
     int span[3];
     extraction.elementIndex(e, span);
-    patchIds->InsertNextValue(int(volume));
-    spans->InsertNextTypedTuple(span);
+    origins.add(int(volume), span);
     return element;
   };
-  // Whole patches were oriented by SetPatches; the cells stay the elements as extracted.
-  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(firstCell.back(), pointCount,
-    s.Set.attributeNames, extract, vtkIGABezierHexahedra::CellLayout::AsGiven);
+  return vtkIGABezierHexahedra::ToUnstructuredGrid(firstCell.back(), pointCount, set.attributeNames,
+    extract, vtkIGABezierHexahedra::CellLayout::AsGiven);
+}
+
+/// Appends the surfaces' Bézier elements to `grid` as quadrilaterals, one element at a time.
+void appendSurfaceCells(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& set,
+  const std::vector<Extraction<2>>& extractions, const std::vector<Net>& nets, CellOrigins& origins)
+{
+  const int channels = set.channels();
+  const size_t volumeCount = set.volumes.size();
   vtkPoints* points = grid->GetPoints();
   vtkPointData* pd = grid->GetPointData();
   vtkDataArray* weights = pd->GetRationalWeights();
   vtkDataArray* degrees = grid->GetCellData()->GetHigherOrderDegrees();
   std::vector<vtkDataArray*> attributes;
-  for (const auto& name : s.Set.attributeNames)
+  for (const auto& name : set.attributeNames)
   {
     attributes.push_back(pd->GetArray(name.c_str()));
   }
   std::vector<vtkIdType> ids;
-  for (size_t f = 0; f < s.Set.surfaces.size() && !s.Nets.empty(); ++f)
+  std::vector<double> work;
+  for (size_t f = 0; f < set.surfaces.size() && volumeCount + f < nets.size(); ++f)
   {
-    const auto& extraction = *s.SurfaceExtractions[f];
-    iga::BezierPatch<double, 2> surfaceElement(s.Set.surfaces[f].degree, channels);
-    work.resize(2 * surfaceElement.coeffs().size());
+    const auto& extraction = *extractions[f];
+    iga::BezierPatch<double, 2> element(set.surfaces[f].degree, channels);
+    work.resize(2 * element.coeffs().size());
     for (int e = 0; e < extraction.elementCount(); ++e)
     {
-      extraction.extract(e, s.Nets[step][volumeCount + f]->data(), channels,
-        surfaceElement.coeffs().data(), work.data());
-      const auto view = std::as_const(surfaceElement).view();
+      extraction.extract(
+        e, nets[volumeCount + f]->data(), channels, element.coeffs().data(), work.data());
+      const auto view = std::as_const(element).view();
       ids.resize(view.pointCount());
       for (int j = 0, linear = 0; j <= view.degree[1]; ++j)
       {
@@ -438,14 +451,17 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
       degrees->InsertNextTuple3(view.degree[0], view.degree[1], 0);
       int span[3] = { 0, 0, 0 };
       extraction.elementIndex(e, span);
-      patchIds->InsertNextValue(static_cast<int>(volumeCount + f));
-      spans->InsertNextTypedTuple(span);
+      origins.add(static_cast<int>(volumeCount + f), span);
     }
   }
-  grid->GetCellData()->AddArray(patchIds);
-  grid->GetCellData()->AddArray(spans);
+}
 
-  // The description, so that the class can be rebuilt from the grid alone.
+/// The NURBS description in the grid's field data, so that the class can be rebuilt from the
+/// grid alone (see the class description).
+void describe(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& set,
+  const std::vector<Net>& nets, double time)
+{
+  const int channels = set.channels();
   vtkNew<vtkIntArray> info;
   info->SetName(kInfoArray);
   info->SetNumberOfComponents(kInfoComponents);
@@ -454,8 +470,8 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
   vtkNew<vtkDoubleArray> net;
   net->SetName(kNetArray);
   net->SetNumberOfComponents(channels);
-  auto describe = [&](int dim, const int* degree, const int* netSize,
-                    const std::vector<double>* knotVectors, const std::vector<double>& values)
+  auto add = [&](int dim, const int* degree, const int* netSize,
+               const std::vector<double>* knotVectors, const std::vector<double>& values)
   {
     int tuple[kInfoComponents] = { dim, 0, 0, 0, 1, 1, 1 };
     for (int d = 0; d < dim; ++d)
@@ -473,36 +489,55 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
       net->InsertNextTuple(values.data() + v);
     }
   };
-  for (int p = 0; p < s.Set.patchCount(); ++p)
+  const size_t volumeCount = set.volumes.size();
+  for (size_t p = 0; p < nets.size(); ++p)
   {
-    const auto& values = *s.Nets[step][p];
-    if (static_cast<size_t>(p) < volumeCount)
+    if (p < volumeCount)
     {
-      const auto& v = s.Set.volumes[p];
-      describe(3, v.degree, v.netSize, v.knots, values);
+      const auto& v = set.volumes[p];
+      add(3, v.degree, v.netSize, v.knots, *nets[p]);
     }
     else
     {
-      const auto& f = s.Set.surfaces[p - volumeCount];
-      describe(2, f.degree, f.netSize, f.knots, values);
+      const auto& f = set.surfaces[p - volumeCount];
+      add(2, f.degree, f.netSize, f.knots, *nets[p]);
     }
   }
   vtkNew<vtkStringArray> names;
   names->SetName(kNamesArray);
-  for (const auto& name : s.Set.attributeNames)
+  for (const auto& name : set.attributeNames)
   {
     names->InsertNextValue(name);
   }
-  vtkNew<vtkDoubleArray> time;
-  time->SetName(kTimeArray);
-  time->InsertNextValue(s.Times.empty() ? 0.0 : s.Times[step]);
+  vtkNew<vtkDoubleArray> times;
+  times->SetName(kTimeArray);
+  times->InsertNextValue(time);
   vtkFieldData* fd = grid->GetFieldData();
   fd->AddArray(info);
   fd->AddArray(knots);
   fd->AddArray(net);
   fd->AddArray(names);
-  fd->AddArray(time);
+  fd->AddArray(times);
+}
+}
 
+vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int step)
+{
+  const std::shared_ptr<const State> contents = this->Contents;
+  const State& s = *contents;
+  step = std::clamp(step, 0, std::max(0, static_cast<int>(s.Times.size()) - 1));
+  if (this->CachedGrid && this->CachedContents == contents && this->CachedStep == step)
+  {
+    return this->CachedGrid;
+  }
+  const std::vector<Net> none;
+  const std::vector<Net>& nets = s.Nets.empty() ? none : s.Nets[step];
+  CellOrigins origins;
+  auto grid = volumeCells(s.Set, s.VolumeExtractions, nets, origins);
+  appendSurfaceCells(grid, s.Set, s.SurfaceExtractions, nets, origins);
+  grid->GetCellData()->AddArray(origins.patchIds);
+  grid->GetCellData()->AddArray(origins.spans);
+  describe(grid, s.Set, nets, s.Times.empty() ? 0.0 : s.Times[step]);
   this->CachedGrid = grid;
   this->CachedContents = contents;
   this->CachedStep = step;
