@@ -1,5 +1,7 @@
 #include "vtkIGABezierFileReading.h"
 
+#include "IGAFileHead.h"
+
 #include "vtkIGABezierHexahedra.h"
 
 #include "vtkLogger.h"
@@ -253,15 +255,7 @@ std::string binaryHeaderProblem(const std::string& name, const std::string& text
 /// The first megabyte of the input.
 std::string headOf(const std::string& name, const std::string* text)
 {
-  if (text)
-  {
-    return text->substr(0, 1 << 20);
-  }
-  std::ifstream in(name, std::ios::binary);
-  std::string head(1 << 20, '\0');
-  in.read(&head[0], static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  return head;
+  return text ? text->substr(0, 1 << 20) : igaFileHead(name, 1 << 20);
 }
 
 /// Updates the reader with VTK's messages collected rather than printed (several lines each,

@@ -1,5 +1,7 @@
 #include "vtkIGANurbsReader.h"
 
+#include "IGAFileHead.h"
+
 #include "vtkIGANurbsData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -32,11 +34,8 @@ void vtkIGANurbsReader::PrintSelf(ostream& os, vtkIndent indent)
 
 int vtkIGANurbsReader::CanReadFile(const char* name)
 {
-  std::ifstream in(name ? name : "", std::ios::binary);
-  std::string head(64 * 1024, '\0');
-  in.read(&head[0], static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  return in.gcount() > 0 && this->IsOwnFormat(head) ? 1 : 0;
+  const std::string head = igaFileHead(name ? name : "", 64 * 1024);
+  return !head.empty() && this->IsOwnFormat(head) ? 1 : 0;
 }
 
 vtkIGANurbsData* vtkIGANurbsReader::GetNurbsData()
