@@ -18,6 +18,8 @@
 #include "iga/Datasets.h"
 
 #include <filesystem>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 namespace
 {
@@ -27,7 +29,7 @@ double vtkJacobianDeterminant(vtkGenericCell* cell, const double* pcoords)
 {
   const double h = 1e-6;
   std::vector<double> weights(cell->GetNumberOfPoints());
-  double jacobian[3][3];
+  glm::dmat3 jacobian; // column d: derivative along direction d
   for (int d = 0; d < 3; ++d)
   {
     double lo[3] = { pcoords[0], pcoords[1], pcoords[2] }, hi[3] = { lo[0], lo[1], lo[2] };
@@ -40,9 +42,7 @@ double vtkJacobianDeterminant(vtkGenericCell* cell, const double* pcoords)
     for (int e = 0; e < 3; ++e)
       jacobian[d][e] = (b[e] - a[e]) / (2 * h);
   }
-  return jacobian[0][0] * (jacobian[1][1] * jacobian[2][2] - jacobian[1][2] * jacobian[2][1]) -
-         jacobian[0][1] * (jacobian[1][0] * jacobian[2][2] - jacobian[1][2] * jacobian[2][0]) +
-         jacobian[0][2] * (jacobian[1][0] * jacobian[2][1] - jacobian[1][1] * jacobian[2][0]);
+  return glm::determinant(jacobian);
 }
 
 /// Cells of `grid` that VTK finds inside-out, each as "cell N: why".

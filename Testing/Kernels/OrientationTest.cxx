@@ -41,7 +41,7 @@ double bruteForceVolume(const iga::PatchView<const double, 3>& patch, int n)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
       {
-        double jacobian[3][3];
+        glm::dmat3 jacobian; // column d: derivative along direction d
         for (int d = 0; d < 3; ++d)
         {
           double lo[3] = { (i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h }, hi[3];
@@ -52,10 +52,7 @@ double bruteForceVolume(const iga::PatchView<const double, 3>& patch, int n)
           for (int e = 0; e < 3; ++e)
             jacobian[d][e] = double(b[e] - a[e]) / (2 * delta);
         }
-        sum +=
-          jacobian[0][0] * (jacobian[1][1] * jacobian[2][2] - jacobian[1][2] * jacobian[2][1]) -
-          jacobian[0][1] * (jacobian[1][0] * jacobian[2][2] - jacobian[1][2] * jacobian[2][0]) +
-          jacobian[0][2] * (jacobian[1][0] * jacobian[2][1] - jacobian[1][1] * jacobian[2][0]);
+        sum += glm::determinant(jacobian);
       }
   return sum * h * h * h;
 }

@@ -7,6 +7,9 @@
 #include "iga/BSpline.h"
 #include "iga/BezierPatch.h"
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -30,7 +33,7 @@ T signedVolume(const PatchView<const T, 3>& patch)
     const T u[3] = { nodes[q & 1], nodes[(q >> 1) & 1], nodes[(q >> 2) & 1] };
     evaluateHomogeneous<T, 3>(patch, u, values.data(), derivatives.data());
     const T w = values[kWeightChannel];
-    T jacobian[3][3]; // row d: derivative of the position along parametric direction d
+    glm::mat<3, 3, T> jacobian; // column d: derivative of the position along direction d
     for (int d = 0; d < 3; ++d)
     {
       const T* dv = derivatives.data() + d * patch.channels;
@@ -39,9 +42,7 @@ T signedVolume(const PatchView<const T, 3>& patch)
         jacobian[d][e] = (dv[e] * w - values[e] * dv[kWeightChannel]) / (w * w);
       }
     }
-    sum += jacobian[0][0] * (jacobian[1][1] * jacobian[2][2] - jacobian[1][2] * jacobian[2][1]) -
-           jacobian[0][1] * (jacobian[1][0] * jacobian[2][2] - jacobian[1][2] * jacobian[2][0]) +
-           jacobian[0][2] * (jacobian[1][0] * jacobian[2][1] - jacobian[1][1] * jacobian[2][0]);
+    sum += glm::determinant(jacobian);
   }
   return sum / T(8);
 }
