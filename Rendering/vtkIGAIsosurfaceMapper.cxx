@@ -51,6 +51,9 @@ vtkStandardNewMacro(vtkIGAIsosurfaceMapper);
 namespace
 {
 
+/// The mapper's colour (RGBA) and depth as floats, in host memory and as textures.
+constexpr size_t kMapperBytesPerPixel = 2 * (4 + 1) * sizeof(float);
+
 /// True the first time this process sees `message`.
 bool firstInProcess(const std::string& message)
 {
@@ -617,7 +620,14 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
                     indexOf(this->ArrayName) < int(names.size());
   settings.colorAttribute = frame.ByScalars ? indexOf(this->ArrayName) : -1;
   settings.maxSubdivisionDepth = this->MaximumSubdivisionDepth;
-  settings.memoryBudgetBytes = size_t(this->MemoryBudgetMB) << 20;
+  const vtkTypeUInt64 budget = vtkTypeUInt64(this->MemoryBudgetMB) << 20;
+  if (vtkIGAIsosurfaceMapper::GetImageBytes(frame.Width, frame.Height) > budget)
+  {
+    this->ReportImageOverBudget(frame);
+    in.FrameKey.clear();
+    return false;
+  }
+  settings.memoryBudgetBytes = budget - kMapperBytesPerPixel * settings.width * settings.height;
   settings.deadlineMs = 1000 * this->FrameDeadline;
   settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu
                      : this->Backend == BACKEND_CUDA ? iga::sst::Backend::Cuda
@@ -633,6 +643,29 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
     this->UpdateProgress(frame.Progress);
   };
   return true;
+}
+
+vtkTypeUInt64 vtkIGAIsosurfaceMapper::GetImageBytes(int width, int height)
+{
+  iga::sst::Settings size;
+  size.width = width;
+  size.height = height;
+  return iga::sst::imageBytes(size) +
+         kMapperBytesPerPixel * size_t(std::max(width, 0)) * size_t(std::max(height, 0));
+}
+
+void vtkIGAIsosurfaceMapper::ReportImageOverBudget(const Frame& frame)
+{
+  const double needed = vtkIGAIsosurfaceMapper::GetImageBytes(frame.Width, frame.Height);
+  char text[256];
+  std::snprintf(text, sizeof text,
+    "nothing drawn: a %dx%d image needs %.0f MiB (%.0f bytes a pixel), more than the memory "
+    "budget (MemoryBudgetMB %d): raise it or make the view smaller",
+    frame.Width, frame.Height, std::ceil(needed / 1048576.0),
+    needed / (double(frame.Width) * frame.Height), this->MemoryBudgetMB);
+  this->ReportOnce(
+    "image over budget " + std::to_string(frame.Width) + "x" + std::to_string(frame.Height), text,
+    true);
 }
 
 void vtkIGAIsosurfaceMapper::DescribeLights(vtkRenderer* renderer, Frame& frame)

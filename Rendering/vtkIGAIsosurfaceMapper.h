@@ -150,13 +150,19 @@ public:
   ///@}
 
   ///@{
-  /// Cap on the engine's working set in MiB (default 2048) besides its per-pixel arrays, copy
-  /// of the data and hits (iga::sst::Settings::memoryBudgetBytes): a frame with more (pixel,
-  /// patch) pairs than a pass takes is drawn in bands of rows, and pixels whose subdivision
-  /// would pass it are left unresolved.
+  /// Cap on a frame's memory in MiB (default 4096) besides the copies of the data: the image
+  /// (GetImageBytes) and the engine's working set (iga::sst::Settings::memoryBudgetBytes). A
+  /// viewport whose image needs more is not drawn (said once); a frame with more (pixel, patch)
+  /// pairs than a pass takes is drawn in bands of rows, and pixels whose subdivision would pass
+  /// it are left unresolved.
   vtkSetClampMacro(MemoryBudgetMB, int, 16, 1048576);
   vtkGetMacro(MemoryBudgetMB, int);
   ///@}
+
+  /// Bytes an image of width x height pixels takes out of MemoryBudgetMB whatever it shows:
+  /// the engine's per-pixel arrays and G-buffer of one hit a pixel (iga::sst::imageBytes), and
+  /// the mapper's colour and depth, in host memory and as textures.
+  static vtkTypeUInt64 GetImageBytes(int width, int height);
 
   ///@{
   /// Frame deadline in seconds, 0 for none (default): a frame still being computed then stops,
@@ -233,6 +239,7 @@ private:
   /// Size, view, lights, clipping planes and engine settings of the frame, and its key.
   bool DescribeFrame(vtkRenderer* renderer, vtkActor* actor, Frame& frame);
   void DescribeLights(vtkRenderer* renderer, Frame& frame);
+  void ReportImageOverBudget(const Frame& frame);
   /// Whether `key` is the last frame's (to rounding VTK adds); remembers it when not.
   bool SameFrame(const std::vector<double>& key);
   /// The engine's G-buffer of the frame, in the input form the engine prefers.
@@ -268,7 +275,7 @@ private:
   int Backend = BACKEND_AUTOMATIC;
   int MaximumSubdivisionDepth = 22;
   double FrameDeadline = 0;
-  int MemoryBudgetMB = 2048;
+  int MemoryBudgetMB = 4096;
   double LastEngineTime = 0;
   vtkIdType LastUnresolvedPixels = 0;
 };

@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -49,6 +51,14 @@ std::string attributeProblem(int channels, const Settings& s)
   return "has " + std::to_string(channels - kFirstAttributeChannel) +
          " attributes; the surface uses " + std::to_string(s.surfaceAttribute) + ", the colour " +
          std::to_string(s.colorAttribute);
+}
+
+std::string mebibytes(size_t bytes)
+{
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(bytes < (size_t(10) << 20) ? 1 : 0)
+       << double(bytes) / 1048576.0 << " MiB";
+  return text.str();
 }
 
 } // namespace
@@ -212,7 +222,7 @@ std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& s)
   const uint64_t pairBytes =
     std::max<uint64_t>(kBytesPerSweepPair, kBytesPerWorkItem + kBytesPerTuple);
   const uint64_t limit =
-    std::min<uint64_t>(s.memoryBudgetBytes / pairBytes, std::numeric_limits<uint32_t>::max());
+    std::min<uint64_t>(loopBudgetBytes(s) / pairBytes, std::numeric_limits<uint32_t>::max());
   std::vector<int> starts = { 0 };
   uint64_t rowPairs = 0, bandPairs = 0;
   for (int row = 0; row < s.height; ++row)
@@ -235,12 +245,31 @@ std::vector<int> rowBands(const uint64_t* rowDifferences, const Settings& s)
   return starts;
 }
 
+size_t imageBytes(const Settings& s)
+{
+  return size_t(std::max(s.width, 0)) * size_t(std::max(s.height, 0)) * kBytesPerImagePixel;
+}
+
+size_t loopBudgetBytes(const Settings& s)
+{
+  const size_t image = imageBytes(s);
+  return s.memoryBudgetBytes > image ? s.memoryBudgetBytes - image : 0;
+}
+
 void checkSettings(const Settings& s)
 {
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
   {
     throw std::invalid_argument("image size " + std::to_string(s.width) + "x" +
                                 std::to_string(s.height) + " is outside 1..16384 per side");
+  }
+  if (imageBytes(s) > s.memoryBudgetBytes)
+  {
+    throw std::length_error(
+      "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
+      mebibytes(imageBytes(s)) + " (" + std::to_string(kBytesPerImagePixel) +
+      " bytes a pixel), more than the memory budget of " + mebibytes(s.memoryBudgetBytes) +
+      ": lower the resolution or raise the budget");
   }
   if (s.isovalues.empty())
   {

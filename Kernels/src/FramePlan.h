@@ -60,6 +60,9 @@ bool usableShape(const int* degree, int channels, const Settings& settings);
 /// 2^32 - 1.
 void checkIndexable(size_t count, const char* what = "(pixel, patch) pairs");
 
+/// Settings::memoryBudgetBytes less imageBytes: the share of the sweep's pairs and the loop.
+size_t loopBudgetBytes(const Settings& settings);
+
 /// Bytes a (pixel, node) pair of the sweep takes at its peak in either driver: the pair, the
 /// sort's scratch copy, the work item it becomes and its run start (pixelRuns).
 constexpr size_t kBytesPerSweepPair = 24;

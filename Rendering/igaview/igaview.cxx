@@ -68,6 +68,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --view-up x,y,z
   --view-angle DEG       a camera that is not given is chosen to frame the data
   --threads N            CPU threads (default: all)
+  --memory-budget MB     cap on a frame's memory besides the data's copies, in MiB (default
+                         4096): the image takes 365 bytes a pixel of it, the engine the rest
   --deadline S           frame deadline in seconds, 0 for none: a frame still running then stops
                          and shows the hits found (default: none for render, 2 for view)
   --backend B            auto, cpu or cuda (default auto: CUDA where built with it and a GPU is
@@ -90,6 +92,7 @@ struct Options
   std::string surfaceBy, colorBy, output = "igaview.png", exr;
   int size[2] = { 800, 600 };
   int threads = 0;
+  int memoryBudgetMB = 4096;
   double deadline = -1; ///< seconds; -1: the command's default
   iga::sst::Backend backend = iga::sst::Backend::Automatic;
   double time = 0.5;
@@ -136,6 +139,33 @@ void parseTriple(const std::string& text, const std::string& option, double* out
   if (n != 3)
   {
     fail(option + " expects three comma-separated numbers x,y,z, got '" + text + "'");
+  }
+}
+
+/// A whole number in lo..hi, else fail naming the option and the text as typed.
+int parseWholeNumber(const std::string& text, const std::string& option, int lo, int hi)
+{
+  const double number = parseNumber(text, option);
+  if (!(number >= lo && number <= hi && number == std::floor(number)))
+    fail(option + " expects a whole number in " + std::to_string(lo) + ".." + std::to_string(hi) +
+         ", got '" + text + "'");
+  return int(number);
+}
+
+/// The image's share of the memory budget (vtkIGAIsosurfaceMapper::GetImageBytes), refused
+/// before anything is read or allocated.
+void checkImageBudget(const Options& options)
+{
+  const double needed = vtkIGAIsosurfaceMapper::GetImageBytes(options.size[0], options.size[1]);
+  if (needed > double(options.memoryBudgetMB) * 1048576.0)
+  {
+    char text[256];
+    std::snprintf(text, sizeof text,
+      "--size %dx%d needs %.0f MiB for the image (%.0f bytes a pixel), more than the memory "
+      "budget of %d MiB: lower --size or raise --memory-budget",
+      options.size[0], options.size[1], std::ceil(needed / 1048576.0),
+      needed / (double(options.size[0]) * options.size[1]), options.memoryBudgetMB);
+    fail(text);
   }
 }
 
@@ -192,13 +222,9 @@ Options parseArguments(int argc, char** argv)
     else if (arg == "--exr")
       options.exr = value();
     else if (arg == "--threads")
-    {
-      const std::string text = value();
-      const double threads = parseNumber(text, arg);
-      if (!(threads >= 1 && threads <= 1024 && threads == std::floor(threads)))
-        fail("--threads expects a whole number in 1..1024, got '" + text + "'");
-      options.threads = int(threads);
-    }
+      options.threads = parseWholeNumber(value(), arg, 1, 1024);
+    else if (arg == "--memory-budget")
+      options.memoryBudgetMB = parseWholeNumber(value(), arg, 16, 1048576);
     else if (arg == "--deadline")
     {
       const std::string text = value();
@@ -251,6 +277,7 @@ Options parseArguments(int argc, char** argv)
   {
     fail("--time must lie in 0..1");
   }
+  checkImageBudget(options);
   return options;
 }
 
@@ -508,6 +535,7 @@ int main(int argc, char** argv)
   mapper->SetInputConnection(producer->GetOutputPort());
   mapper->SetSurfaceArrayName(set.attributeNames[surface].c_str());
   mapper->SetNumberOfThreads(options.threads);
+  mapper->SetMemoryBudgetMB(options.memoryBudgetMB);
   // An interactive window answers within two seconds unless told otherwise.
   mapper->SetFrameDeadline(options.deadline >= 0 ? options.deadline : options.view ? 2.0 : 0.0);
   // The mapper's BackendType follows the engine's Backend order (auto, CPU, CUDA).

@@ -593,10 +593,46 @@ TEST(Engine, DepthCapIsReportedNotLooped)
   EXPECT_GT(report.unresolvedPixels, 0u);
   EXPECT_GT(report.unresolvedAtDepthCap, 0u);
   settings.maxSubdivisionDepth = 22;
-  settings.memoryBudgetBytes = 64 * 1024; // room for the root and little else
+  // Room for the image, the root and little else.
+  settings.memoryBudgetBytes = iga::sst::imageBytes(settings) + 64 * 1024;
   renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
   EXPECT_GT(report.unresolvedAtBudget, 0u);
   EXPECT_LE(report.peakBytes, size_t(1) << 20);
+}
+
+/// The image's per-pixel arrays and G-buffer count against the budget: a size whose image alone
+/// passes it is refused before anything is drawn, naming what it needs; one that just fits
+/// leaves the loop no room past the one row and round it takes to move on, so pixels are left
+/// unresolved at the budget.
+TEST(Engine, ImageBeyondTheMemoryBudgetIsRefused)
+{
+  auto [set, camera, settings] = sphereView(2, { 0, -4, 0 }, 16384);
+  // 16384^2 pixels at 8 + 1 + 8 * 4 bytes of arrays and a hit of 48 + 2 * 112 + 12 bytes.
+  EXPECT_EQ(iga::sst::imageBytes(settings), size_t(87241523200));
+  auto refusal = [&]() -> std::string
+  {
+    try
+    {
+      renderSet(set, camera, settings);
+    }
+    catch (const std::length_error& e)
+    {
+      return e.what();
+    }
+    return "drawn";
+  };
+  EXPECT_EQ(refusal(), "a 16384x16384 image needs 83200 MiB (325 bytes a pixel), more than the "
+                       "memory budget of 4096 MiB: lower the resolution or raise the budget");
+  settings.width = settings.height = 32;
+  settings.memoryBudgetBytes = iga::sst::imageBytes(settings) - 1;
+  EXPECT_EQ(refusal(), "a 32x32 image needs 0.3 MiB (325 bytes a pixel), more than the memory "
+                       "budget of 0.3 MiB: lower the resolution or raise the budget");
+  settings.memoryBudgetBytes += 1;
+  iga::sst::FrameReport report;
+  renderSet(set, camera, settings, Method::SharedSubdivisionTree, &report);
+  EXPECT_GT(report.unresolvedAtBudget, 0u);
+  EXPECT_GT(report.unresolvedPixels, 0u);
+  EXPECT_LT(report.peakBudgetedBytes, 64u * 1024) << "the one row and round it takes to move on";
 }
 
 /// Pixels whose first hit differs between two G-buffers of one size (or is missing in one).

@@ -375,20 +375,37 @@ TEST(IsosurfaceMapperSettings, DepthCapLeavesUnresolvedPixelsWarnedOnceAndReruns
   EXPECT_EQ(scene.recorder->count("pixels left unresolved"), 2);
 }
 
+/// The image takes its share of the budget first: 400 x 320 pixels at 365 bytes (the engine's
+/// 325, the mapper's colour and depth on the host and as textures) need 45 MiB, so 16 MiB
+/// draws nothing, said once, and 61 MiB leaves the engine 16.
 TEST(IsosurfaceMapperSettings, TinyMemoryBudgetLeavesUnresolvedPixelsWarnedOnce)
 {
+  EXPECT_EQ(vtkIGAIsosurfaceMapper::GetImageBytes(1, 1), 325u + 40u);
+  EXPECT_EQ(vtkIGAIsosurfaceMapper::GetImageBytes(400, 320), 400u * 320u * 365u);
   TubeScene scene(400, 320);
   scene.mapper->SetMemoryBudgetMB(1);
   EXPECT_EQ(scene.mapper->GetMemoryBudgetMB(), 16) << "clamped to 16 MiB";
   scene.render();
+  EXPECT_EQ(scene.coveredPixels(), 0);
+  ASSERT_EQ(scene.recorder->errors.size(), 1u);
+  EXPECT_NE(scene.recorder->errors[0].find(
+              "nothing drawn: a 400x320 image needs 45 MiB (365 bytes a pixel), more than the "
+              "memory budget (MemoryBudgetMB 16): raise it or make the view smaller"),
+    std::string::npos);
+  scene.turn(4);
+  scene.render();
+  EXPECT_EQ(scene.recorder->errors.size(), 1u) << "said once";
+
+  scene.mapper->SetMemoryBudgetMB(61);
+  scene.render();
   EXPECT_GT(scene.mapper->GetLastUnresolvedPixels(), 0);
-  EXPECT_EQ(scene.recorder->count("at the memory budget (MemoryBudgetMB 16:"), 1);
+  EXPECT_EQ(scene.recorder->count("at the memory budget (MemoryBudgetMB 61:"), 1);
   scene.turn(4);
   scene.render();
   EXPECT_GT(scene.mapper->GetLastUnresolvedPixels(), 0);
   EXPECT_EQ(scene.recorder->count("pixels left unresolved"), 1);
   // The default budget resolves them.
-  scene.mapper->SetMemoryBudgetMB(2048);
+  scene.mapper->SetMemoryBudgetMB(4096);
   scene.render();
   EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
 }

@@ -102,7 +102,7 @@ struct LoopState
   Exec exec;
   typename Exec::StageTimer stages;
   FrameReport* report = nullptr;
-  uint64_t budget = 0; ///< Settings::memoryBudgetBytes
+  uint64_t budget = 0; ///< the loop's share of Settings::memoryBudgetBytes (loopBudgetBytes)
   /// Settings::deadlineMs as a time (none when `deadline` is the clock's maximum), and whether
   /// it has passed.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
@@ -161,7 +161,7 @@ template<class Exec>
 void setFrame(LoopState<Exec>& s, FrameReport& report, const Settings& settings, const View& view)
 {
   s.report = &report;
-  s.budget = settings.memoryBudgetBytes;
+  s.budget = loopBudgetBytes(settings);
   s.deadline = std::chrono::steady_clock::time_point::max();
   s.pastDeadline = false;
   if (settings.deadlineMs > 0)
@@ -219,8 +219,9 @@ size_t scanCounts(const Exec& exec, Array& counts, size_t n)
   return total;
 }
 
-/// The band's work items and the loop's arrays, what the memory budget caps, at their sizes in
-/// use (each array may keep a larger allocation between iterations and frames).
+/// The band's work items and the loop's arrays, what the loop's share of the memory budget
+/// caps, at their sizes in use (each array may keep a larger allocation between iterations and
+/// frames).
 template<class Exec>
 size_t budgetedBytes(const LoopState<Exec>& s)
 {
@@ -234,7 +235,8 @@ size_t budgetedBytes(const LoopState<Exec>& s)
          bytesOf(s.Index) + bytesOf(s.Offsets);
 }
 
-/// The copies of the input, the per-pixel arrays and the hits: what the budget does not cap.
+/// The copies of the input and the hits, which the budget does not cap, and the per-pixel
+/// arrays (imageBytes holds those and one hit a pixel).
 template<class Exec>
 size_t fixedBytes(const LoopState<Exec>& s)
 {

@@ -50,13 +50,15 @@ struct Settings
   /// for every plane (vtkPlane's normal side); at most kMaxClipPlanes. Cut exactly at each hit.
   std::vector<std::array<double, 4>> clipPlanes;
   int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
-  /// Cap on the working set of a shared-subdivision-tree frame besides its per-pixel arrays,
-  /// copies of the input and hits (FrameReport::peakBudgetedBytes): the sweep's (pixel, patch)
-  /// pairs at 65 bytes a pair (a frame that needs more is drawn in several passes over bands
-  /// of rows), and the loop's nodes, coefficients, tuples and children (Tree.h's memory
-  /// model). Pixels whose work would pass it are left unresolved and counted
-  /// (FrameReport::unresolvedAtBudget).
-  size_t memoryBudgetBytes = size_t(2) << 30;
+  /// Cap on a shared-subdivision-tree frame's memory besides its copies of the input. The image
+  /// takes imageBytes (its per-pixel arrays and a G-buffer of one hit a pixel): a size needing
+  /// more than the budget is refused before anything is allocated. The rest is the loop's: the
+  /// sweep's (pixel, patch) pairs at 65 bytes a pair (a frame that needs more is drawn in
+  /// several passes over bands of rows), the loop's nodes, coefficients, tuples and children
+  /// (Tree.h's memory model; FrameReport::peakBudgetedBytes). Pixels whose work would pass it
+  /// are left unresolved and counted (FrameReport::unresolvedAtBudget). Hits past one a pixel
+  /// (all-hits mode's layers) are not capped: FrameReport::peakBytes counts their raw records.
+  size_t memoryBudgetBytes = size_t(4) << 30;
   /// CUDA: size of the page-locked host buffer that uploads and the G-buffer pass through, a
   /// chunk at a time (kept between frames); at least 4096.
   size_t transferChunkBytes = size_t(64) << 20;
@@ -118,7 +120,8 @@ struct FrameReport
   size_t maxTuples = 0;
   size_t maxPatches = 0;
   size_t peakBytes = 0; ///< largest engine-owned working set
-  /// Of that, the part Settings::memoryBudgetBytes caps (at its own peak).
+  /// Of that, the loop's part, which Settings::memoryBudgetBytes less imageBytes caps (at its
+  /// own peak).
   size_t peakBudgetedBytes = 0;
   size_t uploadedBytes = 0; ///< CUDA: bytes copied to the device for this frame
   /// CUDA: bytes copied back for the G-buffer (a copy to host memory: there is no CUDA-GL
@@ -144,6 +147,10 @@ struct View
 
 /// The view of a camera for an image of width x height pixels.
 View makeView(const Camera& camera, int width, int height);
+
+/// Bytes a frame of the settings' size holds whatever it draws, out of
+/// Settings::memoryBudgetBytes: per pixel its arrays and a G-buffer of one hit.
+size_t imageBytes(const Settings& settings);
 
 /// Renders the isosurfaces of `patches` (world space, standard layout) as seen by `view`. Throws
 /// std::invalid_argument naming the patch and the problem for bad input (degree, non-finite

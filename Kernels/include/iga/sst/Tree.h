@@ -60,6 +60,14 @@ constexpr uint64_t kBytesPerNode = sizeof(Node) + 64;
 /// which the CUDA driver keeps.
 constexpr uint64_t kBytesPerWorkItem = sizeof(Tuple) + sizeof(uint32_t);
 
+/// Per hit through the G-buffer stage: the raw hit, its shaded record and the copy delivered,
+/// and its pixel run's start, pixel and kept count.
+constexpr uint64_t kBytesPerHit = sizeof(RawHit) + 2 * sizeof(Hit) + 3 * sizeof(uint32_t);
+/// Per pixel of the image, whatever the scene: the nearest depth, the unresolved flag, the
+/// solve count, the group bounds, the work-item offset, the active lists, the G-buffer offset
+/// (and the CUDA driver's copy of it), and one hit (imageBytes).
+constexpr uint64_t kBytesPerImagePixel = sizeof(double) + 1 + 8 * sizeof(uint32_t) + kBytesPerHit;
+
 /// Nodes with `values` screen coefficients in all.
 IGA_HD inline uint64_t nodeBytes(uint64_t nodes, uint64_t values)
 {
