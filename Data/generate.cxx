@@ -1,11 +1,14 @@
 // Writes the bundled sample datasets (VTK XML unstructured grids of rational Bézier hexahedra)
 // and, on request, deforming time series and the large wind blade:
 //   igaview-generate-data OUTPUT_DIRECTORY [--series STEPS] [--benchmark STEPS] [--blade PATCHES]
+//                         [--zoo]
 //  --series STEPS     each sample also as NAME_series.pvd + NAME_series/NAME_NNN.vtu, deformed
 //                     over time [0, 1] by the same maps as vtkIGASyntheticDeformation
 //  --benchmark STEPS  the ~10k patch blade flapping over STEPS time steps (blade_10k_series.pvd)
 //  --blade PATCHES    the wind blade with at least PATCHES patches (800000 as in the SST paper) as
 //                     wind_blade.pvtu + wind_blade/wind_blade_NNN.vtu pieces of 100k patches
+//  --zoo              degenerate_zoo.vtu: the engine tests' degenerate sphere patches in a row
+//                     (iga::makeDegenerateZoo)
 #include "vtkIGABezierHexahedra.h"
 
 #include "vtkCellData.h"
@@ -17,6 +20,7 @@
 #include "vtkXMLUnstructuredGridWriter.h"
 
 #include "iga/Datasets.h"
+#include "iga/DegenerateZoo.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -170,7 +174,7 @@ bool writeBlade(const std::string& dir, long patches)
 int main(int argc, char** argv)
 {
   const char* usage = "usage: igaview-generate-data OUTPUT_DIRECTORY [--series STEPS] "
-                      "[--benchmark STEPS] [--blade PATCHES]\n";
+                      "[--benchmark STEPS] [--blade PATCHES] [--zoo]\n";
   if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h"))
   {
     std::printf("%s", usage);
@@ -188,9 +192,15 @@ int main(int argc, char** argv)
     return 1;
   }
   long series = 0, benchmark = 0, blade = 0;
+  bool zoo = false;
   for (int i = 2; i < argc; ++i)
   {
     const std::string option = argv[i];
+    if (option == "--zoo")
+    {
+      zoo = true;
+      continue;
+    }
     long* target = option == "--series"      ? &series
                    : option == "--benchmark" ? &benchmark
                    : option == "--blade"     ? &blade
@@ -254,6 +264,10 @@ int main(int argc, char** argv)
     ok = writeSeries(dir, "blade_10k", int(benchmark),
            [&](double time) { return iga::makeBlade<double>(layout, time); }) &&
          ok;
+  }
+  if (zoo)
+  {
+    ok = write(iga::makeDegenerateZoo<double>(), dir + "degenerate_zoo.vtu") && ok;
   }
   if (blade)
   {

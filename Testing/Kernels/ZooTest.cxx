@@ -1,9 +1,11 @@
 // A zoo of degenerate patches, each with its expected behaviour, and the G-buffer of every
 // drawable one identical for 1, 2 and 8 threads: collapsed face, edge and whole patch,
-// inverted, zero / negative / NaN / widely ranging weights, a constant field, degree 16.
+// inverted, zero / negative / NaN / widely ranging weights, a constant field, degree 16, the
+// sphere members side by side, and 10^6 patches (1 and 2 threads). Coordinates at 1e-6 and 1e6:
+// ScaleTest.
 #include "EngineScenes.h"
 
-#include "iga/Orientation.h"
+#include "iga/DegenerateZoo.h"
 
 #include <gtest/gtest.h>
 
@@ -19,21 +21,6 @@ namespace
 using iga::sst::GBuffer;
 using iga::sst::Settings;
 
-/// The Marsden sphere x^2 + y^2 + z^2 = 1 in one patch of the given degree, changed by `edit`.
-iga::VolumeSet<double> sphere(
-  int degree, const std::function<void(iga::PatchView<double, 3>)>& edit)
-{
-  auto set = iga::makeMarsdenSphere<double>(degree);
-  edit(set.patches[0].view());
-  return set;
-}
-
-/// Control point (i, j, k) of a patch.
-double* at(const iga::PatchView<double, 3>& patch, int i, int j, int k)
-{
-  return patch.point(i + patch.order(0) * (j + patch.order(1) * k));
-}
-
 /// Which isosurface a zoo scene draws.
 struct Surface
 {
@@ -41,14 +28,25 @@ struct Surface
   double isovalue = 0;
 };
 
-/// Draws `set` at 48x40 with `threads` threads; the report into `report` when given.
-GBuffer draw(const iga::VolumeSet<double>& set, int threads,
-  iga::sst::FrameReport* report = nullptr, Surface surface = {})
+/// Camera and image size of a zoo scene: by default one patch about the origin.
+struct Shot
 {
-  const auto camera = igatest::lookAt(set, { 3.2, -4.1, 2.7 }, { 0, 0, 0 }, 40);
+  glm::dvec3 eye{ 3.2, -4.1, 2.7 }, focal{ 0, 0, 0 };
+  double viewAngle = 40;
+  int width = 48, height = 40;
+};
+
+/// The members of makeDegenerateZoo in a row across the image, about 19 pixels each.
+const Shot kZooRow{ { 12, -9.5, 0 }, { 12, 0, 0 }, 30, 336, 48 };
+
+/// Draws `set` with `threads` threads; the report into `report` when given.
+GBuffer draw(const iga::VolumeSet<double>& set, int threads,
+  iga::sst::FrameReport* report = nullptr, Surface surface = {}, const Shot& shot = {})
+{
+  const auto camera = igatest::lookAt(set, shot.eye, shot.focal, shot.viewAngle);
   Settings settings;
-  settings.width = 48;
-  settings.height = 40;
+  settings.width = shot.width;
+  settings.height = shot.height;
   settings.isovalues = { surface.isovalue };
   settings.surfaceAttribute = surface.attribute;
   settings.threads = threads;
@@ -61,13 +59,13 @@ GBuffer draw(const iga::VolumeSet<double>& set, int threads,
 }
 
 /// Draws with 1, 2 and 8 threads, expects the three G-buffers identical, returns the first.
-GBuffer drawOnThreads(
-  const iga::VolumeSet<double>& set, const std::string& name, Surface surface = {})
+GBuffer drawOnThreads(const iga::VolumeSet<double>& set, const std::string& name,
+  Surface surface = {}, const Shot& shot = {})
 {
-  const GBuffer one = draw(set, 1, nullptr, surface);
+  const GBuffer one = draw(set, 1, nullptr, surface, shot);
   for (int threads : { 2, 8 })
   {
-    const GBuffer other = draw(set, threads, nullptr, surface);
+    const GBuffer other = draw(set, threads, nullptr, surface, shot);
     EXPECT_EQ(one.offsets, other.offsets) << name << ", " << threads << " threads";
     if (one.hits.size() != other.hits.size())
       continue;
@@ -94,9 +92,9 @@ double sphereError(const GBuffer& gbuffer)
 /// their own patch's zero set: the patch evaluated at a hit's parameters gives its position
 /// and attribute 0 there (the isovalue).
 void expectDrawnOnItsZeroSet(
-  const iga::VolumeSet<double>& set, const std::string& name, size_t covered)
+  const iga::VolumeSet<double>& set, const std::string& name, size_t covered, const Shot& shot = {})
 {
-  const GBuffer gbuffer = drawOnThreads(set, name);
+  const GBuffer gbuffer = drawOnThreads(set, name, {}, shot);
   EXPECT_GE(gbuffer.coveredPixels(), covered) << name;
   for (const auto& hit : gbuffer.hits)
   {
@@ -127,7 +125,7 @@ std::string refusal(const iga::VolumeSet<double>& set)
 
 TEST(Zoo, RegularSphereIsTheReference)
 {
-  const GBuffer gbuffer = drawOnThreads(sphere(2, [](auto) {}), "sphere");
+  const GBuffer gbuffer = drawOnThreads(iga::makeMarsdenSphere<double>(2), "sphere");
   EXPECT_GT(gbuffer.coveredPixels(), 250u);
   EXPECT_LT(sphereError(gbuffer), 1e-6);
 }
@@ -147,25 +145,12 @@ TEST(Zoo, CollapsedEdgeIsDrawnOnTheSphere)
 {
   // The edge (j, k) = (0, 0) of the degree-2 net moved onto one point: another map of the same
   // control values, whose hits must lie on its own zero set.
-  const auto set = sphere(2,
-    [](iga::PatchView<double, 3> patch)
-    {
-      for (int i = 0; i < 3; ++i)
-        for (int d = 0; d < 3; ++d)
-          at(patch, i, 0, 0)[d] = at(patch, 1, 0, 0)[d];
-    });
-  expectDrawnOnItsZeroSet(set, "collapsed edge", 100);
+  expectDrawnOnItsZeroSet(iga::makeSphereWithCollapsedEdge<double>(), "collapsed edge", 100);
 }
 
 TEST(Zoo, PatchCollapsedToAPointDrawsNothingAndEnds)
 {
-  const auto set = sphere(2,
-    [](iga::PatchView<double, 3> patch)
-    {
-      for (int p = 0; p < patch.pointCount(); ++p)
-        for (int d = 0; d < 3; ++d)
-          patch.point(p)[d] = 0.25 * patch.point(p)[iga::kWeightChannel];
-    });
+  const auto set = iga::makeSphereCollapsedToAPoint<double>();
   iga::sst::FrameReport report;
   const GBuffer gbuffer = draw(set, 1, &report);
   EXPECT_LE(gbuffer.coveredPixels(), 1u) << "a point covers at most one pixel";
@@ -175,11 +160,10 @@ TEST(Zoo, PatchCollapsedToAPointDrawsNothingAndEnds)
 
 TEST(Zoo, InvertedPatchDrawsTheSameSphere)
 {
-  const auto set =
-    sphere(3, [](iga::PatchView<double, 3> patch) { iga::reverseDirection(patch, 1); });
+  const auto set = iga::makeInvertedSphere<double>();
   ASSERT_LT(iga::signedVolume<double>(std::as_const(set.patches[0]).view()), 0);
   const GBuffer inverted = drawOnThreads(set, "inverted");
-  const GBuffer regular = draw(sphere(3, [](auto) {}), 1);
+  const GBuffer regular = draw(iga::makeMarsdenSphere<double>(3), 1);
   EXPECT_NEAR(double(inverted.coveredPixels()), double(regular.coveredPixels()), 2);
   EXPECT_LT(sphereError(inverted), 1e-6);
 }
@@ -188,7 +172,7 @@ TEST(Zoo, BadWeightsAreRefusedByName)
 {
   for (double bad : { 0.0, -0.5, std::nan("") })
   {
-    const auto set = sphere(
+    const auto set = iga::makeEditedSphere<double>(
       2, [bad](iga::PatchView<double, 3> patch) { patch.point(13)[iga::kWeightChannel] = bad; });
     const std::string message = refusal(set);
     EXPECT_NE(message.find("patch 0"), std::string::npos) << message;
@@ -198,29 +182,13 @@ TEST(Zoo, BadWeightsAreRefusedByName)
 
 TEST(Zoo, WidelyRangingWeightsAreDrawn)
 {
-  // Weights 1e-3 .. 1e3 (a ratio of 1e6) times the sphere's control values: another rational
-  // map and field, drawn with finite hits and alike on all threads.
-  const auto set = sphere(2,
-    [](iga::PatchView<double, 3> patch)
-    {
-      for (int p = 0; p < patch.pointCount(); ++p)
-      {
-        const double w = std::pow(10.0, 3 * std::sin(7.0 * p));
-        for (int c = 0; c < patch.channels; ++c)
-          patch.point(p)[c] *= w;
-      }
-    });
-  expectDrawnOnItsZeroSet(set, "weights 1e-3 .. 1e3", 50);
+  // Drawn with finite hits and alike on all threads.
+  expectDrawnOnItsZeroSet(iga::makeSphereWithWideWeights<double>(), "weights 1e-3 .. 1e3", 50);
 }
 
 TEST(Zoo, ConstantFieldIsCountedNotDrawn)
 {
-  const auto set = sphere(2,
-    [](iga::PatchView<double, 3> patch)
-    {
-      for (int p = 0; p < patch.pointCount(); ++p)
-        patch.point(p)[iga::kFirstAttributeChannel] = 0;
-    });
+  const auto set = iga::makeSphereWithConstantField<double>();
   iga::sst::FrameReport report;
   const GBuffer gbuffer = draw(set, 1, &report);
   EXPECT_EQ(report.constantAttributeRoots, 1u);
@@ -230,10 +198,51 @@ TEST(Zoo, ConstantFieldIsCountedNotDrawn)
 
 TEST(Zoo, DegreeSixteenDrawsTheSphere)
 {
-  const GBuffer gbuffer = drawOnThreads(sphere(iga::kMaxDegree, [](auto) {}), "degree 16");
-  const GBuffer reference = draw(sphere(2, [](auto) {}), 1);
+  const GBuffer gbuffer =
+    drawOnThreads(iga::makeMarsdenSphere<double>(iga::kMaxDegree), "degree 16");
+  const GBuffer reference = draw(iga::makeMarsdenSphere<double>(2), 1);
   EXPECT_NEAR(double(gbuffer.coveredPixels()), double(reference.coveredPixels()), 2);
   EXPECT_LT(sphereError(gbuffer), 1e-6);
+}
+
+/// The zoo's sphere members side by side in one dataset (igaview-generate-data --zoo, the MPI
+/// test's): alike on all threads, every hit on its own patch's zero set, none on the constant
+/// field (member 5), the drawable members all seen.
+TEST(Zoo, MembersSideBySideAreDrawnAlike)
+{
+  const auto zoo = iga::makeDegenerateZoo<double>();
+  ASSERT_EQ(zoo.patches.size(), 7u);
+  expectDrawnOnItsZeroSet(zoo, "zoo", 1000, kZooRow);
+  std::vector<size_t> perPatch(zoo.patches.size());
+  for (const auto& hit : draw(zoo, 2, nullptr, {}, kZooRow).hits)
+    ++perPatch[size_t(hit.patch)];
+  EXPECT_EQ(perPatch[5], 0u) << "constant field";
+  EXPECT_LE(perPatch[2], 1u) << "collapsed to a point";
+  for (size_t member : { 0, 1, 3, 4, 6 })
+    EXPECT_GT(perPatch[member], 150u) << member;
+}
+
+/// 10^6 patches (the wind blade's layout, degree (2, 1, 2)) in one small frame: drawn, alike
+/// on 1 and 2 threads, within the memory budget, every hit on the blade's span.
+TEST(Zoo, MillionPatchesAreDrawnAlike)
+{
+  const auto blade = iga::makeBlade<double>(iga::bladeLayout(1000000), 0.0);
+  ASSERT_GE(blade.patches.size(), 1000000u);
+  const Shot whole{ { 0.3, -0.4, 14 }, { 0, 0, 5 }, 6, 64, 48 }; // from above
+  const Surface span{ 1, 0.5 }; // the plane z = 5 through the blade
+  iga::sst::FrameReport report;
+  const GBuffer one = draw(blade, 1, &report, span, whole);
+  const GBuffer two = draw(blade, 2, nullptr, span, whole);
+  EXPECT_GT(one.coveredPixels(), 50u); // the wall's ring in the plane, seen from above
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  EXPECT_LE(report.peakBudgetedBytes, Settings().memoryBudgetBytes);
+  EXPECT_EQ(one.offsets, two.offsets);
+  ASSERT_EQ(one.hits.size(), two.hits.size());
+  for (size_t h = 0; h < one.hits.size(); ++h)
+  {
+    EXPECT_EQ(one.hits[h].position, two.hits[h].position);
+    EXPECT_NEAR(one.hits[h].position.z, 5, 1e-6);
+  }
 }
 
 } // namespace
