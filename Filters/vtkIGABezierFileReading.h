@@ -6,10 +6,12 @@
  * VTK's vtkXMLUnstructuredGridReader aborts the process when a piece claims more points or
  * cells than it can allocate, and prints its errors over several lines. Read() first scans the
  * header (by hand: a regex recurses per character and a megabyte-long attribute would overflow
- * the stack) and refuses pieces claiming more than `memoryLimitBytes`, and inline binary arrays
- * whose headers claim more than their data holds (VTK allocates a compressed array's table of
- * blocks and each compressed block as the header says; the first MiB of a file is scanned, all
- * of a text), then reads with VTK's
+ * the stack) and refuses pieces claiming more than `memoryLimitBytes`, binary arrays (inline or
+ * appended, raw or base64) whose headers claim more than their data holds (VTK allocates a
+ * compressed array's table of blocks and each compressed block as the header says), and cell
+ * offsets ending past the connectivity or the memory (VTK allocates the connectivity the last
+ * offset gives and aborts when it cannot; IGAXMLArrays.h). The tags in the first MiB of a file
+ * are checked, all of a text's. Then it reads with VTK's
  * messages collected (the first is returned in the error or as a warning), catches what the
  * reader throws, and converts the grid with vtkIGABezierHexahedra. igaview and the .vtu fuzz
  * target read through it.

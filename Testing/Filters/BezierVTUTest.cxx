@@ -9,8 +9,10 @@
 #include "vtkIGANurbsData.h"
 
 #include "vtkCellData.h"
+#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkHigherOrderHexahedron.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPVDReader.h"
@@ -80,12 +82,112 @@ TEST(BezierVTU, BinaryHeadersClaimingMoreThanTheirDataAreRefused)
          { "zero-blocks-with-data.vtu", "inconsistent block sizes" },
          { "block-size-zero.vtu", "inconsistent block sizes" },
          { "partial-block-3gb.vtu", "where the array holds" },
-         { "block-larger-than-array.vtu", "inconsistent block sizes" } })
+         { "block-larger-than-array.vtu", "inconsistent block sizes" },
+         // Appended and ASCII data, made by hand: a division by zero, an allocation of 17 GB
+         // and two aborts.
+         { "appended-block-size-zero.vtu", "inconsistent block sizes" },
+         { "appended-block-table-4e9.vtu", "claims a table of blocks" },
+         { "appended-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
+         { "ascii-offsets-past-memory.vtu", "its cell offsets end at 1e+12" } })
   {
     const std::string error =
       readingError(fileText(IGAVIEW_SOURCE_DIR "/Testing/Fuzz/regressions/" + file), 256e6);
     EXPECT_NE(error.find(expected), std::string::npos) << file << ": " << error;
   }
+}
+
+/// How vtkXMLUnstructuredGridWriter lays a file out.
+struct Layout
+{
+  const char* name;
+  int mode;       ///< vtkXMLWriter::Ascii, Binary or Appended
+  bool base64;    ///< appended data encoded
+  int compressor; ///< vtkXMLWriter::NONE, ZLIB, LZ4 or LZMA
+  bool uint64;    ///< 64-bit headers
+  bool bigEndian;
+};
+
+const Layout kLayouts[] = {
+  { "ascii", vtkXMLWriter::Ascii, false, vtkXMLWriter::NONE, false, false },
+  { "binary", vtkXMLWriter::Binary, false, vtkXMLWriter::NONE, false, false },
+  { "binary zlib", vtkXMLWriter::Binary, false, vtkXMLWriter::ZLIB, false, false },
+  { "binary lz4, big-endian", vtkXMLWriter::Binary, false, vtkXMLWriter::LZ4, false, true },
+  { "appended raw", vtkXMLWriter::Appended, false, vtkXMLWriter::NONE, false, false },
+  { "appended raw zlib, 64-bit headers", vtkXMLWriter::Appended, false, vtkXMLWriter::ZLIB, true,
+    false },
+  { "appended base64 lzma", vtkXMLWriter::Appended, true, vtkXMLWriter::LZMA, false, false },
+  { "appended base64", vtkXMLWriter::Appended, true, vtkXMLWriter::NONE, false, true },
+};
+
+/// The degree-2 sphere's grid as VTK writes it in `layout`, its one cell's offsets ending at
+/// `lastOffset` (27 when right) over a connectivity of its 27 points.
+std::string sphereText(const Layout& layout, vtkIdType lastOffset)
+{
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(IGAVIEW_DATA_DIR "/marsden_sphere_p2.vtu");
+  reader->Update();
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->DeepCopy(reader->GetOutput());
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->InsertNextValue(0);
+  offsets->InsertNextValue(lastOffset);
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->DeepCopy(grid->GetCells()->GetConnectivityArray());
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  grid->SetCells(VTK_BEZIER_HEXAHEDRON, cells);
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetInputData(grid);
+  writer->SetDataMode(layout.mode);
+  writer->SetEncodeAppendedData(layout.base64);
+  writer->SetCompressorType(layout.compressor);
+  writer->SetHeaderType(layout.uint64 ? vtkXMLWriter::UInt64 : vtkXMLWriter::UInt32);
+  writer->SetByteOrder(layout.bigEndian ? vtkXMLWriter::BigEndian : vtkXMLWriter::LittleEndian);
+  writer->WriteToOutputStringOn();
+  EXPECT_EQ(writer->Write(), 1);
+  return writer->GetOutputString();
+}
+
+/// VTK's reader allocates the connectivity the last cell offset gives, and aborts when it
+/// cannot: an offset past the connectivity or beyond the memory is refused in every layout VTK
+/// writes (the offset read from ASCII text, raw or base64 bytes, or a decompressed block).
+TEST(BezierVTU, CellOffsetsPastTheConnectivityAreRefusedInEveryLayout)
+{
+  for (const Layout& layout : kLayouts)
+  {
+    SCOPED_TRACE(layout.name);
+    EXPECT_EQ(readingError(sphereText(layout, 27)), "");
+    const bool known = layout.mode != vtkXMLWriter::Ascii; // the connectivity's size
+    EXPECT_EQ(readingError(sphereText(layout, 28)),
+      known ? "'test.vtu': its cell offsets end at 28, past the 27 point ids of its connectivity"
+            : "'test.vtu' is not a readable VTK XML unstructured grid with cells (Cannot read "
+              "cell connectivity from Cells in piece 0 because the \"connectivity\" array is not "
+              "long enough.)");
+    EXPECT_EQ(readingError(sphereText(layout, 1000000000000), 1e9),
+      "'test.vtu': its cell offsets end at 1e+12, a connectivity of 8e+03 GB, more than this "
+      "machine's 1 GB");
+  }
+}
+
+/// Appended data (raw or base64) has its binary headers checked as inline data does.
+TEST(BezierVTU, AppendedHeadersClaimingMoreThanTheirDataAreRefused)
+{
+  const std::string raw = sphereText(kLayouts[4], 27);
+  const size_t data = raw.find('_', raw.find("<AppendedData")) + 1;
+  // The first array's header: 27 weights of 8 bytes.
+  ASSERT_EQ(raw.substr(data, 4), std::string("\xd8\0\0\0", 4));
+  EXPECT_EQ(readingError(std::string(raw).replace(data, 4, "\xf0\xff\xff\xff")),
+    "'test.vtu': a binary data array's header claims data of 4.295e+09 bytes, more than the "
+    "data's 1355");
+  EXPECT_EQ(readingError(std::string(raw).replace(data, 1, "\xe0")),
+    "'test.vtu': a binary data array's header claims data of 224 bytes, where the array holds 216");
+  const std::string zlib = sphereText(kLayouts[5], 27);
+  const size_t zdata = zlib.find('_', zlib.find("<AppendedData")) + 1;
+  EXPECT_EQ(readingError(std::string(zlib).replace(zdata + 8, 8, std::string(8, '\0'))),
+    "'test.vtu': a binary data array's header gives inconsistent block sizes");
+  EXPECT_NE(readingError(std::string(zlib).replace(zdata, 8, std::string(8, '\xff')))
+              .find("claims a table of blocks of 1.476e+20 bytes"),
+    std::string::npos);
 }
 
 TEST(BezierVTU, WriterVersionAndActiveFlagsSurviveARoundTrip)
