@@ -267,6 +267,35 @@ double expectedBytes(const std::string& text, size_t at)
   return tuples >= 0 && size > 0 ? tuples * perTuple * size : -1;
 }
 
+/// "" or why the tag at `at` gives its array a size VTK cannot allocate within `memory`: a
+/// component count that is no positive whole number, or tuples of more bytes than the memory.
+std::string claimedArrayProblem(
+  const std::string& name, const std::string& head, size_t at, double memory)
+{
+  const std::string tag = tagAt(head, at), arrayName = attributeOf(tag, "Name=\"");
+  const std::string components = attributeOf(tag, "NumberOfComponents=\"");
+  char* end = nullptr;
+  const double count = components.empty() ? 1 : std::strtod(components.c_str(), &end);
+  char text[320];
+  if (!components.empty() && (*end != '\0' || !(count >= 1) || count != std::floor(count)))
+  {
+    std::snprintf(text, sizeof text,
+      "'%s': data array '%.64s' has NumberOfComponents=\"%.32s\", not a positive whole number",
+      name.c_str(), arrayName.c_str(), components.c_str());
+    return text;
+  }
+  const double bytes = expectedBytes(head, at);
+  if (!(bytes < memory))
+  {
+    std::snprintf(text, sizeof text,
+      "'%s': data array '%.64s' claims %.4g bytes (%.4g components a tuple), more than this "
+      "machine's %.3g GB",
+      name.c_str(), arrayName.c_str(), bytes, count, memory / 1e9);
+    return text;
+  }
+  return std::string();
+}
+
 /// A binary data array of the input as its tag places it.
 struct BinaryArray
 {
@@ -490,8 +519,11 @@ std::string igaXMLArrayProblem(
     const std::string arrayName = attributeOf(tag, "Name=\"");
     BinaryArray array;
     const bool binary = format == "binary" || format == "appended";
-    std::string problem =
-      binary ? headerProblem(input, head, at, encoding, memory, array) : std::string();
+    std::string problem = claimedArrayProblem(name, head, at, memory);
+    if (problem.empty() && binary)
+    {
+      problem = headerProblem(input, head, at, encoding, memory, array);
+    }
     if (problem.empty() && arrayName == "connectivity")
     {
       connectivity = binary && elementBytes(tag) > 0 ? array.dataBytes / elementBytes(tag) : -1;

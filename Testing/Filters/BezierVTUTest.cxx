@@ -8,8 +8,8 @@
 #include "vtkIGAGismoReader.h"
 #include "vtkIGANurbsData.h"
 
-#include "vtkCellData.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkHigherOrderHexahedron.h"
 #include "vtkIdTypeArray.h"
@@ -188,6 +188,32 @@ TEST(BezierVTU, AppendedHeadersClaimingMoreThanTheirDataAreRefused)
   EXPECT_NE(readingError(std::string(zlib).replace(zdata, 8, std::string(8, '\xff')))
               .find("claims a table of blocks of 1.476e+20 bytes"),
     std::string::npos);
+}
+
+/// An array's component count is a positive whole number and its size fits the memory: VTK
+/// allocates tuples times components before it reads (an ASCII array claiming 1e12 components
+/// a point ran for minutes).
+TEST(BezierVTU, ComponentCountsBeyondTheMemoryAreRefused)
+{
+  const std::string ascii = sphereText(kLayouts[0], 27);
+  const std::string points = "Name=\"Points\" NumberOfComponents=\"3\"";
+  ASSERT_NE(ascii.find(points), std::string::npos);
+  auto with = [&](const std::string& components)
+  {
+    return std::string(ascii).replace(ascii.find(points), points.size(),
+      "Name=\"Points\" NumberOfComponents=\"" + components + "\"");
+  };
+  EXPECT_EQ(readingError(with("1000000000000"), 1e12),
+    "'test.vtu': data array 'Points' claims 2.16e+14 bytes (1e+12 components a tuple), more than "
+    "this machine's 1e+03 GB");
+  EXPECT_EQ(readingError(with("1000000"), 1e8),
+    "'test.vtu': data array 'Points' claims 2.16e+08 bytes (1e+06 components a tuple), more than "
+    "this machine's 0.1 GB");
+  for (const char* bad : { "-3", "0", "2.5", "3x" })
+  {
+    EXPECT_EQ(readingError(with(bad)), "'test.vtu': data array 'Points' has NumberOfComponents=\"" +
+                                         std::string(bad) + "\", not a positive whole number");
+  }
 }
 
 TEST(BezierVTU, WriterVersionAndActiveFlagsSurviveARoundTrip)
