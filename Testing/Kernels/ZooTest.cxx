@@ -1,8 +1,8 @@
 // A zoo of degenerate patches, each with its expected behaviour, and the G-buffer of every
 // drawable one identical for 1, 2 and 8 threads: collapsed face, edge and whole patch,
-// inverted, zero / negative / NaN / widely ranging weights, a constant field, degree 16, the
-// sphere members side by side, and 10^6 patches (1 and 2 threads). Coordinates at 1e-6 and 1e6:
-// ScaleTest.
+// inverted, self-intersecting, zero / negative / NaN / widely ranging weights, a constant field,
+// degree 16, the sphere members side by side, and 10^6 patches (1 and 2 threads). Coordinates at
+// 1e-6 and 1e6: ScaleTest.
 #include "EngineScenes.h"
 
 #include "iga/DegenerateZoo.h"
@@ -37,7 +37,7 @@ struct Shot
 };
 
 /// The members of makeDegenerateZoo in a row across the image, about 19 pixels each.
-const Shot kZooRow{ { 12, -9.5, 0 }, { 12, 0, 0 }, 30, 336, 48 };
+const Shot kZooRow{ { 14, -9.5, 0 }, { 14, 0, 0 }, 30, 384, 48 };
 
 /// Draws `set` with `threads` threads; the report into `report` when given.
 GBuffer draw(const iga::VolumeSet<double>& set, int threads,
@@ -168,6 +168,23 @@ TEST(Zoo, InvertedPatchDrawsTheSameSphere)
   EXPECT_LT(sphereError(inverted), 1e-6);
 }
 
+TEST(Zoo, SelfIntersectingPatchIsDrawnOnItsZeroSet)
+{
+  const auto set = iga::makeSelfIntersectingSphere<double>();
+  // x along u at v = w = 1/2 rises, then falls back: the map folds.
+  auto x = [&](double u)
+  {
+    const double at[3] = { u, 0.5, 0.5 };
+    std::vector<double> values(size_t(set.patches[0].channels()));
+    iga::evaluateHomogeneous<double, 3>(
+      std::as_const(set.patches[0]).view(), at, values.data(), nullptr);
+    return values[0] / values[iga::kWeightChannel];
+  };
+  ASSERT_GT(x(0.1), x(0.0));
+  ASSERT_LT(x(1.0), x(0.9));
+  expectDrawnOnItsZeroSet(set, "self-intersecting", 100);
+}
+
 TEST(Zoo, BadWeightsAreRefusedByName)
 {
   for (double bad : { 0.0, -0.5, std::nan("") })
@@ -211,14 +228,14 @@ TEST(Zoo, DegreeSixteenDrawsTheSphere)
 TEST(Zoo, MembersSideBySideAreDrawnAlike)
 {
   const auto zoo = iga::makeDegenerateZoo<double>();
-  ASSERT_EQ(zoo.patches.size(), 7u);
+  ASSERT_EQ(zoo.patches.size(), 8u);
   expectDrawnOnItsZeroSet(zoo, "zoo", 1000, kZooRow);
   std::vector<size_t> perPatch(zoo.patches.size());
   for (const auto& hit : draw(zoo, 2, nullptr, {}, kZooRow).hits)
     ++perPatch[size_t(hit.patch)];
   EXPECT_EQ(perPatch[5], 0u) << "constant field";
   EXPECT_LE(perPatch[2], 1u) << "collapsed to a point";
-  for (size_t member : { 0, 1, 3, 4, 6 })
+  for (size_t member : { 0, 1, 3, 4, 6, 7 })
     EXPECT_GT(perPatch[member], 150u) << member;
 }
 

@@ -1,6 +1,6 @@
 """pvbatch under MPI: the degenerate zoo (igaview-generate-data --zoo: a collapsed edge, a patch
-collapsed to a point, an inverted patch, weights over 1e-3 .. 1e3, a constant field and degree
-16 next to the regular sphere) drawn with its patches spread over the ranks gives the image of
+collapsed to a point, an inverted patch, weights over 1e-3 .. 1e3, a constant field, degree 16
+and a self-intersecting patch next to the regular sphere) drawn with its patches spread over the ranks gives the image of
 all of them on rank 0, pixel for pixel: each rank draws the same hits for its patches, and IceT
 keeps the nearer of them.
 
@@ -27,9 +27,9 @@ assert ranks >= 2, f"run with mpiexec -np 2 or more (have {ranks} rank)"
 subprocess.run([generator, work_dir, "--zoo"], check=True, stdout=subprocess.DEVNULL)
 zoo_file = os.path.join(work_dir, "degenerate_zoo.vtu")
 
-SIZE = [672, 96]
-# The seven members in a row along x, 4 apart: about 38 pixels each.
-CAMERA = ([12.0, -9.5, 0.0], [12.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+SIZE = [768, 96]
+# The eight members in a row along x, 4 apart: about 38 pixels each.
+CAMERA = ([14.0, -9.5, 0.0], [14.0, 0.0, 0.0], [0.0, 0.0, 1.0])
 
 view = simple.CreateRenderView()
 view.ViewSize = SIZE
@@ -61,8 +61,8 @@ def cells_on_rank0(source):
 reader = simple.XMLUnstructuredGridReader(FileName=[zoo_file])
 spread = simple.RedistributeDataSet(Input=reader)
 on_rank0 = [cells_on_rank0(source) for source in (reader, spread)]
-assert on_rank0[0] == (7, 7), on_rank0
-assert 0 < on_rank0[1][0] < 7 and on_rank0[1][1] == 7, on_rank0
+assert on_rank0[0] == (8, 8), on_rank0
+assert 0 < on_rank0[1][0] < 8 and on_rank0[1][1] == 8, on_rank0
 
 (size, whole), (size_spread, split) = (iga_scene.read_rgb(render_alone(s, name))
                                        for s, name in ((reader, "zoo_whole"),
@@ -74,5 +74,5 @@ covered = [p for p in pixels if whole(*p) != background]
 differing = [p for p in pixels if whole(*p) != split(*p)]
 assert len(covered) > 3000, len(covered)
 assert not differing, (len(differing), differing[:10])
-print(f"{ranks} ranks, degenerate zoo: {on_rank0[1][0]} of 7 patches on rank 0 when spread; "
+print(f"{ranks} ranks, degenerate zoo: {on_rank0[1][0]} of 8 patches on rank 0 when spread; "
       f"{len(covered)} pixels covered, {len(differing)} differing from all on rank 0")

@@ -93,6 +93,21 @@ VolumeSet<T> makeSphereWithConstantField()
     });
 }
 
+/// The degree-2 sphere with its middle layer of control points in u pushed 3 along x, past the
+/// last layer: the map folds over itself (its Jacobian changes sign), the patch intersects
+/// itself.
+template<class T>
+VolumeSet<T> makeSelfIntersectingSphere()
+{
+  return makeEditedSphere<T>(2,
+    [](PatchView<T, 3> patch)
+    {
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k)
+          controlPoint(patch, 1, j, k)[0] += T(3) * controlPoint(patch, 1, j, k)[kWeightChannel];
+    });
+}
+
 /// Moves a rational patch by `offset` (its homogeneous coordinates by offset times the weight).
 template<class T>
 void translatePatch(const PatchView<T, 3>& patch, const T* offset)
@@ -102,16 +117,16 @@ void translatePatch(const PatchView<T, 3>& patch, const T* offset)
       patch.point(p)[d] += offset[d] * patch.point(p)[kWeightChannel];
 }
 
-/// The sphere variants above, the regular degree-2 sphere and the degree-16 one in a row along
-/// x, 4 apart (each spans [-1.5, 1.5]^3 about its centre), attribute "sphere": one dataset of the
-/// zoo's members that share the sphere's attribute.
+/// The regular degree-2 sphere, the variants above and the degree-16 sphere in a row along x, 4
+/// apart (each spans about [-1.5, 1.5]^3 about its centre), attribute "sphere": one dataset of
+/// the zoo's members that share the sphere's attribute (patch 7 is the self-intersecting one).
 template<class T>
 VolumeSet<T> makeDegenerateZoo()
 {
   const std::vector<VolumeSet<T>> members = { makeMarsdenSphere<T>(2),
     makeSphereWithCollapsedEdge<T>(), makeSphereCollapsedToAPoint<T>(), makeInvertedSphere<T>(),
     makeSphereWithWideWeights<T>(), makeSphereWithConstantField<T>(),
-    makeMarsdenSphere<T>(kMaxDegree) };
+    makeMarsdenSphere<T>(kMaxDegree), makeSelfIntersectingSphere<T>() };
   VolumeSet<T> zoo;
   zoo.attributeNames = members[0].attributeNames;
   for (const auto& member : members)
