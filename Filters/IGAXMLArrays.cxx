@@ -124,7 +124,8 @@ struct Stream
   const Input* input;
   double start; ///< of the stream in the input
   bool base64;
-  double held; ///< bytes it can decode to at most
+  double held;                 ///< bytes it can decode to at most, -1 when its data cannot be found
+  const char* fault = nullptr; ///< why an appended array's data cannot be found
 
   /// `count` bytes from byte `offset` of the part of the stream that starts at `part`.
   std::string bytes(double part, double offset, size_t count) const
@@ -324,15 +325,25 @@ Stream streamOf(const Input& input, const std::string& head, size_t at)
     stream.held = 0.75 * double(std::min(head.find('<', first), head.size()) - first);
     return stream;
   }
+  // VTK's reader takes the data to start after the first '_' past the AppendedData tag, and
+  // reads from wherever it ends up when there is none.
   const size_t appended = head.find("<AppendedData");
   const size_t underscore = appended == std::string::npos ? appended : head.find('_', appended);
+  const std::string offsetText = attributeOf(tag, "offset=\"");
+  char* end = nullptr;
+  const double offset = std::strtod(offsetText.c_str(), &end);
   if (underscore == std::string::npos)
   {
+    stream.fault = "has no appended data (no '_' after an AppendedData tag)";
+    return stream;
+  }
+  if (offsetText.empty() || *end != '\0' || !(offset >= 0) || offset != std::floor(offset))
+  {
+    stream.fault = "has no offset into the appended data that is a whole number";
     return stream;
   }
   stream.base64 = attributeOf(tagAt(head, appended), "encoding=\"") == "base64";
-  stream.start =
-    double(underscore + 1) + std::strtod(attributeOf(tag, "offset=\"").c_str(), nullptr);
+  stream.start = double(underscore + 1) + offset;
   const double left = input.size - stream.start;
   stream.held = left < 0 ? -1 : stream.base64 ? 0.75 * left : left;
   return stream;
@@ -348,6 +359,11 @@ std::string headerProblem(const Input& input, const std::string& head, size_t at
 {
   array.stream = streamOf(input, head, at);
   array.expected = expectedBytes(head, at);
+  if (array.stream.fault)
+  {
+    return "'" + input.name + "': data array '" + attributeOf(tagAt(head, at), "Name=\"") +
+           "' is appended, but the file " + array.stream.fault;
+  }
   if (array.stream.held < 0)
   {
     return std::string();

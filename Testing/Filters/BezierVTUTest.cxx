@@ -88,7 +88,10 @@ TEST(BezierVTU, BinaryHeadersClaimingMoreThanTheirDataAreRefused)
          { "appended-block-size-zero.vtu", "inconsistent block sizes" },
          { "appended-block-table-4e9.vtu", "claims a table of blocks" },
          { "appended-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
-         { "ascii-offsets-past-memory.vtu", "its cell offsets end at 1e+12" } })
+         { "ascii-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
+         // Found by the fuzzer once appended data was checked: VTK read the offsets from
+         // wherever its search for the missing '_' ended, and allocated 4e17 bytes.
+         { "appended-data-without-marker.vtu", "but the file has no appended data" } })
   {
     const std::string error =
       readingError(fileText(IGAVIEW_SOURCE_DIR "/Testing/Fuzz/regressions/" + file), 256e6);
@@ -188,6 +191,12 @@ TEST(BezierVTU, AppendedHeadersClaimingMoreThanTheirDataAreRefused)
   EXPECT_NE(readingError(std::string(zlib).replace(zdata, 8, std::string(8, '\xff')))
               .find("claims a table of blocks of 1.476e+20 bytes"),
     std::string::npos);
+  const std::string offset = "offset=\"0\"";
+  ASSERT_NE(raw.find(offset), std::string::npos);
+  EXPECT_EQ(
+    readingError(std::string(raw).replace(raw.find(offset), offset.size(), "offset=\"-8\"")),
+    "'test.vtu': data array 'RationalWeights' is appended, but the file has no offset into the "
+    "appended data that is a whole number");
 }
 
 /// An array's component count is a positive whole number and its size fits the memory: VTK
