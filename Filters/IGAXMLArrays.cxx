@@ -229,10 +229,17 @@ double elementBytes(const std::string& tag)
                                                                     : 0;
 }
 
-/// The bytes the data array whose tag starts at `at` must decode to, when its piece says (its
-/// points, point data, cell data, cell types and offsets), or -1 (connectivity, field data).
-double expectedBytes(const std::string& text, size_t at)
+/// The tuples of the data array whose tag starts at `at`: its NumberOfTuples (field data), else
+/// its piece's points (points, point data) or cells (cell data, cell types and offsets), or -1
+/// (connectivity).
+double claimedTuples(const std::string& text, size_t at)
 {
+  const std::string tag = tagAt(text, at);
+  const std::string given = attributeOf(tag, "NumberOfTuples=\"");
+  if (!given.empty())
+  {
+    return std::strtod(given.c_str(), nullptr);
+  }
   const size_t piece = text.rfind("<Piece", at);
   if (piece == std::string::npos)
   {
@@ -240,32 +247,43 @@ double expectedBytes(const std::string& text, size_t at)
   }
   size_t section = std::string::npos;
   std::string sectionTag;
-  for (const char* tag : { "<Points", "<PointData", "<Cells", "<CellData", "<FieldData" })
+  for (const char* name : { "<Points", "<PointData", "<Cells", "<CellData", "<FieldData" })
   {
-    const size_t found = text.rfind(tag, at);
+    const size_t found = text.rfind(name, at);
     if (found != std::string::npos && found > piece &&
         (section == std::string::npos || found > section))
     {
       section = found;
-      sectionTag = tag;
+      sectionTag = name;
     }
   }
-  const std::string pieceTag = tagAt(text, piece), tag = tagAt(text, at);
-  const std::string arrayName = attributeOf(tag, "Name=\"");
-  double tuples = -1;
+  const std::string pieceTag = tagAt(text, piece), arrayName = attributeOf(tag, "Name=\"");
   if (sectionTag == "<Points" || sectionTag == "<PointData")
   {
-    tuples = std::strtod(attributeOf(pieceTag, "NumberOfPoints=\"").c_str(), nullptr);
+    return std::strtod(attributeOf(pieceTag, "NumberOfPoints=\"").c_str(), nullptr);
   }
-  else if (sectionTag == "<CellData" ||
-           (sectionTag == "<Cells" && (arrayName == "types" || arrayName == "offsets")))
+  if (sectionTag == "<CellData" ||
+      (sectionTag == "<Cells" && (arrayName == "types" || arrayName == "offsets")))
   {
-    tuples = std::strtod(attributeOf(pieceTag, "NumberOfCells=\"").c_str(), nullptr);
+    return std::strtod(attributeOf(pieceTag, "NumberOfCells=\"").c_str(), nullptr);
   }
+  return -1;
+}
+
+/// Components a tuple of the tag's array (1 when it does not say).
+double componentsOf(const std::string& tag)
+{
   const std::string components = attributeOf(tag, "NumberOfComponents=\"");
-  const double perTuple = components.empty() ? 1 : std::strtod(components.c_str(), nullptr);
-  const double size = elementBytes(tag);
-  return tuples >= 0 && size > 0 ? tuples * perTuple * size : -1;
+  return components.empty() ? 1 : std::strtod(components.c_str(), nullptr);
+}
+
+/// The bytes the data array whose tag starts at `at` must decode to when the file says how many
+/// tuples it has, else -1.
+double expectedBytes(const std::string& text, size_t at)
+{
+  const std::string tag = tagAt(text, at);
+  const double tuples = claimedTuples(text, at), size = elementBytes(tag);
+  return tuples >= 0 && size > 0 ? tuples * componentsOf(tag) * size : -1;
 }
 
 /// "" or why the tag at `at` gives its array a size VTK cannot allocate within `memory`: a
@@ -285,7 +303,18 @@ std::string claimedArrayProblem(
       name.c_str(), arrayName.c_str(), components.c_str());
     return text;
   }
-  const double bytes = expectedBytes(head, at);
+  const std::string tuplesText = attributeOf(tag, "NumberOfTuples=\"");
+  const double tuples = std::strtod(tuplesText.c_str(), &end);
+  if (!tuplesText.empty() && (*end != '\0' || !(tuples >= 0) || tuples != std::floor(tuples)))
+  {
+    std::snprintf(text, sizeof text,
+      "'%s': data array '%.64s' has NumberOfTuples=\"%.32s\", not a whole number", name.c_str(),
+      arrayName.c_str(), tuplesText.c_str());
+    return text;
+  }
+  // Strings and unknown types at 8 bytes a value at least.
+  const double bytes =
+    claimedTuples(head, at) * count * (elementBytes(tag) > 0 ? elementBytes(tag) : 8);
   if (!(bytes < memory))
   {
     std::snprintf(text, sizeof text,

@@ -218,6 +218,21 @@ TEST(BezierVTU, ComponentCountsBeyondTheMemoryAreRefused)
   EXPECT_EQ(readingError(with("1000000"), 1e8),
     "'test.vtu': data array 'Points' claims 2.16e+08 bytes (1e+06 components a tuple), more than "
     "this machine's 0.1 GB");
+  // Field data says its tuples itself (VTK aborted allocating 1e12 of them).
+  const std::string junk =
+    "<FieldData><DataArray type=\"Float64\" Name=\"junk\" "
+    "NumberOfTuples=\"TUPLES\" format=\"ascii\">1 2 3</DataArray></FieldData>";
+  auto withFieldData = [&](const std::string& tuples)
+  {
+    return std::string(ascii).insert(
+      ascii.find("<Piece"), std::string(junk).replace(junk.find("TUPLES"), 6, tuples));
+  };
+  EXPECT_EQ(readingError(withFieldData("3")), "");
+  EXPECT_EQ(readingError(withFieldData("1000000000000"), 1e12),
+    "'test.vtu': data array 'junk' claims 8e+12 bytes (1 components a tuple), more than this "
+    "machine's 1e+03 GB");
+  EXPECT_EQ(readingError(withFieldData("-1")),
+    "'test.vtu': data array 'junk' has NumberOfTuples=\"-1\", not a whole number");
   for (const char* bad : { "-3", "0", "2.5", "3x" })
   {
     EXPECT_EQ(readingError(with(bad)), "'test.vtu': data array 'Points' has NumberOfComponents=\"" +
