@@ -573,9 +573,11 @@ std::string igaXMLArrayProblem(
     {
       connectivity = binary && elementBytes(tag) > 0 ? array.dataBytes / elementBytes(tag) : -1;
     }
+    // Offsets in any format but binary and appended VTK reads as ASCII text (a mistyped format
+    // attribute too).
     const size_t cells = head.rfind("<Cells", at), piece = head.rfind("<Piece", at);
-    if (problem.empty() && arrayName == "offsets" && (binary || format == "ascii") &&
-        cells != std::string::npos && piece != std::string::npos && cells > piece)
+    if (problem.empty() && arrayName == "offsets" && cells != std::string::npos &&
+        piece != std::string::npos && cells > piece)
     {
       problem =
         offsetsProblem(input, head, at, encoding, binary ? &array : nullptr, connectivity, memory);
