@@ -1,7 +1,9 @@
 // vtkIGAGismoReader and vtkIGAGeoPDEsReader on the samples in Data/ (analytic shapes), on real
 // files from G+Smo and GeoPDEs in ../shared/data (skipped visibly when absent), and on damaged
 // files (one error naming file and line, no output).
+#include "BoundaryChecks.h"
 #include "NurbsTestUtilities.h"
+#include "vtkIGABezierHexahedra.h"
 #include "vtkIGAGeoPDEsReader.h"
 #include "vtkIGAGismoReader.h"
 #include "vtkIGANurbsData.h"
@@ -290,6 +292,33 @@ TEST(NurbsReadersRealFiles, GeoPDEsTwoCubesVersion21)
     EXPECT_NEAR(two[0], 1 - 0.5 * u, 1e-14);
   }
   EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 100), 1e-12);
+}
+
+/// The boundary faces (iga/Boundary.h) of the real volume files' Bézier cells: as many as their
+/// element grids have outer element faces (the two cubes meet conformingly: 4 of their cells'
+/// 24 faces are inner, 4 more on the interface), and they close up: every edge of one is an
+/// edge of exactly one other.
+TEST(NurbsReadersRealFiles, VolumeBoundariesAreClosed)
+{
+  for (const auto& [path, faces] : std::vector<std::pair<std::string, size_t>>{
+         { "/gismo/quarter_cylinder.xml", 6 }, // 1 x 1 x 1 elements
+         { "/gismo/twisted_pipe.xml", 56 },    // 6 x 2 x 2
+         { "/gismo/GshapedVolume.xml", 30 },   // 7 x 1 x 1
+         { "/geopdes/geo_2cubesb.txt", 16 } }) // 2 patches of 2
+  {
+    const std::string file = kShared + path;
+    REQUIRE_SHARED(file);
+    vtkSmartPointer<vtkUnstructuredGrid> grid = path.find("geopdes") != std::string::npos
+                                                  ? readNurbs<vtkIGAGeoPDEsReader>(file).second
+                                                  : readNurbs<vtkIGAGismoReader>(file).second;
+    iga::VolumeSet<double> set;
+    std::string error;
+    std::vector<std::string> warnings;
+    ASSERT_TRUE(vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings)) << error;
+    const auto boundary = iga::boundaryFaces(set.patches);
+    EXPECT_EQ(boundary.size(), faces) << path;
+    EXPECT_EQ(igatest::openBoundaryEdges(set.patches, boundary), 0u) << path;
+  }
 }
 
 /// Writes `text` to a temporary file and reads it; expects one error that names the file and

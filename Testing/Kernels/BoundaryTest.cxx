@@ -1,6 +1,8 @@
 // The boundary faces of volume sets: a face is the volume on its side exactly, faces shared by
 // two patches and faces collapsed onto an axis are not on the boundary, counted on datasets
 // whose faces are known by construction.
+#include "BoundaryChecks.h"
+
 #include "iga/Boundary.h"
 #include "iga/Datasets.h"
 #include "iga/DegenerateZoo.h"
@@ -74,6 +76,22 @@ TEST(Boundary, SharedFacesOfTheTubeAreDropped)
   }
 }
 
+/// The tube at rest: inner and outer cylinders (radii 0.25 and 1, height 2) and two annuli; the
+/// faces close up.
+TEST(Boundary, TubeBoundaryIsClosedWithTheAnalyticArea)
+{
+  const double pi = 3.141592653589793;
+  const auto tube = iga::makeTube<double>(0.25, 0.0);
+  const auto faces = iga::boundaryFaces(tube.patches);
+  EXPECT_EQ(igatest::openBoundaryEdges(tube.patches, faces), 0u);
+  EXPECT_NEAR(igatest::boundaryArea(tube.patches, faces),
+    2 * pi * 0.25 * 2 + 2 * pi * 1 * 2 + 2 * pi * (1 - 0.25 * 0.25), 1e-6);
+  // One face fewer leaves a hole of four open edges.
+  EXPECT_EQ(igatest::openBoundaryEdges(tube.patches, { faces.begin() + 1, faces.end() }), 4u);
+  const auto cylinder = iga::makeTube<double>(0.0, 0.7);
+  EXPECT_EQ(igatest::openBoundaryEdges(cylinder.patches, iga::boundaryFaces(cylinder.patches)), 0u);
+}
+
 TEST(Boundary, FacesCollapsedOntoTheAxisAreDropped)
 {
   const auto faces = iga::boundaryFaces(iga::makeTube<double>(0.0, 0.0).patches);
@@ -109,6 +127,7 @@ TEST(Boundary, BladeWallAndCapsRemain)
   // surfaces), along the span (root and tip caps).
   EXPECT_EQ(
     long(faces.size()), 2 * layout.around * layout.along + 2 * layout.around * layout.through);
+  EXPECT_EQ(igatest::openBoundaryEdges(blade.patches, faces), 0u);
 }
 
 TEST(Boundary, ApartPatchesKeepAllFaces)
