@@ -5,6 +5,7 @@
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkHigherOrderHexahedron.h"
+#include "vtkHigherOrderQuadrilateral.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -350,6 +351,33 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(v
     grid->GetCellData()->SetHigherOrderDegrees(degrees);
   }
   return grid;
+}
+
+vtkIdType vtkIGABezierHexahedra::AppendQuadrilateral(vtkUnstructuredGrid* grid,
+  const iga::PatchView<const double, 2>& surface, const std::vector<vtkDataArray*>& attributes)
+{
+  vtkPoints* points = grid->GetPoints();
+  vtkDataArray* weights = grid->GetPointData()->GetRationalWeights();
+  std::vector<vtkIdType> ids(static_cast<size_t>(surface.pointCount()));
+  for (int j = 0, linear = 0; j <= surface.degree[1]; ++j)
+  {
+    for (int i = 0; i <= surface.degree[0]; ++i, ++linear)
+    {
+      const double* cp = surface.point(linear);
+      const double w = cp[iga::kWeightChannel];
+      const vtkIdType id = points->InsertNextPoint(cp[0] / w, cp[1] / w, cp[2] / w);
+      weights->InsertNextTuple1(w);
+      for (size_t a = 0; a < attributes.size(); ++a)
+      {
+        attributes[a]->InsertNextTuple1(cp[iga::kFirstAttributeChannel + a] / w);
+      }
+      ids[size_t(vtkHigherOrderQuadrilateral::PointIndexFromIJK(i, j, surface.degree))] = id;
+    }
+  }
+  grid->GetCellData()->GetHigherOrderDegrees()->InsertNextTuple3(
+    surface.degree[0], surface.degree[1], 0);
+  return grid->InsertNextCell(
+    VTK_BEZIER_QUADRILATERAL, static_cast<vtkIdType>(ids.size()), ids.data());
 }
 
 bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,

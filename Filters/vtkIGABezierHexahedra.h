@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+class vtkDataArray;
 class vtkUnstructuredGrid;
 
 class IGAVIEWFILTERS_EXPORT vtkIGABezierHexahedra
@@ -60,6 +61,12 @@ public:
   static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(vtkIdType cellCount,
     vtkIdType pointCount, const std::vector<std::string>& attributeNames,
     const std::function<const iga::BezierVolume<double>&(vtkIdType)>& cell, CellLayout layout);
+
+  /// Appends a rational Bézier surface (standard layout) as a VTK_BEZIER_QUADRILATERAL cell:
+  /// its points, weights (the grid's RationalWeights), attribute channels (into `attributes`,
+  /// in order) and degrees (the grid's HigherOrderDegrees, third component 0). Returns its id.
+  static vtkIdType AppendQuadrilateral(vtkUnstructuredGrid* grid,
+    const iga::PatchView<const double, 2>& surface, const std::vector<vtkDataArray*>& attributes);
 
   /// Grid to patches. Returns false and sets `error` when the grid cannot be converted; appends
   /// non-fatal notes to `warnings`.

@@ -5,7 +5,6 @@
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkHigherOrderQuadrilateral.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkInformation.h"
 #include "vtkIntArray.h"
@@ -409,16 +408,11 @@ void appendSurfaceCells(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& 
 {
   const int channels = set.channels();
   const size_t volumeCount = set.volumes.size();
-  vtkPoints* points = grid->GetPoints();
-  vtkPointData* pd = grid->GetPointData();
-  vtkDataArray* weights = pd->GetRationalWeights();
-  vtkDataArray* degrees = grid->GetCellData()->GetHigherOrderDegrees();
   std::vector<vtkDataArray*> attributes;
   for (const auto& name : set.attributeNames)
   {
-    attributes.push_back(pd->GetArray(name.c_str()));
+    attributes.push_back(grid->GetPointData()->GetArray(name.c_str()));
   }
-  std::vector<vtkIdType> ids;
   std::vector<double> work;
   for (size_t f = 0; f < set.surfaces.size() && volumeCount + f < nets.size(); ++f)
   {
@@ -429,26 +423,7 @@ void appendSurfaceCells(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& 
     {
       extraction.extract(
         e, nets[volumeCount + f]->data(), channels, element.coeffs().data(), work.data());
-      const auto view = std::as_const(element).view();
-      ids.resize(view.pointCount());
-      for (int j = 0, linear = 0; j <= view.degree[1]; ++j)
-      {
-        for (int i = 0; i <= view.degree[0]; ++i, ++linear)
-        {
-          const double* cp = view.point(linear);
-          const double w = cp[iga::kWeightChannel];
-          const vtkIdType id = points->InsertNextPoint(cp[0] / w, cp[1] / w, cp[2] / w);
-          weights->InsertNextTuple1(w);
-          for (size_t a = 0; a < attributes.size(); ++a)
-          {
-            attributes[a]->InsertNextTuple1(cp[iga::kFirstAttributeChannel + a] / w);
-          }
-          ids[vtkHigherOrderQuadrilateral::PointIndexFromIJK(i, j, view.degree)] = id;
-        }
-      }
-      grid->InsertNextCell(
-        VTK_BEZIER_QUADRILATERAL, static_cast<vtkIdType>(ids.size()), ids.data());
-      degrees->InsertNextTuple3(view.degree[0], view.degree[1], 0);
+      vtkIGABezierHexahedra::AppendQuadrilateral(grid, std::as_const(element).view(), attributes);
       int span[3] = { 0, 0, 0 };
       extraction.elementIndex(e, span);
       origins.add(static_cast<int>(volumeCount + f), span);
