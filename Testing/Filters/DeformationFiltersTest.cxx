@@ -1,10 +1,11 @@
 // The deformation filters: displacement of control points by exactly scale * d, VTK's own
 // evaluation of the moved cells, the synthetic time series against closed forms.
+#include "FilterErrors.h"
+
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGADisplaceControlPoints.h"
 #include "vtkIGASyntheticDeformation.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkGenericCell.h"
@@ -47,21 +48,6 @@ vtkSmartPointer<vtkUnstructuredGrid> tubeWithDisplacement(int components = 3)
   return grid;
 }
 
-/// Runs `filter` on `input`, collecting its error messages.
-std::vector<std::string> run(vtkAlgorithm* filter, vtkDataObject* input)
-{
-  std::vector<std::string> errors;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&errors);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
-    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
-  filter->AddObserver(vtkCommand::ErrorEvent, onError);
-  filter->SetInputDataObject(0, input);
-  filter->Update();
-  filter->RemoveObservers(vtkCommand::ErrorEvent);
-  return errors;
-}
-
 } // namespace
 
 TEST(DisplaceControlPoints, MovesEveryPointByScaleTimesDisplacement)
@@ -72,7 +58,7 @@ TEST(DisplaceControlPoints, MovesEveryPointByScaleTimesDisplacement)
   vtkNew<vtkIGADisplaceControlPoints> filter;
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "u");
   filter->SetScaleFactor(2.5);
-  ASSERT_TRUE(run(filter, grid).empty());
+  ASSERT_TRUE(igatest::runCollectingErrors(filter, grid).empty());
   vtkUnstructuredGrid* out = filter->GetOutput();
   ASSERT_EQ(out->GetNumberOfPoints(), grid->GetNumberOfPoints());
   ASSERT_EQ(out->GetNumberOfCells(), 8);
@@ -112,7 +98,7 @@ TEST(DisplaceControlPoints, RoundTripMovesTheRationalCellsRigidly)
   grid->GetPointData()->SetVectors(shift); // the default selection: active vectors
   vtkNew<vtkIGADisplaceControlPoints> filter;
   filter->SetScaleFactor(-0.5);
-  ASSERT_TRUE(run(filter, grid).empty());
+  ASSERT_TRUE(igatest::runCollectingErrors(filter, grid).empty());
   // Through the Kernels side: the patches read back have moved control points, same weights.
   iga::VolumeSet<double> rest, moved;
   std::string error;
@@ -151,12 +137,12 @@ TEST(DisplaceControlPoints, BadDisplacementsAreReported)
 {
   vtkNew<vtkIGADisplaceControlPoints> filter;
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "missing");
-  auto errors = run(filter, tubeWithDisplacement());
+  auto errors = igatest::runCollectingErrors(filter, tubeWithDisplacement());
   ASSERT_FALSE(errors.empty());
   EXPECT_NE(errors[0].find("no point array 'missing'"), std::string::npos) << errors[0];
 
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "u");
-  errors = run(filter, tubeWithDisplacement(2));
+  errors = igatest::runCollectingErrors(filter, tubeWithDisplacement(2));
   ASSERT_FALSE(errors.empty());
   EXPECT_NE(errors[0].find("'u' has 2 components, expected 3"), std::string::npos) << errors[0];
 
@@ -168,7 +154,7 @@ TEST(DisplaceControlPoints, BadDisplacementsAreReported)
   cellVectors->Fill(0);
   grid->GetCellData()->AddArray(cellVectors);
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "c");
-  errors = run(filter, grid);
+  errors = igatest::runCollectingErrors(filter, grid);
   ASSERT_FALSE(errors.empty());
   EXPECT_NE(errors[0].find("'c' is not a point array"), std::string::npos) << errors[0];
 
@@ -176,14 +162,14 @@ TEST(DisplaceControlPoints, BadDisplacementsAreReported)
   vtkDoubleArray::SafeDownCast(grid->GetPointData()->GetArray("u"))
     ->SetComponent(17, 1, std::numeric_limits<double>::quiet_NaN());
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "u");
-  errors = run(filter, grid);
+  errors = igatest::runCollectingErrors(filter, grid);
   ASSERT_FALSE(errors.empty());
   EXPECT_NE(errors[0].find("non-finite value at point 17, component 1"), std::string::npos)
     << errors[0];
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 
   vtkNew<vtkIGADisplaceControlPoints> defaults; // no active vectors
-  errors = run(defaults, tubeWithDisplacement());
+  errors = igatest::runCollectingErrors(defaults, tubeWithDisplacement());
   ASSERT_FALSE(errors.empty());
   EXPECT_NE(errors[0].find("no active vectors"), std::string::npos) << errors[0];
 }
@@ -298,7 +284,7 @@ TEST(SyntheticDeformation, FlatInputIsReported)
   }
   grid->SetPoints(flat);
   vtkNew<vtkIGASyntheticDeformation> filter;
-  const auto errors = run(filter, grid);
+  const auto errors = igatest::runCollectingErrors(filter, grid);
   ASSERT_FALSE(errors.empty());
   EXPECT_NE(errors[0].find("not finite"), std::string::npos) << errors[0];
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
