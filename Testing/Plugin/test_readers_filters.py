@@ -114,6 +114,27 @@ back.UpdatePipeline(1.0)
 restored = back.GetDataInformation().GetBounds()
 original = source.GetDataInformation().GetBounds()
 assert builtins.max(abs(a - b) for a, b in zip(restored, original)) < 1e-12, (restored, original)
+# The boundary of the two G+Smo blocks (3 Bezier cells, 2 of their 18 faces shared twice) as
+# Bezier quadrilaterals, which ParaView draws as a surface.
+boundary = simple.IGABoundarySurface(Input=blocks)
+faces = servermanager.Fetch(boundary)
+VTK_BEZIER_QUADRILATERAL = 77
+assert faces.GetNumberOfCells() == 14, faces.GetNumberOfCells()
+assert builtins.all(faces.GetCellType(c) == VTK_BEZIER_QUADRILATERAL for c in range(14))
+assert faces.GetBounds() == servermanager.Fetch(blocks).GetBounds(), faces.GetBounds()
+assert faces.GetPointData().GetRationalWeights() is not None
+assert faces.GetCellData().GetArray("BoundaryFace") is not None
+for shown in simple.GetSources().values():
+    simple.Hide(shown, view)
+simple.Show(boundary, view).SetRepresentationType("Surface")
+simple.ResetCamera(view)
+boundary_png = os.path.join(work_dir, "boundary_surface.png")
+simple.SaveScreenshot(boundary_png, view, ImageResolution=[200, 160], TransparentBackground=0)
+(w, h), px = iga_scene.read_rgb(boundary_png)
+boundary_pixels = builtins.sum(1 for j in range(h) for i in range(w) if px(i, j) != background)
+assert boundary_pixels > 1000, boundary_pixels
+
+print(f"boundary of the two blocks: 14 Bezier quadrilaterals, {boundary_pixels} pixels")
 print(f"readers: quarter ring bounds {bounds}; isosurface z = 0.5 covers {covered} pixels; "
       f"grouped with the two blocks {len(grouped)}, the ring alone then {len(ring_alone)}; "
       f"bend at time 1 bounds {bent}, displaced back to {restored}")
