@@ -27,8 +27,9 @@ assert ranks >= 2, f"run with mpiexec -np 2 or more (have {ranks} rank)"
 subprocess.run([generator, work_dir, "--zoo"], check=True, stdout=subprocess.DEVNULL)
 zoo_file = os.path.join(work_dir, "degenerate_zoo.vtu")
 
-SIZE = [768, 96]
-# The eight members in a row along x, 4 apart: about 38 pixels each.
+SIZE = [384, 48]
+# The eight members in a row along x, 4 apart: about 19 pixels each (the degree-16 sphere
+# dominates the time).
 CAMERA = ([14.0, -9.5, 0.0], [14.0, 0.0, 0.0], [0.0, 0.0, 1.0])
 
 view = simple.CreateRenderView()
@@ -42,6 +43,7 @@ def render_alone(source, name):
     for shown in simple.GetSources().values():
         simple.Hide(shown, view)
     display = iga_scene.show_surface(source, view, "sphere", 0.0)
+    display.IGANumberOfThreads = 1  # one a rank: the ranks share the machine's cores
     simple.ColorBy(display, None)
     iga_scene.place_camera(view, CAMERA)
     png = os.path.join(work_dir, name + ".png")
@@ -72,7 +74,7 @@ background = tuple(round(255 * c) for c in iga_scene.BACKGROUND)
 pixels = [(i, j) for j in range(size[1]) for i in range(size[0])]
 covered = [p for p in pixels if whole(*p) != background]
 differing = [p for p in pixels if whole(*p) != split(*p)]
-assert len(covered) > 3000, len(covered)
+assert len(covered) > 1500, len(covered)
 assert not differing, (len(differing), differing[:10])
 print(f"{ranks} ranks, degenerate zoo: {on_rank0[1][0]} of 8 patches on rank 0 when spread; "
       f"{len(covered)} pixels covered, {len(differing)} differing from all on rank 0")
