@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <regex>
@@ -256,9 +257,11 @@ public:
       std::vector<long long> ids;
       for (double value : this->numbers(patches))
       {
-        if (value != std::floor(value))
+        if (value != std::floor(value) || !(std::abs(value) <= 9007199254740992.0))
         {
-          this->fail(patches, "id " + std::to_string(value) + " is not an integer");
+          char number[32];
+          std::snprintf(number, sizeof number, "%.17g", value);
+          this->fail(patches, std::string("id ") + number + " is not an integer in -2^53..2^53");
         }
         ids.push_back(static_cast<long long>(value));
       }

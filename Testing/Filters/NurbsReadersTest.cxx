@@ -367,6 +367,9 @@ TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
   const std::string blocks = slurp(kData + "/gismo_two_blocks.xml");
   expectError<R>("ids.xml", replaced(blocks, "10 11</patches>", "10 13</patches>"),
     ":72: <patches> refers to geometry id 13, which no top-level <Geometry> has");
+  // Found by the fuzzer: an id beyond 64-bit integers was converted to one (undefined).
+  expectError<R>("huge-id.xml", replaced(blocks, "10 11</patches>", "10 1e308</patches>"),
+    ":72: <patches> id 1e+308 is not an integer in -2^53..2^53");
   // Nested deeper than any G+Smo file: refused before the parser's tree (built and destroyed
   // recursively) could overflow the stack.
   std::string deep = "<xml>";
