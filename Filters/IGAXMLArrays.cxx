@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <vector>
 
 namespace
@@ -338,6 +339,28 @@ struct BinaryArray
 
 /// The stream of the binary array whose tag starts at `at` in `head`, or held < 0 when its
 /// data cannot be found (VTK's reader says so).
+/// Where the next '<' after `from` lies in the input (its size when there is none): in `head`,
+/// else past it in the file.
+double nextTag(const Input& input, const std::string& head, size_t from)
+{
+  const size_t inHead = head.find('<', from);
+  if (inHead != std::string::npos)
+  {
+    return double(inHead);
+  }
+  for (double at = double(head.size()); at < input.size; at += 1 << 20)
+  {
+    const size_t found = input.at(at, 1 << 20).find('<');
+    if (found != std::string::npos)
+    {
+      return at + double(found);
+    }
+  }
+  return input.size;
+}
+
+/// The stream of the binary array whose tag starts at `at` in `head`, or held < 0 when its
+/// data cannot be found (VTK's reader says so).
 Stream streamOf(const Input& input, const std::string& head, size_t at)
 {
   const std::string tag = tagAt(head, at);
@@ -345,25 +368,28 @@ Stream streamOf(const Input& input, const std::string& head, size_t at)
   if (attributeOf(tag, "format=\"") == "binary")
   {
     const size_t open = head.find('>', at);
-    const size_t first = head.find_first_not_of(" \t\r\n", open + 1);
-    if (open == std::string::npos || first == std::string::npos)
+    const size_t first =
+      open == std::string::npos ? open : head.find_first_not_of(" \t\r\n", open + 1);
+    if (first == std::string::npos)
     {
       return stream;
     }
     stream.start = double(first);
-    stream.held = 0.75 * double(std::min(head.find('<', first), head.size()) - first);
+    stream.held = 0.75 * (nextTag(input, head, first) - stream.start);
     return stream;
   }
-  // VTK's reader takes the data to start after the first '_' past the AppendedData tag, and
-  // reads from wherever it ends up when there is none.
+  // As VTK's reader: the data start at the first character after the AppendedData tag that is
+  // no white space, past it when it is the '_' VTK writes.
   const size_t appended = head.find("<AppendedData");
-  const size_t underscore = appended == std::string::npos ? appended : head.find('_', appended);
+  const size_t close = appended == std::string::npos ? appended : head.find('>', appended);
+  const size_t first =
+    close == std::string::npos ? close : head.find_first_not_of(" \t\r\n", close + 1);
   const std::string offsetText = attributeOf(tag, "offset=\"");
   char* end = nullptr;
   const double offset = std::strtod(offsetText.c_str(), &end);
-  if (underscore == std::string::npos)
+  if (first == std::string::npos)
   {
-    stream.fault = "has no appended data (no '_' after an AppendedData tag)";
+    stream.fault = "has no appended data";
     return stream;
   }
   if (offsetText.empty() || *end != '\0' || !(offset >= 0) || offset != std::floor(offset))
@@ -372,7 +398,7 @@ Stream streamOf(const Input& input, const std::string& head, size_t at)
     return stream;
   }
   stream.base64 = attributeOf(tagAt(head, appended), "encoding=\"") == "base64";
-  stream.start = double(underscore + 1) + offset;
+  stream.start = double(first + (head[first] == '_' ? 1 : 0)) + offset;
   const double left = input.size - stream.start;
   stream.held = left < 0 ? -1 : stream.base64 ? 0.75 * left : left;
   return stream;
@@ -401,12 +427,17 @@ std::string headerProblem(const Input& input, const std::string& head, size_t at
   {
     const std::string problem = compressedHeaderProblem(
       input.name, array.stream, encoding, array.expected, memory, array.blocks);
-    array.dataBytes = array.blocks.total();
+    array.dataBytes = array.blocks.size > 0 ? array.blocks.total() : -1; // -1: no header
     return problem;
   }
   const std::vector<double> header = words(
     array.stream.bytes(array.stream.start, 0, encoding.word), encoding.word, encoding.bigEndian);
-  array.dataBytes = header.empty() ? 0 : header[0];
+  if (header.empty())
+  {
+    array.dataBytes = -1;
+    return std::string(); // no header: VTK's reader says so
+  }
+  array.dataBytes = header[0];
   array.dataStart = double(encoding.word);
   const double held = array.stream.held - double(encoding.word);
   if (!(array.dataBytes <= held))
@@ -421,29 +452,19 @@ std::string headerProblem(const Input& input, const std::string& head, size_t at
   return std::string();
 }
 
-/// The uncompressed bytes [offset, offset + count) of a binary array whose header passed.
-std::string arrayBytes(
-  const BinaryArray& array, const Encoding& encoding, double offset, size_t count)
+/// Block `block` of a compressed array whose header passed, uncompressed ("" when it cannot be).
+std::string blockBytes(const BinaryArray& array, const Encoding& encoding, size_t block)
 {
-  if (encoding.compressor.empty())
-  {
-    return array.stream.bytes(array.stream.start, array.dataStart + offset, count);
-  }
   const Blocks& blocks = array.blocks;
-  const double block = std::floor(offset / blocks.size);
-  if (!(block < double(blocks.compressed.size())))
+  if (block >= blocks.compressed.size())
   {
     return std::string();
   }
   double before = 0;
-  for (size_t b = 0; b < size_t(block); ++b)
+  for (size_t b = 0; b < block; ++b)
   {
     before += blocks.compressed[b];
   }
-  const std::string compressed =
-    array.stream.bytes(blocks.dataStart, before, size_t(blocks.compressed[size_t(block)]));
-  const bool last = block + 1 == blocks.count;
-  std::string plain(size_t(last && blocks.lastSize > 0 ? blocks.lastSize : blocks.size), '\0');
   vtkSmartPointer<vtkDataCompressor> compressor;
   if (encoding.compressor == "vtkZLibDataCompressor")
     compressor = vtkSmartPointer<vtkZLibDataCompressor>::New();
@@ -451,18 +472,56 @@ std::string arrayBytes(
     compressor = vtkSmartPointer<vtkLZ4DataCompressor>::New();
   else if (encoding.compressor == "vtkLZMADataCompressor")
     compressor = vtkSmartPointer<vtkLZMADataCompressor>::New();
-  if (!compressor || compressor->Uncompress(
-                       reinterpret_cast<const unsigned char*>(compressed.data()), compressed.size(),
-                       reinterpret_cast<unsigned char*>(&plain[0]), plain.size()) != plain.size())
+  if (!compressor)
   {
     return std::string();
   }
-  const size_t within = size_t(offset - block * blocks.size);
-  return within < plain.size() ? plain.substr(within, count) : std::string();
+  try
+  {
+    const std::string compressed =
+      array.stream.bytes(blocks.dataStart, before, size_t(blocks.compressed[block]));
+    const bool last = double(block) + 1 == blocks.count;
+    std::string plain(size_t(last && blocks.lastSize > 0 ? blocks.lastSize : blocks.size), '\0');
+    return compressor->Uncompress(reinterpret_cast<const unsigned char*>(compressed.data()),
+             compressed.size(), reinterpret_cast<unsigned char*>(&plain[0]),
+             plain.size()) == plain.size()
+             ? plain
+             : std::string();
+  }
+  catch (const std::bad_alloc&)
+  {
+    return std::string(); // a block beyond what can be held: VTK's reader fails on it too
+  }
 }
 
-/// A signed integer of `size` bytes in the file's byte order.
-double signedValue(const std::string& bytes, size_t size, bool bigEndian)
+/// The uncompressed bytes [offset, offset + count) of a binary array whose header passed, across
+/// blocks where they span two ("" when they cannot be read).
+std::string arrayBytes(
+  const BinaryArray& array, const Encoding& encoding, double offset, size_t count)
+{
+  if (encoding.compressor.empty())
+  {
+    return array.stream.bytes(array.stream.start, array.dataStart + offset, count);
+  }
+  std::string bytes;
+  while (bytes.size() < count)
+  {
+    const double block = std::floor(offset / array.blocks.size);
+    const std::string plain = blockBytes(array, encoding, size_t(block));
+    const size_t within = size_t(offset - block * array.blocks.size);
+    if (within >= plain.size())
+    {
+      return std::string();
+    }
+    const std::string piece = plain.substr(within, count - bytes.size());
+    bytes += piece;
+    offset += double(piece.size());
+  }
+  return bytes;
+}
+
+/// An integer of `size` bytes in the file's byte order, signed for the tag's Int types.
+double integerValue(const std::string& bytes, size_t size, bool bigEndian, bool isSigned)
 {
   const std::vector<double> value = words(bytes, size, bigEndian);
   if (value.empty())
@@ -470,7 +529,7 @@ double signedValue(const std::string& bytes, size_t size, bool bigEndian)
     return std::nan("");
   }
   const double range = std::ldexp(1.0, int(8 * size));
-  return value[0] >= range / 2 ? value[0] - range : value[0];
+  return isSigned && value[0] >= range / 2 ? value[0] - range : value[0];
 }
 
 /// The last number of an ASCII array's text.
@@ -512,8 +571,8 @@ std::string offsetsProblem(const Input& input, const std::string& head, size_t a
     return std::string();
   }
   const double last =
-    array ? signedValue(arrayBytes(*array, encoding, (cells - 1) * size, size_t(size)),
-              size_t(size), encoding.bigEndian)
+    array ? integerValue(arrayBytes(*array, encoding, (cells - 1) * size, size_t(size)),
+              size_t(size), encoding.bigEndian, attributeOf(tag, "type=\"")[0] == 'I')
           : lastAsciiValue(input, head, at);
   char text[320];
   if (std::isnan(last))

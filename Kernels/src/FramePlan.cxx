@@ -53,11 +53,15 @@ std::string attributeProblem(int channels, const Settings& s)
          std::to_string(s.colorAttribute);
 }
 
-std::string mebibytes(size_t bytes)
+/// Bytes in MiB, to a tenth below 10 MiB, rounded up (a need) or down (a budget), so that a need
+/// above a budget never reads as equal to it.
+std::string mebibytes(size_t bytes, bool up)
 {
+  const double scale = bytes < (size_t(10) << 20) ? 10 : 1;
+  const double value = double(bytes) / 1048576.0 * scale;
   std::ostringstream text;
-  text << std::fixed << std::setprecision(bytes < (size_t(10) << 20) ? 1 : 0)
-       << double(bytes) / 1048576.0 << " MiB";
+  text << std::fixed << std::setprecision(scale > 1 ? 1 : 0)
+       << (up ? std::ceil(value) : std::floor(value)) / scale << " MiB";
   return text.str();
 }
 
@@ -267,8 +271,8 @@ void checkSettings(const Settings& s)
   {
     throw std::length_error(
       "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
-      mebibytes(imageBytes(s)) + " (" + std::to_string(kBytesPerImagePixel) +
-      " bytes a pixel), more than the memory budget of " + mebibytes(s.memoryBudgetBytes) +
+      mebibytes(imageBytes(s), true) + " (" + std::to_string(kBytesPerImagePixel) +
+      " bytes a pixel), more than the memory budget of " + mebibytes(s.memoryBudgetBytes, false) +
       ": lower the resolution or raise the budget");
   }
   if (s.isovalues.empty())

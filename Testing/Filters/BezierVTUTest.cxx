@@ -3,6 +3,7 @@
 // that a .pvd series written by vtkIGABezierSeriesWriter reads back through ParaView's
 // vtkPVDReader with its time steps.
 #include "vtkIGABezierFileReading.h"
+#include "vtkIGABezierHexahedra.h"
 #include "vtkIGABezierSeriesWriter.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAGismoReader.h"
@@ -21,6 +22,8 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkXMLUnstructuredGridReader.h"
 #include "vtkXMLUnstructuredGridWriter.h"
+
+#include "iga/Datasets.h"
 
 #include <gtest/gtest.h>
 
@@ -89,9 +92,9 @@ TEST(BezierVTU, BinaryHeadersClaimingMoreThanTheirDataAreRefused)
          { "appended-block-table-4e9.vtu", "claims a table of blocks" },
          { "appended-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
          { "ascii-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
-         // Found by the fuzzer once appended data was checked: VTK read the offsets from
-         // wherever its search for the missing '_' ended, and allocated 4e17 bytes.
-         { "appended-data-without-marker.vtu", "but the file has no appended data" },
+         // Found by the fuzzer once appended data was checked: without the '_' VTK reads the
+         // appended data from their first character, whose header claims 4 GB.
+         { "appended-data-without-marker.vtu", "claims data of 4.281e+09 bytes" },
          // ... and by CI's 30 s run: offsets with a mistyped format attribute, which VTK reads
          // as ASCII.
          { "offsets-without-format.vtu", "its cell offsets end at 1e+12" } })
@@ -173,6 +176,28 @@ TEST(BezierVTU, CellOffsetsPastTheConnectivityAreRefusedInEveryLayout)
       "'test.vtu': its cell offsets end at 1e+12, a connectivity of 8e+03 GB, more than this "
       "machine's 1 GB");
   }
+}
+
+/// A file whose inline binary arrays run past the first MiB (read from disk, where only that
+/// much is scanned for tags) is read: an array's data end where its text does, in the file
+/// (refused before: "claims compressed blocks of 1.89e+06 bytes, more than the data's 775257").
+TEST(BezierVTU, InlineArraysPastTheFirstMegabyteAreRead)
+{
+  const auto blade =
+    vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeBlade<double>(iga::bladeLayout(10000), 0));
+  const std::string file = testing::TempDir() + "/blade_10k.vtu";
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetInputData(blade);
+  writer->SetFileName(file.c_str());
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
+  ASSERT_EQ(writer->Write(), 1);
+  ASSERT_GT(fileText(file).size(), size_t(2) << 20);
+  iga::VolumeSet<double> set;
+  std::string error;
+  std::vector<std::string> warnings;
+  EXPECT_NE(vtkIGABezierFileReading::Read(file, nullptr, set, error, warnings), nullptr) << error;
+  EXPECT_EQ(set.patches.size(), size_t(blade->GetNumberOfCells()));
 }
 
 /// Appended data (raw or base64) has its binary headers checked as inline data does.

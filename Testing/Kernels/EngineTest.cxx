@@ -625,7 +625,7 @@ TEST(Engine, ImageBeyondTheMemoryBudgetIsRefused)
                        "memory budget of 4096 MiB: lower the resolution or raise the budget");
   settings.width = settings.height = 32;
   settings.memoryBudgetBytes = iga::sst::imageBytes(settings) - 1;
-  EXPECT_EQ(refusal(), "a 32x32 image needs 0.3 MiB (325 bytes a pixel), more than the memory "
+  EXPECT_EQ(refusal(), "a 32x32 image needs 0.4 MiB (325 bytes a pixel), more than the memory "
                        "budget of 0.3 MiB: lower the resolution or raise the budget");
   settings.memoryBudgetBytes += 1;
   iga::sst::FrameReport report;

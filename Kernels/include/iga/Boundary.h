@@ -144,9 +144,11 @@ bool collapsedFace(const BezierSurface<T>& face, double tolerance)
 
 } // namespace detail
 
-/// The faces of `patches` on the boundary of their union, in patch, direction, side order:
-/// every face but those matched by another patch's face (the same control points, in any
-/// order, within 1e-9 of the patches' extent) and those collapsed onto a curve or a point.
+/// The faces of `patches` (positive, finite weights: checkPatch) on the boundary of their union,
+/// in patch, direction, side order: every face but those matched by another patch's face (the
+/// same control points, in any order, within 1e-9 of the patches' largest extent along x, y or
+/// z; points closer than that within one face may fail to pair up) and those collapsed onto a
+/// curve or a point.
 template<class T>
 std::vector<PatchFace> boundaryFaces(const std::vector<BezierVolume<T>>& patches)
 {
@@ -156,7 +158,7 @@ std::vector<PatchFace> boundaryFaces(const std::vector<BezierVolume<T>>& patches
     std::vector<std::array<double, 4>> key;
   };
   std::vector<Candidate> faces;
-  double lo = 0, hi = 0;
+  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
   for (int p = 0; p < int(patches.size()); ++p)
   {
     for (int direction = 0; direction < 3; ++direction)
@@ -167,14 +169,15 @@ std::vector<PatchFace> boundaryFaces(const std::vector<BezierVolume<T>>& patches
         for (const auto& point : key)
           for (int d = 0; d < 3; ++d)
           {
-            lo = std::min(lo, point[d]);
-            hi = std::max(hi, point[d]);
+            lo[d] = std::min(lo[d], point[d]);
+            hi[d] = std::max(hi[d], point[d]);
           }
         faces.push_back({ { p, direction, side }, std::move(key) });
       }
     }
   }
-  const double tolerance = 1e-9 * std::max(hi - lo, 1e-300);
+  const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });
+  const double tolerance = 1e-9 * extent;
   // Matching faces start with the same smallest point: sorted by it, a face's partners follow
   // it within the tolerance in x.
   std::vector<size_t> order(faces.size());
