@@ -506,7 +506,12 @@ std::string arrayBytes(
   std::string bytes;
   while (bytes.size() < count)
   {
+    // No header read (block size 0) or past the blocks: nothing to read.
     const double block = std::floor(offset / array.blocks.size);
+    if (!(block >= 0 && block < double(array.blocks.compressed.size())))
+    {
+      return std::string();
+    }
     const std::string plain = blockBytes(array, encoding, size_t(block));
     const size_t within = size_t(offset - block * array.blocks.size);
     if (within >= plain.size())
