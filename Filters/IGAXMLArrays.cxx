@@ -287,6 +287,16 @@ double expectedBytes(const std::string& text, size_t at)
   return tuples >= 0 && size > 0 ? tuples * componentsOf(tag) * size : -1;
 }
 
+/// The attribute's text as a whole number of at least `lowest`, or NaN when it is not one.
+double wholeNumber(const std::string& text, double lowest)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  return !text.empty() && *end == '\0' && value >= lowest && value == std::floor(value)
+           ? value
+           : std::nan("");
+}
+
 /// "" or why the tag at `at` gives its array a size VTK cannot allocate within `memory`: a
 /// component count that is no positive whole number, or tuples of more bytes than the memory.
 std::string claimedArrayProblem(
@@ -294,10 +304,9 @@ std::string claimedArrayProblem(
 {
   const std::string tag = tagAt(head, at), arrayName = attributeOf(tag, "Name=\"");
   const std::string components = attributeOf(tag, "NumberOfComponents=\"");
-  char* end = nullptr;
-  const double count = components.empty() ? 1 : std::strtod(components.c_str(), &end);
+  const double count = components.empty() ? 1 : wholeNumber(components, 1);
   char text[320];
-  if (!components.empty() && (*end != '\0' || !(count >= 1) || count != std::floor(count)))
+  if (std::isnan(count))
   {
     std::snprintf(text, sizeof text,
       "'%s': data array '%.64s' has NumberOfComponents=\"%.32s\", not a positive whole number",
@@ -305,8 +314,7 @@ std::string claimedArrayProblem(
     return text;
   }
   const std::string tuplesText = attributeOf(tag, "NumberOfTuples=\"");
-  const double tuples = std::strtod(tuplesText.c_str(), &end);
-  if (!tuplesText.empty() && (*end != '\0' || !(tuples >= 0) || tuples != std::floor(tuples)))
+  if (!tuplesText.empty() && std::isnan(wholeNumber(tuplesText, 0)))
   {
     std::snprintf(text, sizeof text,
       "'%s': data array '%.64s' has NumberOfTuples=\"%.32s\", not a whole number", name.c_str(),
@@ -337,8 +345,6 @@ struct BinaryArray
   double dataStart = 0;  ///< of an uncompressed array's data in its stream's bytes
 };
 
-/// The stream of the binary array whose tag starts at `at` in `head`, or held < 0 when its
-/// data cannot be found (VTK's reader says so).
 /// Where the next '<' after `from` lies in the input (its size when there is none): in `head`,
 /// else past it in the file.
 double nextTag(const Input& input, const std::string& head, size_t from)
@@ -384,15 +390,13 @@ Stream streamOf(const Input& input, const std::string& head, size_t at)
   const size_t close = appended == std::string::npos ? appended : head.find('>', appended);
   const size_t first =
     close == std::string::npos ? close : head.find_first_not_of(" \t\r\n", close + 1);
-  const std::string offsetText = attributeOf(tag, "offset=\"");
-  char* end = nullptr;
-  const double offset = std::strtod(offsetText.c_str(), &end);
+  const double offset = wholeNumber(attributeOf(tag, "offset=\""), 0);
   if (first == std::string::npos)
   {
     stream.fault = "has no appended data";
     return stream;
   }
-  if (offsetText.empty() || *end != '\0' || !(offset >= 0) || offset != std::floor(offset))
+  if (std::isnan(offset))
   {
     stream.fault = "has no offset into the appended data that is a whole number";
     return stream;
@@ -541,17 +545,12 @@ double integerValue(const std::string& bytes, size_t size, bool bigEndian, bool 
 double lastAsciiValue(const Input& input, const std::string& head, size_t at)
 {
   const size_t open = head.find('>', at);
-  std::string text;
-  for (double from = double(open) + 1;; from += 1 << 20)
+  if (open == std::string::npos)
   {
-    const std::string chunk = input.at(from, 1 << 20);
-    const size_t close = chunk.find('<');
-    text += chunk.substr(0, close);
-    if (close != std::string::npos || chunk.size() < (1 << 20))
-    {
-      break;
-    }
+    return std::nan("");
   }
+  const double close = nextTag(input, head, open + 1);
+  const std::string text = input.at(double(open + 1), size_t(close - double(open + 1)));
   const size_t end = text.find_last_not_of(" \t\r\n");
   if (end == std::string::npos)
   {

@@ -51,8 +51,11 @@ vtkStandardNewMacro(vtkIGAIsosurfaceMapper);
 namespace
 {
 
-/// The mapper's colour (RGBA) and depth as floats, in host memory and as textures.
-constexpr size_t kMapperBytesPerPixel = 2 * (4 + 1) * sizeof(float);
+/// The mapper's own image: colour (RGBA) and depth as floats, in host memory and as textures.
+size_t mapperImageBytes(int width, int height)
+{
+  return 2 * (4 + 1) * sizeof(float) * size_t(std::max(width, 0)) * size_t(std::max(height, 0));
+}
 
 /// True the first time this process sees `message`.
 bool firstInProcess(const std::string& message)
@@ -627,7 +630,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
     in.FrameKey.clear();
     return false;
   }
-  settings.memoryBudgetBytes = budget - kMapperBytesPerPixel * settings.width * settings.height;
+  settings.memoryBudgetBytes = budget - mapperImageBytes(frame.Width, frame.Height);
   settings.deadlineMs = 1000 * this->FrameDeadline;
   settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu
                      : this->Backend == BACKEND_CUDA ? iga::sst::Backend::Cuda
@@ -650,8 +653,7 @@ vtkTypeUInt64 vtkIGAIsosurfaceMapper::GetImageBytes(int width, int height)
   iga::sst::Settings size;
   size.width = width;
   size.height = height;
-  return iga::sst::imageBytes(size) +
-         kMapperBytesPerPixel * size_t(std::max(width, 0)) * size_t(std::max(height, 0));
+  return iga::sst::imageBytes(size) + mapperImageBytes(width, height);
 }
 
 void vtkIGAIsosurfaceMapper::ReportImageOverBudget(const Frame& frame)

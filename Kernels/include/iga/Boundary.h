@@ -90,7 +90,7 @@ inline bool sameKey(const std::vector<std::array<double, 4>>& a,
 {
   if (a.size() != b.size())
     return false;
-  // Sorted by x first: a point's partner lies in a window of x within the tolerance.
+  // Each point of `a` pairs with the first unused point of `b` within the tolerance.
   std::vector<bool> used(b.size(), false);
   for (const auto& p : a)
   {
