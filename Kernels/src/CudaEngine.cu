@@ -115,10 +115,10 @@ void guarded(Frame frame)
 
 } // namespace
 
-void render(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& settings, GBuffer& out, FrameReport& report)
+void render(
+  const Scene& scene, const View& view, const Settings& settings, GBuffer& out, FrameReport& report)
 {
-  guarded([&](device::Driver& driver) { driver.render(patches, view, settings, out, report); });
+  guarded([&](device::Driver& driver) { driver.render(scene, view, settings, out, report); });
 }
 
 void renderNurbs(const NurbsVolumes& volumes, const View& view, const Settings& settings,

@@ -25,8 +25,8 @@ bool usable(std::string& why);
 
 /// The shared-subdivision-tree frame on the GPU. Throws std::invalid_argument for bad input,
 /// as the CPU path does, and Failure for CUDA errors.
-void render(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& settings, GBuffer& out, FrameReport& report);
+void render(const Scene& scene, const View& view, const Settings& settings, GBuffer& out,
+  FrameReport& report);
 
 /// The same for NURBS volumes, whose Bézier elements are extracted on the device.
 void renderNurbs(const NurbsVolumes& volumes, const View& view, const Settings& settings,

@@ -14,8 +14,7 @@ bool usable(std::string& why)
   return false;
 }
 
-void render(
-  const std::vector<BezierVolume<double>>&, const View&, const Settings&, GBuffer&, FrameReport&)
+void render(const Scene&, const View&, const Settings&, GBuffer&, FrameReport&)
 {
   throw Failure("IGAView was built without CUDA");
 }

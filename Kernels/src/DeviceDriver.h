@@ -116,16 +116,23 @@ struct CombineSummaries
   }
 };
 
+/// Root r of a frame's roots: the volumes' (patch, isovalue) pairs first, then one per surface.
+IGA_HD inline Node rootAt(size_t r, size_t volumes, size_t isoCount)
+{
+  const size_t volumeRoots = volumes * isoCount;
+  return r < volumeRoots ? rootNode(int(r / isoCount), int(r % isoCount))
+                         : rootNode(int(volumes + r - volumeRoots), -1);
+}
+
 /// The device engine. Its arrays persist from frame to frame (a pool that only grows), so a
 /// steady stream of frames allocates nothing. Every member is public because CUDA's extended
 /// lambdas may not live in private member functions.
 struct Driver
 {
-  void render(const std::vector<BezierVolume<double>>& patches, const View& view,
-    const Settings& settings, GBuffer& out, FrameReport& report)
+  void render(const Scene& scene, const View& view, const Settings& settings, GBuffer& out,
+    FrameReport& report)
   {
-    this->draw(
-      [&] { this->uploadPatches(patches, settings, report); }, view, settings, out, report);
+    this->draw([&] { this->uploadPatches(scene, settings, report); }, view, settings, out, report);
   }
 
   void renderNurbs(const NurbsVolumes& volumes, const View& view, const Settings& settings,
@@ -145,7 +152,7 @@ struct Driver
     { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     const Clock::time_point start = Clock::now();
     report.uploadedBytes = 0;
-    checkSettings(settings); // before the upload, which reads the transfer chunk
+    checkSettings(settings, false); // before the upload, which reads the transfer chunk
     upload();
     report.msInput = ms(start);
     this->prepareFrame(view, settings, report);
@@ -169,14 +176,12 @@ struct Driver
 
   /// Checks and copies the world patches to the device, unless the settings' data version
   /// says the copy already there is current.
-  void uploadPatches(
-    const std::vector<BezierVolume<double>>& patches, const Settings& settings, FrameReport& report)
+  void uploadPatches(const Scene& scene, const Settings& settings, FrameReport& report)
   {
-    const bool current = !this->FromNurbs && settings.dataVersion != 0 &&
-                         settings.dataVersion == this->DataVersion &&
-                         patches.size() == this->Shapes.size() &&
-                         settings.surfaceAttribute == this->SurfaceAttribute &&
-                         settings.colorAttribute == this->ColorAttribute;
+    const bool current =
+      !this->FromNurbs && settings.dataVersion != 0 && settings.dataVersion == this->DataVersion &&
+      scene.size() == this->Shapes.size() && settings.surfaceAttribute == this->SurfaceAttribute &&
+      settings.colorAttribute == this->ColorAttribute;
     if (current)
     {
       return;
@@ -188,15 +193,17 @@ struct Driver
     this->FromNurbs = false;
     // Shapes are checked here, control point values on the device; checkPatches names the
     // first problem when there is one.
-    std::vector<PatchShape> shapes(patches.size());
+    std::vector<PatchShape> shapes(scene.size());
     size_t world = 0, screen = 0;
-    for (size_t p = 0; p < patches.size(); ++p)
+    HostSequence coefficients;
+    for (size_t p = 0; p < scene.size(); ++p)
     {
-      const auto v = patches[p].view();
+      const auto v = scene[p];
       if (!usableShape(v.degree, v.channels, settings))
       {
-        throwFirstProblem(patches, settings);
+        throwFirstProblem(scene, settings);
       }
+      coefficients.append(v.coeffs, size_t(v.valueCount()));
       for (int d = 0; d < 3; ++d)
       {
         shapes[p].degree[d] = v.degree[d];
@@ -208,19 +215,13 @@ struct Driver
       world += size_t(v.valueCount());
       screen += size_t(shapes[p].screenValues);
     }
-    HostSequence coefficients;
-    for (const BezierVolume<double>& patch : patches)
-    {
-      const auto v = patch.view();
-      coefficients.append(v.coeffs, size_t(v.valueCount()));
-    }
     this->setShapes(shapes, report);
     this->uploadStaged(coefficients, this->World, settings);
     report.uploadedBytes += world * sizeof(double);
     const PatchSummary summary = this->summarizePatches(settings.surfaceAttribute);
     if (summary.invalid > 0)
     {
-      throwFirstProblem(patches, settings);
+      throwFirstProblem(scene, settings);
     }
     this->Attribute = summary.range();
     this->SurfaceAttribute = settings.surfaceAttribute;
@@ -372,7 +373,7 @@ struct Driver
   }
 
   /// Over the world patches on the device: how many have an invalid control point, and the
-  /// surface attribute's range over the others, as checkPatches computes it.
+  /// surface attribute's range over the other volumes, as checkPatches computes it.
   PatchSummary summarizePatches(int surfaceAttribute)
   {
     const PatchShape* shapes = raw(this->Shapes);
@@ -390,7 +391,7 @@ struct Driver
         {
           summary.invalid = 1;
         }
-        else
+        else if (!isSurface(patch))
         {
           rationalRange(patch, attribute, kWeightChannel, summary.lo, summary.hi);
         }
@@ -400,10 +401,9 @@ struct Driver
   }
 
   /// Throws checkPatches' message for the first bad patch.
-  [[noreturn]] static void throwFirstProblem(
-    const std::vector<BezierVolume<double>>& patches, const Settings& settings)
+  [[noreturn]] static void throwFirstProblem(const Scene& scene, const Settings& settings)
   {
-    checkPatches(patches, settings);
+    checkPatches(scene, settings);
     // Not reached: the device tests the same conditions as the host.
     throw std::invalid_argument("a patch failed the device's check of its control points");
   }
@@ -413,7 +413,9 @@ struct Driver
   /// are split on the host (addRoot) and their parts sent up.
   void prepareFrame(const View& view, const Settings& settings, FrameReport& report)
   {
-    FramePlan plan = planView(view, settings, this->Attribute, report);
+    const size_t volumeCount = size_t(std::count_if(this->HostShapes.begin(),
+      this->HostShapes.end(), [](const PatchShape& shape) { return shape.degree[2] != 0; }));
+    FramePlan plan = planView(view, settings, this->Attribute, volumeCount > 0, report);
     report.threads = 0;
     this->Isovalues = settings.isovalues;
     report.uploadedBytes += settings.isovalues.size() * sizeof(double);
@@ -439,25 +441,27 @@ struct Driver
       {
         const PatchShape& shape = shapes[p];
         const VolumeView<const double> patch(world + shape.world, shape.degree, shape.channels);
-        makeScreenPatch<double>(patch, windowFromWorld, surface, screen + shape.screen);
+        const int attribute = isSurface(patch) ? kWeightChannel : surface;
+        makeScreenPatch<double>(patch, windowFromWorld, attribute, screen + shape.screen);
         if (shade)
         {
-          makeShadingPatch(patch, surface, colour, shading + shape.screen);
+          makeShadingPatch(patch, attribute, colour, shading + shape.screen);
         }
       });
 
-    // Roots: per (patch, isovalue), dropped (0), in front of the eye (1) or straddling it (2).
+    // Roots: per (volume, isovalue) and per surface, dropped (0), in front of the eye (1) or
+    // straddling it (2).
     const size_t isoCount = settings.isovalues.size();
-    const size_t rootCount = patchCount * isoCount;
+    const size_t rootCount = volumeCount * isoCount + (patchCount - volumeCount);
     Node* roots = sized(this->Roots, rootCount);
     uint8_t* state = sized(this->RootStates, rootCount);
     exec.forEach(rootCount,
       [=] IGA_HD(size_t r)
       {
-        Node root = rootNode(int(r / isoCount), int(r % isoCount));
+        Node root = rootAt(r, volumeCount, isoCount);
         const PatchShape& shape = shapes[root.patch];
         const VolumeView<const double> view(screen + shape.screen, shape.degree, kScreenChannels);
-        root.info = analyzeNode(view, frame.isovalues[root.iso], frame.clip);
+        root.info = analyzeNode(view, isovalueOf(root, frame), frame.clip);
         root.coeff = shape.screen;
         roots[r] = root;
         state[r] = !worthKeeping(root.info, frame)                 ? 0
@@ -476,16 +480,17 @@ struct Driver
     FramePlan parts = plan;
     for (size_t k = 0; k < straddlingCount; ++k)
     {
-      const int p = int(straddlers[k] / isoCount), iso = int(straddlers[k] % isoCount);
-      const PatchShape& shape = this->HostShapes[p];
+      const Node root = rootAt(straddlers[k], volumeCount, isoCount);
+      const PatchShape& shape = this->HostShapes[root.patch];
       std::vector<double> worldValues(
         size_t(shape.screenValues / kScreenChannels) * shape.channels);
       exec.read(world + shape.world, worldValues.size(), worldValues.data());
       const VolumeView<const double> patch(worldValues.data(), shape.degree, shape.channels);
       std::vector<double> coefficients(size_t(shape.screenValues));
-      makeScreenPatch<double>(patch, plan.windowFromWorld, surface, coefficients.data());
+      makeScreenPatch<double>(patch, plan.windowFromWorld,
+        isSurface(patch) ? kWeightChannel : surface, coefficients.data());
       const size_t before = parts.initialNodes.size();
-      addRoot(parts, shape.degree, rootNode(p, iso), coefficients.data(), settings, report);
+      addRoot(parts, shape.degree, root, coefficients.data(), settings, report);
       partCounts[k] = uint32_t(parts.initialNodes.size() - before);
     }
     for (Node& node : parts.initialNodes)

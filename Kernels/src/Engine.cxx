@@ -44,16 +44,16 @@ const char* methodName(Method method)
   return "unknown";
 }
 
-void patchBounds(const std::vector<BezierVolume<double>>& patches, double* bounds)
+void patchBounds(const Scene& scene, double* bounds)
 {
   for (int d = 0; d < 3; ++d)
   {
     bounds[2 * d] = std::numeric_limits<double>::infinity();
     bounds[2 * d + 1] = -std::numeric_limits<double>::infinity();
   }
-  for (const auto& patch : patches)
+  for (size_t p = 0; p < scene.size(); ++p)
   {
-    const auto view = patch.view();
+    const auto view = scene[p];
     for (int p = 0; p < view.pointCount(); ++p)
     {
       const double* cp = view.point(p);
@@ -87,9 +87,8 @@ size_t capacityBytes(const V& v)
 class Renderer
 {
 public:
-  Renderer(const std::vector<BezierVolume<double>>& patches, const View& view,
-    const Settings& settings, FrameReport& report)
-    : Patches(patches)
+  Renderer(const Scene& scene, const View& view, const Settings& settings, FrameReport& report)
+    : Patches(scene)
     , TheView(view)
     , Config(settings)
     , Report(report)
@@ -130,7 +129,7 @@ private:
     this->Shapes.resize(this->Patches.size());
     for (size_t p = 0; p < this->Patches.size(); ++p)
     {
-      const auto v = this->Patches[p].view();
+      const auto v = this->Patches[p];
       PatchShape& shape = this->Shapes[p];
       std::copy(v.degree, v.degree + 3, shape.degree);
       shape.channels = v.channels;
@@ -151,16 +150,13 @@ private:
     s.shadingValues = this->Plan.shadingPool.size();
   }
 
-  int valueCount(int patch) const
-  {
-    return this->Patches[patch].view().pointCount() * kScreenChannels;
-  }
+  int valueCount(int patch) const { return this->Patches[patch].pointCount() * kScreenChannels; }
 
   template<class Pool>
   VolumeView<const double> nodeView(const Node& node, const Pool& pool) const
   {
     return VolumeView<const double>(
-      pool.data() + node.coeff, this->Patches[node.patch].view().degree, kScreenChannels);
+      pool.data() + node.coeff, this->Patches[node.patch].degree, kScreenChannels);
   }
 
   /// A band of a reference method: the shared sweep, then the method per pixel.
@@ -251,9 +247,8 @@ private:
               }
               localSolves += node.info.certified ? 1 : 0;
               double u[3], ndc;
-              const TupleOutcome result = solveTuple(this->nodeView(node, current), node.info, i, j,
-                this->Config.isovalues[node.iso], this->Plan.frame.tolerance, u, ndc,
-                this->Plan.frame.clip);
+              const TupleOutcome result =
+                solveNodeTuple(this->nodeView(node, current), node, i, j, s.frame, u, ndc);
               if (result == TupleOutcome::Hit)
               {
                 perPixel[k].push_back(rawHitOf(uint32_t(p), node, u, ndc));
@@ -270,15 +265,16 @@ private:
                 continue;
               }
               ++localSplits;
-              children.resize(size_t(8) * count);
-              splitMidpoint<double, 3>(this->nodeView(node, current), children.data());
+              const auto parent = this->nodeView(node, current);
+              children.resize(size_t(childCount(parent)) * count);
+              splitNode(parent, children.data());
               // Push far children first so that the near ones are explored first.
-              for (int c = 7; c >= 0; --c)
+              for (int c = childCount(parent) - 1; c >= 0; --c)
               {
                 Node child = childOf(node, c);
                 child.coeff = size_t(c) * count;
-                child.info = analyzeNode(this->nodeView(child, children),
-                  this->Config.isovalues[child.iso], this->Plan.frame.clip);
+                child.info = analyzeNode(
+                  this->nodeView(child, children), isovalueOf(child, s.frame), s.frame.clip);
                 if (worthKeeping(child.info, this->Plan.frame))
                 {
                   child.coeff = arena.size();
@@ -320,16 +316,17 @@ private:
       for (int depth = 0; depth < this->Config.bruteForceLevels; ++depth)
       {
         std::vector<Node> next;
-        std::vector<double> nextPool(level.size() * 8 * size_t(count));
+        const int children = childCount(this->nodeView(level[0], pool));
+        std::vector<double> nextPool(level.size() * children * size_t(count));
         for (size_t k = 0; k < level.size(); ++k)
         {
-          splitMidpoint<double, 3>(this->nodeView(level[k], pool), nextPool.data() + k * 8 * count);
-          for (int c = 0; c < 8; ++c)
+          splitNode(this->nodeView(level[k], pool), nextPool.data() + k * children * count);
+          for (int c = 0; c < children; ++c)
           {
             Node child = childOf(level[k], c);
-            child.coeff = (k * 8 + c) * size_t(count);
+            child.coeff = (k * children + c) * size_t(count);
             child.info = analyzeNode(this->nodeView(child, nextPool),
-              this->Config.isovalues[child.iso], this->Plan.frame.clip);
+              isovalueOf(child, this->Plan.frame), this->Plan.frame.clip);
             if (worthKeeping(child.info, this->Plan.frame) &&
                 child.info.status == ProjectionStatus::InFront)
             {
@@ -386,19 +383,25 @@ private:
               {
                 continue;
               }
-              for (int s = 0; s < 9; ++s)
+              // The corners of the leaf's inner box and its centre.
+              const auto view = this->nodeView(leaf, leafPool);
+              const int centre = childCount(view);
+              for (int s = 0; s <= centre; ++s)
               {
-                const double start[3] = { s == 8 ? 0.5 : 0.2 + 0.6 * (s & 1),
-                  s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 1) & 1),
-                  s == 8 ? 0.5 : 0.2 + 0.6 * ((s >> 2) & 1) };
+                double start[3];
+                for (int d = 0; d < 3; ++d)
+                {
+                  start[d] = s == centre ? 0.5 : 0.2 + 0.6 * ((s >> d) & 1);
+                }
                 double u[3], ndc;
                 ++local;
                 // Roots up to Newton's domain slack outside the leaf count (those on
                 // shared faces would otherwise be lost to rounding); duplicates are
                 // merged later.
-                if (solvePixel<double>(this->nodeView(leaf, leafPool), i, j,
-                      this->Config.isovalues[leaf.iso], this->Plan.frame.tolerance, start, u, ndc,
-                      this->Plan.frame.clip) == TupleOutcome::Hit)
+                if (solvePixel<double>(view, i, j, isovalueOf(leaf, this->Plan.frame),
+                      this->Plan.frame.tolerance, start, u, ndc,
+                      this->Plan.frame.clip) == TupleOutcome::Hit &&
+                    rootInPatch(leaf, u))
                 {
                   perPixel[k].push_back(rawHitOf(uint32_t(p), leaf, u, ndc));
                 }
@@ -412,7 +415,7 @@ private:
     this->appendPixelHits(perPixel);
   }
 
-  const std::vector<BezierVolume<double>>& Patches;
+  const Scene Patches;
   const View& TheView;
   const Settings& Config;
   FrameReport& Report;
@@ -543,13 +546,13 @@ InputForm preferredInput(Backend backend)
            : InputForm::BezierPatches;
 }
 
-FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& settings, Method method, GBuffer& out)
+FrameReport render(
+  const Scene& scene, const View& view, const Settings& settings, Method method, GBuffer& out)
 {
   return dispatch(
     settings, method,
-    [&](FrameReport& report) { cuda::render(patches, view, settings, out, report); },
-    [&](FrameReport& report) { Renderer(patches, view, settings, report).run(method, out); });
+    [&](FrameReport& report) { cuda::render(scene, view, settings, out, report); },
+    [&](FrameReport& report) { Renderer(scene, view, settings, report).run(method, out); });
 }
 
 std::vector<BezierVolume<double>> extractElements(const NurbsVolumes& volumes)
@@ -599,10 +602,10 @@ FrameReport render(const NurbsVolumes& volumes, const View& view, const Settings
     });
 }
 
-FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
-  const Settings& settings, Method method, GBuffer& out)
+FrameReport render(
+  const Scene& scene, const Camera& camera, const Settings& settings, Method method, GBuffer& out)
 {
-  return render(patches, makeView(camera, settings.width, settings.height), settings, method, out);
+  return render(scene, makeView(camera, settings.width, settings.height), settings, method, out);
 }
 
 } // namespace sst

@@ -33,24 +33,27 @@ size_t partsFor(size_t patches, int threads)
   return std::min(patches, size_t(threads) * 8);
 }
 
-/// Whether control points of `channels` values hold the settings' surface and colour attributes.
-bool holdsAttributes(int channels, const Settings& s)
+/// Whether control points of `channels` values hold the settings' surface attribute (a volume's)
+/// and colour attribute.
+bool holdsAttributes(int channels, bool volume, const Settings& s)
 {
-  return s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels &&
-         (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels);
+  const bool surface =
+    !volume || (s.surfaceAttribute >= 0 && kFirstAttributeChannel + s.surfaceAttribute < channels);
+  return surface && (s.colorAttribute < 0 || kFirstAttributeChannel + s.colorAttribute < channels);
 }
 
-/// Empty when control points of `channels` values hold the settings' surface and colour
-/// attributes; otherwise the problem, to follow the name of what has them.
-std::string attributeProblem(int channels, const Settings& s)
+/// Empty when control points of `channels` values hold the attributes the settings need of a
+/// volume or a surface; otherwise the problem, to follow the name of what has them.
+std::string attributeProblem(int channels, bool volume, const Settings& s)
 {
-  if (holdsAttributes(channels, s))
+  if (holdsAttributes(channels, volume, s))
   {
     return std::string();
   }
-  return "has " + std::to_string(channels - kFirstAttributeChannel) +
-         " attributes; the surface uses " + std::to_string(s.surfaceAttribute) + ", the colour " +
-         std::to_string(s.colorAttribute);
+  const std::string has =
+    "has " + std::to_string(channels - kFirstAttributeChannel) + " attributes; ";
+  return has + (volume ? "the surface uses " + std::to_string(s.surfaceAttribute) + ", " : "") +
+         "the colour " + std::to_string(s.colorAttribute);
 }
 
 /// Bytes in MiB, to a tenth below 10 MiB, rounded up (a need) or down (a budget), so that a need
@@ -76,12 +79,13 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
   const Settings& settings, FrameReport& report)
 {
   const int count = (degree[0] + 1) * (degree[1] + 1) * (degree[2] + 1) * kScreenChannels;
+  const double isovalue = root.iso >= 0 ? settings.isovalues[root.iso] : 0.0;
   // Analyses a node: keeps it when it lies in front of the eye, drops it when it cannot show
   // surface; true when it straddles the eye plane and must be split.
   auto straddles = [&](Node& node, const double* values)
   {
     const VolumeView<const double> view(values, degree, kScreenChannels);
-    node.info = analyzeNodeBounds(view, settings.isovalues[node.iso], plan.frame.clip);
+    node.info = analyzeNodeBounds(view, isovalue, plan.frame.clip);
     report.constantAttributeRoots += node.level == 0 && node.info.constantAttribute ? 1 : 0;
     if (!worthKeeping(node.info, plan.frame))
     {
@@ -112,18 +116,18 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
     std::vector<double> straddlingPool;
     for (const Node& node : level)
     {
+      const VolumeView<const double> view(pool.data() + node.coeff, degree, kScreenChannels);
+      const int children = childCount(view);
       if (node.level >= settings.maxSubdivisionDepth ||
-          straddlingPool.size() / count + 8 > kMaxEyePlaneNodes)
+          straddlingPool.size() / count + children > kMaxEyePlaneNodes)
       {
         ++report.droppedAtEyePlane;
         continue;
       }
       const size_t offset = straddlingPool.size();
-      straddlingPool.resize(offset + size_t(8) * count);
-      splitMidpoint<double, 3>(
-        VolumeView<const double>(pool.data() + node.coeff, degree, kScreenChannels),
-        straddlingPool.data() + offset);
-      for (int c = 0; c < 8; ++c)
+      straddlingPool.resize(offset + size_t(children) * count);
+      splitNode(view, straddlingPool.data() + offset);
+      for (int c = 0; c < children; ++c)
       {
         Node child = childOf(node, c);
         child.coeff = offset + size_t(c) * count;
@@ -140,26 +144,32 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
 
 bool usableShape(const int* degree, int channels, const Settings& s)
 {
-  for (int d = 0; d < 3; ++d)
+  const bool volume = degree[2] != 0;
+  for (int d = 0; d < (volume ? 3 : 2); ++d)
   {
     if (degree[d] < 1 || degree[d] > kMaxDegree)
     {
       return false;
     }
   }
-  return channels >= kFirstAttributeChannel && holdsAttributes(channels, s);
+  return channels >= kFirstAttributeChannel && holdsAttributes(channels, volume, s);
+}
+
+int surfaceChannelOf(const int* degree, const Settings& s)
+{
+  return degree[2] == 0 ? kWeightChannel : kFirstAttributeChannel + s.surfaceAttribute;
 }
 
 void checkAttributes(int channels, const Settings& s, const std::string& name)
 {
-  const std::string problem = attributeProblem(channels, s);
+  const std::string problem = attributeProblem(channels, true, s);
   if (!problem.empty())
   {
     throw std::invalid_argument(name + " " + problem);
   }
 }
 
-AttributeRange checkPatches(const std::vector<BezierVolume<double>>& patches, const Settings& s)
+AttributeRange checkPatches(const Scene& scene, const Settings& s)
 {
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
   // Per part: the attribute's range, or the first bad patch and its problem. Parts are joined in
@@ -169,26 +179,32 @@ AttributeRange checkPatches(const std::vector<BezierVolume<double>>& patches, co
     double lo = kInfinity, hi = -kInfinity;
     std::string problem;
   };
-  const size_t parts = partsFor(patches.size(), threadCount(s));
+  const size_t parts = partsFor(scene.size(), threadCount(s));
   std::vector<Part> found(parts);
-  parallelParts(patches.size(), parts, threadCount(s),
+  parallelParts(scene.size(), parts, threadCount(s),
     [&](size_t k, size_t begin, size_t end)
     {
       Part& part = found[k];
       for (size_t p = begin; p < end; ++p)
       {
-        const auto patch = patches[p].view();
-        const std::string problem = checkPatch<double, 3>(patch);
+        const auto patch = scene[p];
+        const bool volume = !isSurface(patch);
+        const std::string problem =
+          volume ? checkPatch<double, 3>(patch) : checkPatch<double, 2>(surfaceOf(patch));
         if (!problem.empty())
         {
-          part.problem = "patch " + std::to_string(p) + ": " + problem;
+          part.problem = scene.name(p) + ": " + problem;
           return;
         }
-        const std::string attributes = attributeProblem(patch.channels, s);
+        const std::string attributes = attributeProblem(patch.channels, volume, s);
         if (!attributes.empty())
         {
-          part.problem = "patch " + std::to_string(p) + " " + attributes;
+          part.problem = scene.name(p) + " " + attributes;
           return;
+        }
+        if (!volume)
+        {
+          continue;
         }
         double lo, hi;
         rationalRange(patch, attribute, kWeightChannel, lo, hi);
@@ -260,7 +276,7 @@ size_t loopBudgetBytes(const Settings& s)
   return s.memoryBudgetBytes > image ? s.memoryBudgetBytes - image : 0;
 }
 
-void checkSettings(const Settings& s)
+void checkSettings(const Settings& s, bool volumes)
 {
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
   {
@@ -275,7 +291,7 @@ void checkSettings(const Settings& s)
       " bytes a pixel), more than the memory budget of " + mebibytes(s.memoryBudgetBytes, false) +
       ": lower the resolution or raise the budget");
   }
-  if (s.isovalues.empty())
+  if (volumes && s.isovalues.empty())
   {
     throw std::invalid_argument("no isovalue given");
   }
@@ -308,10 +324,10 @@ void checkSettings(const Settings& s)
   }
 }
 
-FramePlan planView(
-  const View& view, const Settings& s, const AttributeRange& attribute, FrameReport& report)
+FramePlan planView(const View& view, const Settings& s, const AttributeRange& attribute,
+  bool volumes, FrameReport& report)
 {
-  checkSettings(s);
+  checkSettings(s, volumes);
   const double determinant = glm::determinant(view.worldToClip);
   if (!(std::isfinite(determinant) && determinant != 0))
   {
@@ -360,33 +376,31 @@ FramePlan planView(
   return plan;
 }
 
-FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& s, FrameReport& report)
+FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, FrameReport& report)
 {
   const auto start = std::chrono::steady_clock::now();
-  const AttributeRange range = checkPatches(patches, s);
+  const AttributeRange range = checkPatches(scene, s);
   report.msInput =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  FramePlan plan = planView(view, s, range, report);
-  const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
+  FramePlan plan = planView(view, s, range, scene.volumeCount() > 0, report);
   const int colour = s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1;
   // Shading patches go where their sizes put them.
-  plan.shadingOffsets.resize(patches.size());
+  plan.shadingOffsets.resize(scene.size());
   size_t shadingValues = 0;
-  for (size_t p = 0; p < patches.size(); ++p)
+  for (size_t p = 0; p < scene.size(); ++p)
   {
     plan.shadingOffsets[p] = shadingValues;
-    shadingValues += size_t(patches[p].view().pointCount()) * kShadeChannels;
+    shadingValues += size_t(scene[p].pointCount()) * kShadeChannels;
   }
   plan.shadingPool.resize(shadingValues);
   // Screen patches, then the subdivision-tree roots: one per (patch, isovalue) with a possible
   // sign change; roots straddling the eye plane are split until their parts lie in front of or
   // behind it. Found per part of the patches and joined in order: the same plan for any thread
   // count.
-  const size_t parts = partsFor(patches.size(), plan.threads);
+  const size_t parts = partsFor(scene.size(), plan.threads);
   std::vector<FramePlan> found(parts);
   std::vector<FrameReport> partReports(parts);
-  parallelParts(patches.size(), parts, plan.threads,
+  parallelParts(scene.size(), parts, plan.threads,
     [&](size_t k, size_t begin, size_t end)
     {
       FramePlan& part = found[k];
@@ -395,14 +409,17 @@ FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View
       std::vector<double> screen;
       for (size_t p = begin; p < end; ++p)
       {
-        const auto world = patches[p].view();
+        const auto world = scene[p];
+        const int attribute = surfaceChannelOf(world.degree, s);
         screen.resize(size_t(world.pointCount()) * kScreenChannels);
         makeScreenPatch<double>(world, plan.windowFromWorld, attribute, screen.data());
         makeShadingPatch(
           world, attribute, colour, plan.shadingPool.data() + plan.shadingOffsets[p]);
-        for (int iso = 0; iso < int(s.isovalues.size()); ++iso)
+        const int roots = rootsOf(world.degree, s);
+        for (int root = 0; root < roots; ++root)
         {
-          addRoot(part, world.degree, rootNode(int(p), iso), screen.data(), s, partReport);
+          addRoot(part, world.degree, rootNode(int(p), isSurface(world) ? -1 : root), screen.data(),
+            s, partReport);
         }
       }
     });

@@ -46,14 +46,18 @@ struct AttributeRange
 };
 
 /// Checks every patch against the settings (degrees, values, weights, attribute indices) and
-/// returns the surface attribute's range over all patches. Throws std::invalid_argument naming
+/// returns the surface attribute's range over the volumes. Throws std::invalid_argument naming
 /// the first bad patch and its problem. Runs on threadCount(settings) threads.
-AttributeRange checkPatches(
-  const std::vector<BezierVolume<double>>& patches, const Settings& settings);
+AttributeRange checkPatches(const Scene& scene, const Settings& settings);
 
-/// Whether patches of these degrees and channels suit the settings: what checkPatches tests
-/// besides control point values, for drivers that test those on the device.
+/// Whether patches of these degrees (a surface's third 0, flatVolume) and channels suit the
+/// settings: what checkPatches tests besides control point values, for drivers that test those
+/// on the device.
 bool usableShape(const int* degree, int channels, const Settings& settings);
+
+/// The world channel of the attribute a patch's screen and shading patches carry as the
+/// surface attribute: the settings' for a volume, the weight for a surface (which has none).
+int surfaceChannelOf(const int* degree, const Settings& settings);
 
 /// Both drivers index (pixel, patch) pairs, tuples, nodes and hits with 32 bits: throws
 /// std::length_error, naming the count and what it counts, when a frame needs more than
@@ -90,13 +94,13 @@ int drawInBands(const std::vector<int>& bands, FrameConstants& frame, Pass pass)
 }
 
 /// Throws std::invalid_argument for bad settings (image size, isovalues, depth cap, transfer
-/// chunk, clipping plane count).
-void checkSettings(const Settings& settings);
+/// chunk, clipping plane count). A scene without volumes needs no isovalue.
+void checkSettings(const Settings& settings, bool volumes = true);
 
 /// The plan's view part (frame constants, window matrix, clipping planes), without roots.
 /// Throws std::invalid_argument for bad settings.
-FramePlan planView(
-  const View& view, const Settings& settings, const AttributeRange& attribute, FrameReport& report);
+FramePlan planView(const View& view, const Settings& settings, const AttributeRange& attribute,
+  bool volumes, FrameReport& report);
 
 /// Appends a root (`coeffs`: its screen patch) to the plan's initial nodes if it may show
 /// surface. A root straddling the eye plane has no finite window box: it is split breadth first
@@ -106,10 +110,16 @@ FramePlan planView(
 void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs,
   const Settings& settings, FrameReport& report);
 
+/// The roots of patch p: one per isovalue for a volume, one (iso -1) for a surface.
+inline int rootsOf(const int* degree, const Settings& settings)
+{
+  return degree[2] == 0 ? 1 : int(settings.isovalues.size());
+}
+
 /// All of the above for every patch and isovalue, plus the shading patches, on the settings'
 /// threads (the same plan for any thread count).
-FramePlan planFrame(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& settings, FrameReport& report);
+FramePlan planFrame(
+  const Scene& scene, const View& view, const Settings& settings, FrameReport& report);
 
 } // namespace sst
 } // namespace iga

@@ -700,8 +700,12 @@ TEST(DeviceEngineCaps, MemoryModelCuts)
   EXPECT_EQ(nextTupleRoom(1000, 0, 0, 1000 - 3 * kBytesPerTuple), 3u);
   EXPECT_EQ(nextTupleRoom(1000, 0, 1000 / kBytesPerWorkItem + 1, 0), 0u);
   EXPECT_EQ(nextTupleRoom(1000, 1001, 0, 0), 0u);
-  // Splitting: the children, their copy and one tuple per failed one.
-  EXPECT_EQ(splitBytes(10, 3), 2 * (8 * kBytesPerNode + 80 * sizeof(double)) + 3 * kBytesPerTuple);
+  // Splitting: the children, their copy and one tuple per failed one; a surface's four
+  // children take eight slots.
+  EXPECT_EQ(
+    splitBytes(10, 8, 3), 2 * (8 * kBytesPerNode + 80 * sizeof(double)) + 3 * kBytesPerTuple);
+  EXPECT_EQ(
+    splitBytes(10, 4, 3), 2 * (8 * kBytesPerNode + 40 * sizeof(double)) + 3 * kBytesPerTuple);
 }
 
 /// Host arrays read as one sequence: every range of the parts' concatenation, across empty

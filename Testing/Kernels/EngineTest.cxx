@@ -1,5 +1,6 @@
 // The isosurface engine against analytic surfaces (spheres, exact rational cylinders, planes
 // across a collapsed axis), the three methods against each other, and its failure modes.
+#include "AnalyticTruth.h"
 #include "EngineScenes.h"
 
 #include <gtest/gtest.h>
@@ -16,116 +17,7 @@ namespace
 using iga::sst::GBuffer;
 using iga::sst::Method;
 using iga::sst::Settings;
-
-iga::Camera makeCamera(const glm::dvec3& position, const glm::dvec3& focal, const glm::dvec3& up,
-  double angle, const double* bounds)
-{
-  iga::Camera camera;
-  camera.position = position;
-  camera.focalPoint = focal;
-  camera.viewUp = up;
-  camera.viewAngle = angle;
-  iga::fitClippingRange(camera, bounds);
-  return camera;
-}
-
-/// The ray through pixel (i, j)'s centre from the camera's geometry (not from its matrices).
-void pixelRay(const iga::Camera& camera, int width, int height, int i, int j, glm::dvec3& origin,
-  glm::dvec3& direction)
-{
-  const glm::dvec3 forward = iga::viewDirection(camera);
-  const glm::dvec3 side = glm::normalize(glm::cross(forward, camera.viewUp));
-  const glm::dvec3 up = glm::cross(side, forward);
-  const double t = std::tan(camera.viewAngle * M_PI / 360.0);
-  const double x = (i + 0.5) / width * 2 - 1, y = (j + 0.5) / height * 2 - 1;
-  origin = camera.position;
-  direction = forward + x * t * double(width) / height * side + y * t * up;
-}
-
-/// An analytic first hit: ray parameter (inf for none) and whether the ray passes so close to the
-/// surface's boundary or silhouette that a pixel may go either way.
-struct Truth
-{
-  double t;
-  bool ambiguous;
-};
-
-struct Comparison
-{
-  int covered = 0, mismatched = 0, ambiguous = 0;
-  double maxPositionError = 0, maxNormalError = 0;
-};
-
-/// Compares the first hits with the truth at every pixel; `normalAt` gives the true unit normal
-/// at a point (up to sign).
-Comparison compare(const GBuffer& gbuffer, const iga::Camera& camera,
-  std::function<Truth(const glm::dvec3&, const glm::dvec3&)> truth,
-  std::function<glm::dvec3(const glm::dvec3&)> normalAt)
-{
-  Comparison result;
-  for (int j = 0; j < gbuffer.height; ++j)
-  {
-    for (int i = 0; i < gbuffer.width; ++i)
-    {
-      glm::dvec3 o, dir;
-      pixelRay(camera, gbuffer.width, gbuffer.height, i, j, o, dir);
-      const Truth expected = truth(o, dir);
-      const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
-      if (expected.ambiguous)
-      {
-        ++result.ambiguous;
-        continue;
-      }
-      if ((hit != nullptr) != std::isfinite(expected.t))
-      {
-        ++result.mismatched;
-        continue;
-      }
-      if (!hit)
-        continue;
-      ++result.covered;
-      const glm::dvec3 p = o + expected.t * dir;
-      const glm::dvec3 n = normalAt(p);
-      double error = 0;
-      for (int d = 0; d < 3; ++d)
-        error = std::max(error, std::abs(hit->position[d] - p[d]));
-      const double dotn = glm::dot(hit->normal, n);
-      result.maxPositionError = std::max(result.maxPositionError, error);
-      result.maxNormalError = std::max(result.maxNormalError, 1 - std::abs(dotn));
-    }
-  }
-  return result;
-}
-
-/// Nearest t > tMin solving the quadratic a t^2 + b t + c = 0 that passes `accept`.
-double firstRoot(
-  double a, double b, double c, std::function<bool(double)> accept, double& discriminant)
-{
-  discriminant = b * b - 4 * a * c;
-  if (discriminant < 0)
-    return INFINITY;
-  const double s = std::sqrt(discriminant);
-  double roots[2] = { (-b - s) / (2 * a), (-b + s) / (2 * a) };
-  for (double t : roots)
-    if (t > 0 && accept(t))
-      return t;
-  return INFINITY;
-}
-
-Truth sphereTruth(const glm::dvec3& o, const glm::dvec3& d)
-{
-  const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
-  double disc;
-  const double t = firstRoot(
-    a, b, c, [](double) { return true; }, disc);
-  // Grazing rays (within 1e-7 of tangency, relative) may fall either way.
-  return { t, std::abs(disc) < 1e-6 * b * b };
-}
-
-glm::dvec3 sphereNormal(const glm::dvec3& p)
-{
-  return glm::normalize(p);
-}
+using namespace igatest::truth;
 
 GBuffer renderSet(const iga::VolumeSet<double>& set, const iga::Camera& camera, Settings settings,
   Method method = Method::SharedSubdivisionTree, iga::sst::FrameReport* report = nullptr)
@@ -334,30 +226,6 @@ TEST(Engine, RejectsBadClippingPlanes)
   EXPECT_THROW(
     iga::sst::render(set.patches, camera, settings, Method::SharedSubdivisionTree, gbuffer),
     std::invalid_argument);
-}
-
-/// First hit on the lateral surface x^2 + y^2 = r^2, z in [z0, z1].
-Truth cylinderTruth(const glm::dvec3& o, const glm::dvec3& d, double r, double z0, double z1)
-{
-  const double a = d[0] * d[0] + d[1] * d[1], b = 2 * (o[0] * d[0] + o[1] * d[1]),
-               c = o[0] * o[0] + o[1] * o[1] - r * r;
-  double disc;
-  bool nearRim = false;
-  const double t = firstRoot(
-    a, b, c,
-    [&](double t)
-    {
-      const double z = o[2] + t * d[2];
-      nearRim = nearRim || std::abs(z - z0) < 1e-6 || std::abs(z - z1) < 1e-6;
-      return z >= z0 && z <= z1;
-    },
-    disc);
-  return { t, nearRim || std::abs(disc) < 1e-6 * b * b };
-}
-
-glm::dvec3 cylinderNormal(const glm::dvec3& p)
-{
-  return glm::normalize(glm::dvec3(p[0], p[1], 0));
 }
 
 TEST(Engine, ExactRationalCylinderInTheTube)

@@ -78,6 +78,30 @@ using VolumeView = PatchView<T, 3>;
 template<class T>
 using SurfaceView = PatchView<T, 2>;
 
+/// The engine stores a surface as a volume of degree 0 in its third direction (the same
+/// coefficients in the same order), so that one node layout and one loop serve both; volumes
+/// have degrees of at least 1 in every direction.
+template<class T>
+IGA_HD VolumeView<T> flatVolume(const SurfaceView<T>& surface)
+{
+  const int degree[3] = { surface.degree[0], surface.degree[1], 0 };
+  return VolumeView<T>(surface.coeffs, degree, surface.channels);
+}
+
+/// Whether a view holds a surface stored by flatVolume.
+template<class T>
+IGA_HD bool isSurface(const VolumeView<T>& patch)
+{
+  return patch.degree[2] == 0;
+}
+
+/// The surface a flatVolume view stores.
+template<class T>
+IGA_HD SurfaceView<T> surfaceOf(const VolumeView<T>& flat)
+{
+  return SurfaceView<T>(flat.coeffs, flat.degree, flat.channels);
+}
+
 /// Owning patch for host code.
 template<class T, int Dim>
 class BezierPatch

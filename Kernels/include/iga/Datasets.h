@@ -375,6 +375,53 @@ VolumeSet<T> makeCheese()
   return makeSpheresInBox(breaks, roundedBoxField<T>(centre, half), holes, { "cheese", "holes" });
 }
 
+/// Surfaces plus the names of their attributes, as VolumeSet.
+template<class T>
+struct SurfaceSet
+{
+  std::vector<BezierSurface<T>> patches;
+  std::vector<std::string> attributeNames;
+};
+
+/// The sphere of `radius` about `centre` exactly, as 8 biquadratic rational patches: per octant
+/// a quarter meridian (pole to equator, u) swept about the z axis by a quarter circle (v), both
+/// rational quadratic arcs with middle weight sqrt(2)/2. Each patch's pole edge is collapsed.
+/// Attribute "height" = z - centre z, exact (its control values are the points' z).
+template<class T>
+SurfaceSet<T> makeSphereSurfaces(double radius, const double* centre)
+{
+  const double h = std::sqrt(0.5);
+  // Quarter meridian in the (r, z) plane from the north pole, and a quarter circle in (x, y).
+  const double meridian[3][3] = { { 0, 1, 1 }, { 1, 1, h }, { 1, 0, 1 } }; // r, z, weight
+  const double arc[3][3] = { { 1, 0, 1 }, { 1, 1, h }, { 0, 1, 1 } };      // x, y, weight
+  SurfaceSet<T> set;
+  set.attributeNames = { "height" };
+  const int degree[2] = { 2, 2 };
+  for (int octant = 0; octant < 8; ++octant)
+  {
+    const double quarter = (octant % 4) * 1.5707963267948966, c = std::cos(quarter),
+                 sn = std::sin(quarter), zSign = octant < 4 ? 1.0 : -1.0;
+    BezierSurface<T> patch(degree, kFirstAttributeChannel + 1);
+    for (int j = 0; j < 3; ++j)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        const double x = arc[j][0] * c - arc[j][1] * sn, y = arc[j][0] * sn + arc[j][1] * c;
+        const double r = meridian[i][0], z = zSign * meridian[i][1];
+        const double w = meridian[i][2] * arc[j][2];
+        T* cp = patch.view().point(j * 3 + i);
+        cp[0] = T(w * (centre[0] + radius * r * x));
+        cp[1] = T(w * (centre[1] + radius * r * y));
+        cp[2] = T(w * (centre[2] + radius * z));
+        cp[kWeightChannel] = T(w);
+        cp[kFirstAttributeChannel] = T(w * radius * z);
+      }
+    }
+    set.patches.push_back(std::move(patch));
+  }
+  return set;
+}
+
 /// One of the 32 bicubic Bézier patches of the Utah teapot (standard layout, weights 1).
 template<class T>
 BezierSurface<T> makeTeapotSurface(int index)

@@ -117,8 +117,8 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
       const uint8_t state = split[tuples[t].node];
       if (outcome[t] == Failed && state == Split)
       {
-        const size_t first = 8 * size_t(splitIndex[tuples[t].node]);
-        for (size_t c = first; c < first + 8; ++c)
+        const size_t first = kChildSlots * size_t(splitIndex[tuples[t].node]);
+        for (size_t c = first; c < first + kChildSlots; ++c)
         {
           if (keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
           {
@@ -136,7 +136,7 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
     });
   s.exec.scan(newCounts, tupleCount);
   // The memory cap on the tuples handed on: the tuples whose next ones pass it give them up.
-  const uint64_t itemCount = s.ItemNodes.size(), childCount = 8 * allowed;
+  const uint64_t itemCount = s.ItemNodes.size(), childCount = kChildSlots * allowed;
   const uint64_t childValueCount = s.ChildPool.size();
   const uint64_t budget = s.budget;
   const uint64_t* carriedBytes = raw(s.NodeBytes);
@@ -175,8 +175,8 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
         addAtomically(&tallies[TuplesOverBudget], 1);
         return;
       }
-      const size_t first = 8 * size_t(splitIndex[tuples[t].node]);
-      for (size_t c = first; c < first + 8; ++c)
+      const size_t first = kChildSlots * size_t(splitIndex[tuples[t].node]);
+      for (size_t c = first; c < first + kChildSlots; ++c)
       {
         if (keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
         {

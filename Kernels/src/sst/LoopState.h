@@ -20,7 +20,7 @@ namespace sst
 /// What the loop knows of an input patch: its shape and where its data lie.
 struct PatchShape
 {
-  int degree[3];
+  int degree[3];    ///< a surface's third is 0 (flatVolume)
   int channels;     ///< of the world patch
   int screenValues; ///< control points times kScreenChannels (= kShadeChannels)
   size_t world;     ///< offset of its world coefficients
@@ -28,6 +28,12 @@ struct PatchShape
 };
 
 static_assert(kScreenChannels == kShadeChannels, "screen and shading patches share offsets");
+
+/// Children of a midpoint split of the patch's nodes: 8 for a volume, 4 for a surface.
+IGA_HD inline int childCount(const PatchShape& shape)
+{
+  return shape.degree[2] == 0 ? 4 : 8;
+}
 
 IGA_HD inline VolumeView<const double> viewOf(
   const Node& node, const double* pool, const PatchShape* shapes)

@@ -1,8 +1,9 @@
 // Stage 4, subdivision: the nodes some pixel failed on, and the implicit ones whose boxes still
-// cover pixels, are split 8-way at the midpoint, as many as the memory budget allows (in order);
-// children without a sign change, off screen or outside the clip depth are not kept. Implicit
-// nodes beyond the budget are carried over to become tuples, explicit ones leave their pixels
-// unresolved. Also appends the solution stage's hits, whose count is read back here.
+// cover pixels, are split at the midpoint (8 ways for a volume, 4 for a surface), as many as the
+// memory budget allows (in order); children without a sign change, off screen or outside the clip
+// depth are not kept. Implicit nodes beyond the budget are carried over to become tuples, explicit
+// ones leave their pixels unresolved. Also appends the solution stage's hits, whose count is read
+// back here.
 #pragma once
 
 #include "sst/LoopState.h"
@@ -19,7 +20,7 @@ IGA_HD inline void finishChild(Node child, const double* childPool, const PatchS
   const FrameConstants& frame, size_t k, Node* children, uint8_t* keep, unsigned int* firstTuple)
 {
   const auto view = viewOf(child, childPool, shapes);
-  child.info = analyzeNodeBounds(view, frame.isovalues[child.iso], frame.clip);
+  child.info = analyzeNodeBounds(view, isovalueOf(child, frame), frame.clip);
   keep[k] = worthKeeping(child.info, frame) ? 1 : 0;
   firstTuple[k] = ~0u;
   if (child.implicit && keep[k])
@@ -27,6 +28,13 @@ IGA_HD inline void finishChild(Node child, const double* childPool, const PatchS
     analyzeNodeSolver(view, child.info);
   }
   children[k] = child;
+}
+
+/// A child slot a surface's split leaves empty: never kept.
+IGA_HD inline void emptySlot(size_t k, uint8_t* keep, unsigned int* firstTuple)
+{
+  keep[k] = 0;
+  firstTuple[k] = ~0u;
 }
 
 /// Which nodes to split (SplitFlags, SplitIndex, ToSplit, Deferred), the cap on them, and the
@@ -84,9 +92,10 @@ size_t chooseSplits(LoopState<Exec>& s)
       }
       const bool splits = split[n] == Split;
       const int values = shapes[nodes[n].patch].screenValues;
+      const int children = childCount(shapes[nodes[n].patch]);
       splitIndex[n] = splits ? 1 : 0;
-      childValues[n] = splits ? uint64_t(8) * values : 0;
-      splitCost[n] = splits ? splitBytes(values, failed[n]) : 0;
+      childValues[n] = splits ? uint64_t(children) * values : 0;
+      splitCost[n] = splits ? splitBytes(values, children, failed[n]) : 0;
       carriedBytes[n] = nodes[n].implicit && (waiting || splits) ? nodeBytes(1, values) : 0;
     });
   s.exec.scan(splitIndex, nodeCount);
@@ -141,12 +150,13 @@ size_t chooseSplits(LoopState<Exec>& s)
   return size_t(read[0]);
 }
 
-/// Splits the chosen nodes into Children (coefficients in ChildPool), KeepFlags saying which
-/// are kept.
+/// Splits the chosen nodes into Children, kChildSlots each (coefficients in ChildPool),
+/// KeepFlags saying which are kept: a surface's four empty slots never are.
 template<class Exec>
 void splitNodes(LoopState<Exec>& s, size_t allowed)
 {
-  checkIndexable(8 * allowed + s.NodeCount, "nodes"); // gatherNodes indexes them
+  const size_t slots = kChildSlots * allowed;
+  checkIndexable(slots + s.NodeCount, "nodes"); // gatherNodes indexes them
   const Node* nodes = raw(s.Nodes);
   const double* pool = raw(s.Pool);
   const PatchShape* shapes = s.shapes;
@@ -154,10 +164,10 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
   const uint32_t* toSplit = raw(s.ToSplit);
   const uint64_t* childValues = raw(s.ChildValues);
   double* childPool = raw(s.ChildPool);
-  Node* children = sized(s.Children, 8 * allowed);
-  uint8_t* keep = sized(s.KeepFlags, 8 * allowed);
+  Node* children = sized(s.Children, slots);
+  uint8_t* keep = sized(s.KeepFlags, slots);
   // The first tuple that moves to each child (the compaction's cap may stop those after it).
-  unsigned int* firstTuple = sized(s.FirstTuple, 8 * allowed);
+  unsigned int* firstTuple = sized(s.FirstTuple, slots);
   auto childAt = [=] IGA_HD(uint32_t n, int c)
   {
     Node child = childOf(nodes[n], c);
@@ -166,13 +176,19 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
   };
   if constexpr (Exec::kThreadPerChild)
   {
-    s.exec.forEach(8 * allowed,
+    s.exec.forEach(slots,
       [=] IGA_HD(size_t k)
       {
-        const uint32_t n = toSplit[k / 8];
-        const Node child = childAt(n, int(k % 8));
-        midpointChild<double, 3>(
-          viewOf(nodes[n], pool, shapes), int(k % 8), childPool + child.coeff);
+        const uint32_t n = toSplit[k / kChildSlots];
+        const int c = int(k % kChildSlots);
+        const auto parent = viewOf(nodes[n], pool, shapes);
+        if (c >= childCount(parent))
+        {
+          emptySlot(k, keep, firstTuple);
+          return;
+        }
+        const Node child = childAt(n, c);
+        nodeChild(parent, c, childPool + child.coeff);
         finishChild(child, childPool, shapes, frame, k, children, keep, firstTuple);
       });
   }
@@ -183,11 +199,13 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
       [=] IGA_HD(size_t k)
       {
         const uint32_t n = toSplit[k];
-        splitMidpoint<double, 3>(viewOf(nodes[n], pool, shapes), childPool + childValues[n]);
-        for (int c = 0; c < 8; ++c)
+        const auto parent = viewOf(nodes[n], pool, shapes);
+        splitNode(parent, childPool + childValues[n]);
+        for (int c = 0; c < kChildSlots; ++c)
         {
-          finishChild(
-            childAt(n, c), childPool, shapes, frame, 8 * k + c, children, keep, firstTuple);
+          c < childCount(parent) ? finishChild(childAt(n, c), childPool, shapes, frame,
+                                     kChildSlots * k + c, children, keep, firstTuple)
+                                 : emptySlot(kChildSlots * k + c, keep, firstTuple);
         }
       },
       kGrainSplit);

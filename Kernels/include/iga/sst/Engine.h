@@ -42,7 +42,7 @@ struct Settings
 {
   int width = 512;
   int height = 512;
-  std::vector<double> isovalues; ///< at least one
+  std::vector<double> isovalues; ///< at least one where the scene has volumes
   int surfaceAttribute = 0;      ///< attribute index (channel kFirstAttributeChannel + index)
   int colorAttribute = -1;       ///< attribute sampled at each hit, -1 for none
   bool firstHitOnly = true;      ///< the fast path: keep only the nearest hit per pixel
@@ -148,15 +148,53 @@ struct View
 /// The view of a camera for an image of width x height pixels.
 View makeView(const Camera& camera, int width, int height);
 
+/// What a frame draws: the isosurfaces of volumes (one per isovalue) and surfaces themselves,
+/// both world-space rational Bézier patches in the standard layout. Hits number the patches in
+/// one sequence, the volumes first (Hit::patch); a surface's hits have Hit::isovalue -1. A
+/// surface needs no attribute; it is coloured by Settings::colorAttribute where that is set.
+class Scene
+{
+public:
+  Scene(const std::vector<BezierVolume<double>>& volumes)
+    : Volumes(&volumes)
+  {
+  }
+  Scene(const std::vector<BezierVolume<double>>& volumes,
+    const std::vector<BezierSurface<double>>& surfaces)
+    : Volumes(&volumes)
+    , Surfaces(&surfaces)
+  {
+  }
+  size_t volumeCount() const { return this->Volumes->size(); }
+  size_t surfaceCount() const { return this->Surfaces ? this->Surfaces->size() : 0; }
+  size_t size() const { return this->volumeCount() + this->surfaceCount(); }
+  /// Patch p of the sequence; a surface as the engine stores it (flatVolume).
+  VolumeView<const double> operator[](size_t p) const
+  {
+    return p < this->volumeCount() ? (*this->Volumes)[p].view()
+                                   : flatVolume((*this->Surfaces)[p - this->volumeCount()].view());
+  }
+  /// "patch 3" for a volume, "surface 2" for a surface (counted among the surfaces).
+  std::string name(size_t p) const
+  {
+    return p < this->volumeCount() ? "patch " + std::to_string(p)
+                                   : "surface " + std::to_string(p - this->volumeCount());
+  }
+
+private:
+  const std::vector<BezierVolume<double>>* Volumes;
+  const std::vector<BezierSurface<double>>* Surfaces = nullptr;
+};
+
 /// Bytes a frame of the settings' size holds whatever it draws, out of
 /// Settings::memoryBudgetBytes: per pixel its arrays and a G-buffer of one hit.
 size_t imageBytes(const Settings& settings);
 
-/// Renders the isosurfaces of `patches` (world space, standard layout) as seen by `view`. Throws
+/// Renders the scene's isosurfaces and surfaces as seen by `view`. Throws
 /// std::invalid_argument naming the patch and the problem for bad input (degree, non-finite
 /// values, non-positive weights, missing attributes) or bad settings.
-FrameReport render(const std::vector<BezierVolume<double>>& patches, const View& view,
-  const Settings& settings, Method method, GBuffer& out);
+FrameReport render(
+  const Scene& scene, const View& view, const Settings& settings, Method method, GBuffer& out);
 
 /// The Bézier elements of NURBS volumes, in the engine's numbering (host extraction). Throws
 /// std::invalid_argument naming the volume and the problem for a malformed net.
@@ -168,12 +206,12 @@ FrameReport render(const NurbsVolumes& volumes, const View& view, const Settings
   Method method, GBuffer& out);
 
 /// The same for a camera.
-FrameReport render(const std::vector<BezierVolume<double>>& patches, const Camera& camera,
-  const Settings& settings, Method method, GBuffer& out);
+FrameReport render(
+  const Scene& scene, const Camera& camera, const Settings& settings, Method method, GBuffer& out);
 
 /// Data bounds (xmin, xmax, ymin, ymax, zmin, zmax) of the patches' control points, which contain
 /// the patches (convex hull property).
-void patchBounds(const std::vector<BezierVolume<double>>& patches, double* bounds);
+void patchBounds(const Scene& scene, double* bounds);
 
 const char* methodName(Method method);
 

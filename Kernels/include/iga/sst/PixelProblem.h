@@ -119,13 +119,37 @@ IGA_HD bool clippedAway(const VolumeView<const T>& node, const ClipPlanes<T>& cl
   return false;
 }
 
-/// What a node of a subdivision tree knows about itself for the pixel problem.
+/// Unknowns of a node's pixel problem: (u, v, w) with X/W, Y/W and A/V on target for a
+/// volume's isosurface, (u, v) with X/W and Y/W on target for a surface (stored by flatVolume).
+template<class T>
+IGA_HD int unknownsOf(const VolumeView<const T>& node)
+{
+  return isSurface(node) ? 2 : 3;
+}
+
+/// A node's coefficients as a patch of Dim parameters.
+template<int Dim, class T>
+IGA_HD PatchView<const T, Dim> patchOf(const VolumeView<const T>& node)
+{
+  if constexpr (Dim == 2)
+  {
+    return surfaceOf(node);
+  }
+  else
+  {
+    return node;
+  }
+}
+
+/// What a node of a subdivision tree knows about itself for the pixel problem. A surface's
+/// problem has two unknowns: it uses the leading 2x2 blocks of the matrices and the first two
+/// entries of the centre.
 template<class T>
 struct NodeInfo
 {
   Box3<T> box;             ///< window x, y (pixels) and NDC depth, valid when status is InFront
   ProjectionStatus status; ///< where the node lies relative to the eye plane
-  bool mayContainSurface;  ///< the attribute's Bernstein range contains the isovalue
+  bool mayContainSurface;  ///< a surface, or the attribute's Bernstein range holds the isovalue
   /// The attribute is constant (within rounding) and equal to the isovalue: its level set is a
   /// region, no surface, which no subdivision would settle; mayContainSurface is false.
   bool constantAttribute;
@@ -141,8 +165,8 @@ struct NodeInfo
   T centreWeights[2];              ///< W and V at the centre
 };
 
-/// The cheap part of a node's analysis: window box, eye-plane status, sign change, clip depth
-/// and clipping planes.
+/// The cheap part of a node's analysis: window box, eye-plane status, sign change (volumes),
+/// clip depth and clipping planes.
 template<class T>
 IGA_HD NodeInfo<T> analyzeNodeBounds(
   const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip = ClipPlanes<T>())
@@ -150,7 +174,8 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(
   NodeInfo<T> info;
   info.status = projectedBounds(node, glm::mat<4, 4, T>(T(1)), info.box);
   T lo = T(0), hi = T(0);
-  const bool known = rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi);
+  const bool known =
+    !isSurface(node) && rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi);
   const bool containsIsovalue = lo <= isovalue && isovalue <= hi;
   info.constantAttribute =
     known && containsIsovalue &&
@@ -173,6 +198,216 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(
   return info;
 }
 
+enum class TupleOutcome
+{
+  Hit,       ///< a root, within the clip range and on the kept side of the clipping planes
+  Miss,      ///< provably no visible root of this pixel in this node
+  Undecided, ///< no certificate or Newton failed: the node must be split for this pixel
+};
+
+/// The residual G(u) = (X - x W, Y - y W, A - iso V) at a control point; a surface's problem
+/// takes its first two entries.
+template<class T>
+IGA_HD void pixelResidual(const T* cp, T x, T y, T isovalue, T* g)
+{
+  g[0] = cp[kScreenX] - x * cp[kScreenW];
+  g[1] = cp[kScreenY] - y * cp[kScreenW];
+  g[2] = cp[kScreenAttribute] - isovalue * cp[kScreenWeight];
+}
+
+/// True when the pixel's ray provably misses the surface inside the node: the residual
+/// G(u) = (X - x W, Y - y W[, A - iso V]) is a polynomial whose Bernstein coefficients G_i span
+/// a convex hull that holds every value of G, so a direction n with n . G_i > 0 for all i
+/// excludes a root. Here n is the coefficients' mean, in 3D (volumes) and in the window plane:
+/// the directions at hand for a node without centre data. This drops (pixel, node) pairs whose
+/// box covers the pixel although the surface piece inside does not, which would otherwise fail
+/// Newton and force subdivision.
+template<class T>
+IGA_HD bool excludesPixel(const VolumeView<const T>& node, int i, int j, T isovalue)
+{
+  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
+  const int count = node.pointCount();
+  T mean[3] = { T(0), T(0), T(0) };
+  for (int p = 0; p < count; ++p)
+  {
+    T g[3];
+    pixelResidual(node.point(p), x, y, isovalue, g);
+    for (int c = 0; c < 3; ++c)
+    {
+      mean[c] += g[c];
+    }
+  }
+  bool separated3 = !isSurface(node), separated2 = true;
+  for (int p = 0; p < count && (separated3 || separated2); ++p)
+  {
+    T g[3];
+    pixelResidual(node.point(p), x, y, isovalue, g);
+    const T planar = mean[0] * g[0] + mean[1] * g[1];
+    separated2 = separated2 && planar > T(0);
+    separated3 = separated3 && planar + mean[2] * g[2] > T(0);
+  }
+  return separated3 || separated2;
+}
+
+namespace detail
+{
+
+template<class T, int Dim>
+IGA_HD void analyzeNodeSolver(const VolumeView<const T>& node, NodeInfo<T>& info)
+{
+  Interval<T> scaled[Dim][Dim], jacobian[Dim][Dim];
+  if (!rationalJacobianHull(patchOf<Dim>(node), pixelRows().rows, scaled, jacobian))
+  {
+    return;
+  }
+  info.certified = certifyUniqueRoot<T, Dim>(scaled);
+  glm::mat<Dim, Dim, T> inverse, spread;
+  info.canExclude = preconditioner<T, Dim>(jacobian, inverse, spread);
+  info.inverse = glm::mat<3, 3, T>(inverse);
+  info.spread = glm::mat<3, 3, T>(spread);
+}
+
+template<class T, int Dim>
+IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info)
+{
+  const T centre[3] = { T(0.5), T(0.5), T(0.5) };
+  T values[kScreenChannels], derivatives[Dim * kScreenChannels];
+  glm::mat<Dim, Dim, T> gradients; // column r: the gradient of row r (J transposed)
+  evaluateHomogeneous<T, Dim>(patchOf<Dim>(node), centre, values, derivatives);
+  const PixelRows rows = pixelRows();
+  info.centre[2] = T(0);
+  for (int r = 0; r < Dim; ++r)
+  {
+    info.centre[r] = rationalValue<T, Dim>(values, derivatives, kScreenChannels,
+      rows.rows[r].numerator, rows.rows[r].denominator, &gradients[r][0]);
+  }
+  info.centreWeights[0] = values[kScreenW];
+  info.centreWeights[1] = values[kScreenWeight];
+  glm::mat<Dim, Dim, T> inverse;
+  info.hasCentre = invertMatrix<T, Dim>(glm::transpose(gradients), inverse);
+  info.centreInverse = glm::mat<3, 3, T>(inverse);
+}
+
+template<class T, int Dim>
+IGA_HD bool excludesPixelAlongRows(
+  const VolumeView<const T>& node, const NodeInfo<T>& info, int i, int j, T isovalue, int rows)
+{
+  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
+  const T weights[3] = { info.centreWeights[0], info.centreWeights[0], info.centreWeights[1] };
+  T n[Dim][Dim];
+  bool positive[Dim], negative[Dim];
+  for (int d = 0; d < Dim; ++d)
+  {
+    for (int c = 0; c < Dim; ++c)
+    {
+      n[d][c] = info.centreInverse[c][d] / weights[c];
+    }
+    positive[d] = negative[d] = (rows >> d & 1) != 0;
+  }
+  const int count = node.pointCount();
+  for (int p = 0; p < count; ++p)
+  {
+    T g[3];
+    pixelResidual(node.point(p), x, y, isovalue, g);
+    bool open = false;
+    for (int d = 0; d < Dim; ++d)
+    {
+      T h = T(0);
+      for (int c = 0; c < Dim; ++c)
+      {
+        h += n[d][c] * g[c];
+      }
+      positive[d] = positive[d] && h > T(0);
+      negative[d] = negative[d] && h < T(0);
+      open = open || positive[d] || negative[d];
+    }
+    if (!open)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+template<class T, int Dim>
+IGA_HD TupleOutcome solvePixel(const VolumeView<const T>& node, int i, int j, T isovalue,
+  const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
+{
+  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
+  T values[kScreenChannels];
+  const NewtonResult<T, Dim> result =
+    solveNewton<T, Dim>(patchOf<Dim>(node), pixelRows().rows, target, tolerance, start, {}, values);
+  if (result.status != NewtonStatus::Converged || !(values[kScreenW] > T(0)))
+  {
+    return TupleOutcome::Undecided;
+  }
+  ndcDepth = values[kScreenZ] / values[kScreenW];
+  u[2] = T(0);
+  for (int d = 0; d < Dim; ++d)
+  {
+    u[d] = result.u[d];
+  }
+  return ndcDepth >= T(-1) && ndcDepth <= T(1) && clipKeeps(clip, values) ? TupleOutcome::Hit
+                                                                          : TupleOutcome::Miss;
+}
+
+template<class T, int Dim>
+IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T>& info, int i,
+  int j, T isovalue, const T* tolerance, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
+{
+  // A large uncertified node is split whatever its pixels' exclusions say, and its children's
+  // boxes shed most of those pixels anyway: skip the tests there. Small ones keep them, as
+  // silhouette nodes are rarely certified.
+  if (!info.certified &&
+      (info.box.hi[0] - info.box.lo[0]) * (info.box.hi[1] - info.box.lo[1]) > T(256))
+  {
+    return TupleOutcome::Undecided;
+  }
+  // O(1) per tuple first: the node's centre data minus the pixel's offset.
+  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
+  glm::vec<Dim, T> residual;
+  for (int r = 0; r < Dim; ++r)
+  {
+    residual[r] = info.centre[r] - target[r];
+  }
+  const T slack = NewtonSettings<T>().domainSlack;
+  if (info.canExclude && info.hasCentre &&
+      krawczykExcludes<T, Dim>(
+        glm::mat<Dim, Dim, T>(info.inverse), glm::mat<Dim, Dim, T>(info.spread), residual, slack))
+  {
+    return TupleOutcome::Miss;
+  }
+  if (!info.hasCentre)
+  {
+    return excludesPixel(node, i, j, isovalue) ? TupleOutcome::Miss : TupleOutcome::Undecided;
+  }
+  if (!info.certified)
+  {
+    return excludesPixelAlongRows<T, Dim>(node, info, i, j, isovalue, (1 << Dim) - 1)
+             ? TupleOutcome::Miss
+             : TupleOutcome::Undecided;
+  }
+  // Newton's first step from the centre, then the iteration proper. A step that leaves the
+  // node says along which rows the pixel most likely misses it: a proof there saves the split.
+  const glm::vec<Dim, T> start =
+    glm::vec<Dim, T>(T(0.5)) - glm::mat<Dim, Dim, T>(info.centreInverse) * residual;
+  int outside = 0;
+  for (int d = 0; d < Dim; ++d)
+  {
+    outside |= start[d] >= -slack && start[d] <= T(1) + slack ? 0 : 1 << d;
+  }
+  if (outside)
+  {
+    return excludesPixelAlongRows<T, Dim>(node, info, i, j, isovalue, outside)
+             ? TupleOutcome::Miss
+             : TupleOutcome::Undecided;
+  }
+  return solvePixel<T, Dim>(
+    node, i, j, isovalue, tolerance, glm::value_ptr(start), u, ndcDepth, clip);
+}
+
+} // namespace detail
+
 /// The solver part: the Jacobian hull of the pixel problem, the unique-root certificate and the
 /// Krawczyk preconditioner, shared by every pixel of the node.
 template<class T>
@@ -182,13 +417,8 @@ IGA_HD void analyzeNodeSolver(const VolumeView<const T>& node, NodeInfo<T>& info
   {
     return;
   }
-  Interval<T> scaled[3][3], jacobian[3][3];
-  if (!rationalJacobianHull(node, pixelRows().rows, scaled, jacobian))
-  {
-    return;
-  }
-  info.certified = certifyUniqueRoot<T, 3>(scaled);
-  info.canExclude = preconditioner<T, 3>(jacobian, info.inverse, info.spread);
+  isSurface(node) ? detail::analyzeNodeSolver<T, 2>(node, info)
+                  : detail::analyzeNodeSolver<T, 3>(node, info);
 }
 
 /// F and J at the node's centre, which do not depend on the pixel: one evaluation serves every
@@ -200,19 +430,8 @@ IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info
   {
     return;
   }
-  const T centre[3] = { T(0.5), T(0.5), T(0.5) };
-  T values[kScreenChannels], derivatives[3 * kScreenChannels];
-  glm::mat<3, 3, T> gradients; // column r: the gradient of row r (J transposed)
-  evaluateHomogeneous<T, 3>(node, centre, values, derivatives);
-  const PixelRows rows = pixelRows();
-  for (int r = 0; r < 3; ++r)
-  {
-    info.centre[r] = rationalValue<T, 3>(values, derivatives, kScreenChannels,
-      rows.rows[r].numerator, rows.rows[r].denominator, &gradients[r][0]);
-  }
-  info.centreWeights[0] = values[kScreenW];
-  info.centreWeights[1] = values[kScreenWeight];
-  info.hasCentre = invertMatrix<T, 3>(glm::transpose(gradients), info.centreInverse);
+  isSurface(node) ? detail::analyzeNodeCentre<T, 2>(node, info)
+                  : detail::analyzeNodeCentre<T, 3>(node, info);
 }
 
 template<class T>
@@ -235,39 +454,6 @@ IGA_HD bool boxCoversPixel(const Box3<T>& box, int i, int j)
          y <= box.hi[1] + margin;
 }
 
-/// True when the pixel's ray provably misses the isosurface inside the node: the residual
-/// G(u) = (X - x W, Y - y W, A - iso V) is a polynomial whose Bernstein coefficients G_i span a
-/// convex hull that holds every value of G, so a direction n with n . G_i > 0 for all i excludes
-/// a root. Here n is the coefficients' mean, in 3D and in the window plane: the directions at
-/// hand for a node without centre data. This drops (pixel, node) pairs whose box covers the
-/// pixel although the surface piece inside does not, which would otherwise fail Newton and force
-/// subdivision.
-template<class T>
-IGA_HD bool excludesPixel(const VolumeView<const T>& node, int i, int j, T isovalue)
-{
-  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
-  const int count = node.pointCount();
-  T mean[3] = { T(0), T(0), T(0) };
-  for (int p = 0; p < count; ++p)
-  {
-    const T* cp = node.point(p);
-    mean[0] += cp[kScreenX] - x * cp[kScreenW];
-    mean[1] += cp[kScreenY] - y * cp[kScreenW];
-    mean[2] += cp[kScreenAttribute] - isovalue * cp[kScreenWeight];
-  }
-  bool separated3 = true, separated2 = true;
-  for (int p = 0; p < count && (separated3 || separated2); ++p)
-  {
-    const T* cp = node.point(p);
-    const T g0 = cp[kScreenX] - x * cp[kScreenW], g1 = cp[kScreenY] - y * cp[kScreenW];
-    const T g2 = cp[kScreenAttribute] - isovalue * cp[kScreenWeight];
-    const T planar = mean[0] * g0 + mean[1] * g1;
-    separated2 = separated2 && planar > T(0);
-    separated3 = separated3 && planar + mean[2] * g2 > T(0);
-  }
-  return separated3 || separated2;
-}
-
 /// The same proof along better directions, for a node with centre data: the rows of
 /// J(centre)^-1, rescaled from the rational F to the homogeneous residual G (dG ~ diag(W, W, V)
 /// dF near a root). Along row d, n . G is about (u_d - root_d) times a positive factor, so when
@@ -277,71 +463,21 @@ template<class T>
 IGA_HD bool excludesPixelAlongRows(
   const VolumeView<const T>& node, const NodeInfo<T>& info, int i, int j, T isovalue, int rows)
 {
-  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
-  T n[3][3];
-  bool positive[3], negative[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    n[d][0] = info.centreInverse[0][d] / info.centreWeights[0];
-    n[d][1] = info.centreInverse[1][d] / info.centreWeights[0];
-    n[d][2] = info.centreInverse[2][d] / info.centreWeights[1];
-    positive[d] = negative[d] = (rows >> d & 1) != 0;
-  }
-  const int count = node.pointCount();
-  for (int p = 0; p < count; ++p)
-  {
-    const T* cp = node.point(p);
-    const T g0 = cp[kScreenX] - x * cp[kScreenW], g1 = cp[kScreenY] - y * cp[kScreenW];
-    const T g2 = cp[kScreenAttribute] - isovalue * cp[kScreenWeight];
-    bool open = false;
-    for (int d = 0; d < 3; ++d)
-    {
-      const T h = n[d][0] * g0 + n[d][1] * g1 + n[d][2] * g2;
-      positive[d] = positive[d] && h > T(0);
-      negative[d] = negative[d] && h < T(0);
-      open = open || positive[d] || negative[d];
-    }
-    if (!open)
-    {
-      return false;
-    }
-  }
-  return true;
+  return isSurface(node) ? detail::excludesPixelAlongRows<T, 2>(node, info, i, j, isovalue, rows)
+                         : detail::excludesPixelAlongRows<T, 3>(node, info, i, j, isovalue, rows);
 }
 
-enum class TupleOutcome
-{
-  Hit,       ///< a root, within the clip range and on the kept side of the clipping planes
-  Miss,      ///< provably no visible root of this pixel in this node
-  Undecided, ///< no certificate or Newton failed: the node must be split for this pixel
-};
-
-/// Newton on one (pixel, node) tuple from `start`. On a hit `ndcDepth` is its NDC depth. A
-/// converged root outside the clip range or cut by a clipping plane is a Miss, which is final
-/// where the node certifies a unique root.
+/// Newton on one (pixel, node) tuple from `start` (unknownsOf(node) values). On a hit `u` holds
+/// the root (its third entry 0 for a surface) and `ndcDepth` its NDC depth. A converged root
+/// outside the clip range or cut by a clipping plane is a Miss, which is final where the node
+/// certifies a unique root. `isovalue` is ignored for a surface.
 template<class T>
 IGA_HD TupleOutcome solvePixel(const VolumeView<const T>& node, int i, int j, T isovalue,
   const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
 {
-  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
-  T values[kScreenChannels];
-  const NewtonResult<T, 3> result =
-    solveNewton<T, 3>(node, pixelRows().rows, target, tolerance, start, {}, values);
-  if (result.status != NewtonStatus::Converged)
-  {
-    return TupleOutcome::Undecided;
-  }
-  if (!(values[kScreenW] > T(0)))
-  {
-    return TupleOutcome::Undecided;
-  }
-  ndcDepth = values[kScreenZ] / values[kScreenW];
-  for (int d = 0; d < 3; ++d)
-  {
-    u[d] = result.u[d];
-  }
-  return ndcDepth >= T(-1) && ndcDepth <= T(1) && clipKeeps(clip, values) ? TupleOutcome::Hit
-                                                                          : TupleOutcome::Miss;
+  return isSurface(node)
+           ? detail::solvePixel<T, 2>(node, i, j, isovalue, tolerance, start, u, ndcDepth, clip)
+           : detail::solvePixel<T, 3>(node, i, j, isovalue, tolerance, start, u, ndcDepth, clip);
 }
 
 /// One (pixel, node) tuple of the solution stage: cheap exclusions first, then Newton on
@@ -351,46 +487,31 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
   int j, T isovalue, const T* tolerance, T* u, T& ndcDepth,
   const ClipPlanes<T>& clip = ClipPlanes<T>())
 {
-  // A large uncertified node is split whatever its pixels' exclusions say, and its children's
-  // boxes shed most of those pixels anyway: skip the tests there. Small ones keep them, as
-  // silhouette nodes are rarely certified.
-  if (!info.certified &&
-      (info.box.hi[0] - info.box.lo[0]) * (info.box.hi[1] - info.box.lo[1]) > T(256))
-  {
-    return TupleOutcome::Undecided;
-  }
-  // O(1) per tuple first: the node's centre data minus the pixel's offset.
-  const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
-  const glm::vec<3, T> residual = glm::make_vec3(info.centre) - glm::make_vec3(target);
-  const T slack = NewtonSettings<T>().domainSlack;
-  if (info.canExclude && info.hasCentre &&
-      krawczykExcludes<T, 3>(info.inverse, info.spread, residual, slack))
-  {
-    return TupleOutcome::Miss;
-  }
-  if (!info.hasCentre)
-  {
-    return excludesPixel(node, i, j, isovalue) ? TupleOutcome::Miss : TupleOutcome::Undecided;
-  }
-  if (!info.certified)
-  {
-    return excludesPixelAlongRows(node, info, i, j, isovalue, 7) ? TupleOutcome::Miss
-                                                                 : TupleOutcome::Undecided;
-  }
-  // Newton's first step from the centre, then the iteration proper. A step that leaves the
-  // node says along which rows the pixel most likely misses it: a proof there saves the split.
-  const glm::vec<3, T> start = glm::vec<3, T>(T(0.5)) - info.centreInverse * residual;
-  int outside = 0;
-  for (int d = 0; d < 3; ++d)
-  {
-    outside |= start[d] >= -slack && start[d] <= T(1) + slack ? 0 : 1 << d;
-  }
-  if (outside)
-  {
-    return excludesPixelAlongRows(node, info, i, j, isovalue, outside) ? TupleOutcome::Miss
-                                                                       : TupleOutcome::Undecided;
-  }
-  return solvePixel(node, i, j, isovalue, tolerance, glm::value_ptr(start), u, ndcDepth, clip);
+  return isSurface(node)
+           ? detail::solveTuple<T, 2>(node, info, i, j, isovalue, tolerance, u, ndcDepth, clip)
+           : detail::solveTuple<T, 3>(node, info, i, j, isovalue, tolerance, u, ndcDepth, clip);
+}
+
+/// Children of a node's midpoint split: 8 for a volume, 4 for a surface.
+template<class T>
+IGA_HD int childCount(const VolumeView<const T>& node)
+{
+  return 1 << unknownsOf(node);
+}
+
+/// The node's childCount children at the parametric midpoint (splitMidpoint).
+template<class T>
+IGA_HD void splitNode(const VolumeView<const T>& node, T* out)
+{
+  isSurface(node) ? splitMidpoint<T, 2>(surfaceOf(node), out) : splitMidpoint<T, 3>(node, out);
+}
+
+/// Child `child` of splitNode alone (midpointChild).
+template<class T>
+IGA_HD void nodeChild(const VolumeView<const T>& node, int child, T* out)
+{
+  isSurface(node) ? midpointChild<T, 2>(surfaceOf(node), child, out)
+                  : midpointChild<T, 3>(node, child, out);
 }
 
 } // namespace sst

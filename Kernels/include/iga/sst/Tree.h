@@ -15,8 +15,9 @@ namespace iga
 namespace sst
 {
 
-/// A sub-patch of an input patch for one isovalue: level and integer offsets locate it in the
-/// input patch's parameter cube ([offset, offset + 1] / 2^level per direction).
+/// A sub-patch of an input patch for one isovalue (a volume) or of a surface (iso -1): level and
+/// integer offsets locate it in the input patch's parameter cube ([offset, offset + 1] / 2^level
+/// per direction; a surface's third offset stays 0).
 struct Node
 {
   int patch;
@@ -87,12 +88,17 @@ IGA_HD inline uint64_t childBytes(uint64_t children, uint64_t values)
   return 2 * nodeBytes(children, values);
 }
 
-/// What splitting a node with `values` screen coefficients adds: its children, their copy, and
-/// room for the tuples that failed on it to move on (one each in the next iteration), so that
-/// the compaction does not give up the work the split was for.
-IGA_HD inline uint64_t splitBytes(uint64_t values, uint64_t failedTuples)
+/// Child slots a split node takes in the subdivision stage: a volume's eight children, or a
+/// surface's four and four empty slots.
+constexpr int kChildSlots = 8;
+
+/// What splitting a node with `values` screen coefficients into `children` adds: its children
+/// (kChildSlots records), their copy, and room for the tuples that failed on it to move on (one
+/// each in the next iteration), so that the compaction does not give up the work the split was
+/// for.
+IGA_HD inline uint64_t splitBytes(uint64_t values, int children, uint64_t failedTuples)
 {
-  return childBytes(8, 8 * values) + failedTuples * kBytesPerTuple;
+  return childBytes(kChildSlots, children * values) + failedTuples * kBytesPerTuple;
 }
 
 /// The longest prefix [0, count) of a sequence whose running total through element k,
@@ -167,6 +173,13 @@ struct FrameConstants
   const double* isovalues; ///< in the driver's memory (host or device)
 };
 
+/// The isovalue a node's pixel problem aims at; 0 for a surface's node (iso -1), whose problem
+/// has no attribute row.
+IGA_HD inline double isovalueOf(const Node& node, const FrameConstants& frame)
+{
+  return node.iso >= 0 ? frame.isovalues[node.iso] : 0.0;
+}
+
 /// The pixels of the frame's pass (its band of rows): [passFirstPixel, + passPixelCount).
 /// Per-pixel arrays span the image; each pass reads and writes its own pixels only.
 IGA_HD inline size_t passFirstPixel(const FrameConstants& frame)
@@ -178,7 +191,7 @@ IGA_HD inline size_t passPixelCount(const FrameConstants& frame)
   return size_t(frame.rowEnd - frame.rowBegin) * size_t(frame.width);
 }
 
-/// A root node: the whole input patch for one isovalue.
+/// A root node: the whole input patch for one isovalue, or a surface for iso -1.
 IGA_HD inline Node rootNode(int patch, int iso)
 {
   Node node{};
@@ -354,6 +367,58 @@ IGA_HD inline bool inGroup(const uint32_t* items, uint32_t begin, uint32_t end, 
   return false;
 }
 
+/// How far outside its input patch's parameter cube a root may lie and still be the patch's:
+/// Newton accepts roots up to its domain slack outside a node, which keeps roots on faces
+/// shared by two nodes; beyond the input patch such a root belongs to the neighbouring patch
+/// (found there) or to no patch at all (past an open surface's edge or a volume's outer face).
+constexpr double kPatchParameterMargin = 1e-6;
+
+/// A root's parameter in its input patch: node coordinates moved to the patch's cube.
+IGA_HD inline double patchParameter(const Node& node, const double* u, int d)
+{
+  return (node.offset[d] + u[d]) * ldexp(1.0, -node.level);
+}
+
+/// Whether a root (node coordinates) lies in its input patch, within kPatchParameterMargin.
+IGA_HD inline bool rootInPatch(const Node& node, const double* u)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    const double v = patchParameter(node, u, d);
+    if (!(v >= -kPatchParameterMargin && v <= 1.0 + kPatchParameterMargin))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A root in node coordinates, moved to the input patch's parameter cube. Not clamped: a root
+/// up to kPatchParameterMargin outside lies on the pixel's ray, on the patch's polynomial
+/// continuation, and merges with its twin found in the neighbouring patch.
+IGA_HD inline RawHit rawHitOf(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
+{
+  RawHit hit;
+  hit.pixel = pixel;
+  hit.patch = node.patch;
+  hit.iso = node.iso;
+  hit.ndcDepth = ndcDepth;
+  for (int d = 0; d < 3; ++d)
+  {
+    hit.u[d] = patchParameter(node, u, d);
+  }
+  return hit;
+}
+
+/// solveTuple for a node of the loop, a hit outside the node's input patch a miss.
+IGA_HD inline TupleOutcome solveNodeTuple(const VolumeView<const double>& view, const Node& node,
+  int i, int j, const FrameConstants& frame, double* u, double& ndcDepth)
+{
+  const TupleOutcome outcome = solveTuple(
+    view, node.info, i, j, isovalueOf(node, frame), frame.tolerance, u, ndcDepth, frame.clip);
+  return outcome == TupleOutcome::Hit && !rootInPatch(node, u) ? TupleOutcome::Miss : outcome;
+}
+
 /// How a tuple leaves the solution stage: solved (a hit), failed (its node must be split for
 /// it) or dropped (provably no visible root, or behind the pixel's best hit).
 enum TupleState : uint8_t
@@ -384,8 +449,7 @@ IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t las
       continue;
     }
     certified += node.info.certified ? 1 : 0;
-    switch (solveTuple(viewOf(node), node.info, i, j, frame.isovalues[node.iso], frame.tolerance,
-      &solution[4 * t], solution[4 * t + 3], frame.clip))
+    switch (solveNodeTuple(viewOf(node), node, i, j, frame, &solution[4 * t], solution[4 * t + 3]))
     {
       case TupleOutcome::Hit:
         state[t] = Solved;
@@ -408,23 +472,6 @@ IGA_HD inline bool roundTakesPixel(const Node& node, double bestDepth, const uin
 {
   return frame.hits.mayMatter(node.info.box.lo[2], bestDepth) &&
          inGroup(items, begin, end, node.initial);
-}
-
-/// A root in node coordinates, moved to the input patch's parameter cube.
-IGA_HD inline RawHit rawHitOf(uint32_t pixel, const Node& node, const double* u, double ndcDepth)
-{
-  RawHit hit;
-  hit.pixel = pixel;
-  hit.patch = node.patch;
-  hit.iso = node.iso;
-  hit.ndcDepth = ndcDepth;
-  const double scale = ldexp(1.0, -node.level);
-  for (int d = 0; d < 3; ++d)
-  {
-    const double v = (node.offset[d] + u[d]) * scale;
-    hit.u[d] = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
-  }
-  return hit;
 }
 
 // ---- shading ---------------------------------------------------------------------------------
@@ -506,23 +553,28 @@ IGA_HD inline Hit shadeHit(
     row *= unitJ;
   }
   gradient *= unitPowerOfTwo(largest(gradient));
-  // World gradient of the attribute: J^-T grad_u = cof(J) grad_u / det(J), the rows of cof(J)
-  // cross products of J's. The cofactor form stays defined where J is singular (collapsed
-  // faces); the orientation is fixed below.
+  // A volume's isosurface: the attribute's world gradient J^-T grad_u = cof(J) grad_u / det(J),
+  // the rows of cof(J) cross products of J's. The cofactor form stays defined where J is
+  // singular (collapsed faces); the orientation is fixed below. A surface: x_u x x_v.
   const glm::dvec3 cofactors[3] = { glm::cross(J[1], J[2]), glm::cross(J[2], J[0]),
     glm::cross(J[0], J[1]) };
   const double determinant = glm::dot(J[0], cofactors[0]);
   const glm::dvec3 toEye = viewer.parallel ? -viewer.forward : viewer.eye - hit.position;
-  glm::dvec3 normal = normalizedOrZero(glm::dvec3(glm::dot(cofactors[0], gradient),
-    glm::dot(cofactors[1], gradient), glm::dot(cofactors[2], gradient)));
+  const bool surface = isSurface(shading);
+  glm::dvec3 normal = normalizedOrZero(
+    surface
+      ? glm::cross(glm::dvec3(J[0][0], J[1][0], J[2][0]), glm::dvec3(J[0][1], J[1][1], J[2][1]))
+      : glm::dvec3(glm::dot(cofactors[0], gradient), glm::dot(cofactors[1], gradient),
+          glm::dot(cofactors[2], gradient)));
   if (glm::dot(normal, normal) == 0 || !isFinite(normal[0]))
   {
     normal = normalizedOrZero(toEye);
   }
   const double sign = glm::dot(normal, toEye) < 0 ? -1.0 : 1.0;
   // The attribute falls along the ray where its world gradient points back to the eye. Where J
-  // is singular its orientation is unknown and taken as positive.
-  hit.entersBelow = (determinant < 0 ? -sign : sign) > 0;
+  // is singular its orientation is unknown and taken as positive. A surface is entered on the
+  // side its normal x_u x x_v points away from: where that normal faces the eye.
+  hit.entersBelow = (determinant < 0 && !surface ? -sign : sign) > 0;
   hit.normal = sign * normal;
   hit.eyeDepth = glm::dot(hit.position - viewer.eye, viewer.forward);
   hit.color = viewer.hasColor ? values[kShadeColor] / values[kShadeWeight] : nan("");

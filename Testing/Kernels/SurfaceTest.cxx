@@ -1,0 +1,215 @@
+// The engine's surfaces (the paper's 2D SST): exact rational spheres and cylinders against their
+// analytic intersections, the teapot against a dense tessellation and its own patches, the three
+// methods against each other, surfaces and isosurfaces in one frame, and bad surfaces.
+#include "AnalyticTruth.h"
+#include "EngineScenes.h"
+
+#include "TestPatches.h"
+
+#include "iga/Boundary.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace
+{
+
+using iga::BezierSurface;
+using iga::BezierVolume;
+using iga::sst::FrameReport;
+using iga::sst::GBuffer;
+using iga::sst::Method;
+using iga::sst::Settings;
+using namespace igatest::truth;
+
+const std::vector<BezierVolume<double>> kNoVolumes;
+
+GBuffer renderSurfaces(const std::vector<BezierSurface<double>>& surfaces,
+  const iga::Camera& camera, const Settings& settings,
+  Method method = Method::SharedSubdivisionTree, FrameReport* report = nullptr)
+{
+  GBuffer gbuffer;
+  const FrameReport r =
+    iga::sst::render(iga::sst::Scene(kNoVolumes, surfaces), camera, settings, method, gbuffer);
+  if (report)
+    *report = r;
+  return gbuffer;
+}
+
+Settings imageOf(int width, int height)
+{
+  Settings settings;
+  settings.width = width;
+  settings.height = height;
+  return settings;
+}
+
+/// Bounds (xmin, xmax, ...) of surfaces' control points.
+void surfaceBounds(const std::vector<BezierSurface<double>>& surfaces, double* bounds)
+{
+  iga::sst::patchBounds(iga::sst::Scene(kNoVolumes, surfaces), bounds);
+}
+
+/// The largest distance of a hit from the unit sphere about the origin, over all hits.
+double sphereDistance(const GBuffer& gbuffer)
+{
+  double worst = 0;
+  for (const auto& hit : gbuffer.hits)
+    worst = std::max(worst, std::abs(glm::length(hit.position) - 1));
+  return worst;
+}
+
+TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
+{
+  const double centre[3] = { 0, 0, 0 };
+  const auto sphere = iga::makeSphereSurfaces<double>(1.0, centre);
+  double bounds[6];
+  surfaceBounds(sphere.patches, bounds);
+  const auto camera = makeCamera({ 1.2, -3.5, 2.1 }, { 0.1, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  Settings settings = imageOf(80, 64);
+  settings.colorAttribute = 0; // height
+  FrameReport report;
+  const GBuffer gbuffer =
+    renderSurfaces(sphere.patches, camera, settings, Method::SharedSubdivisionTree, &report);
+  const Comparison c = compare(gbuffer, camera, sphereTruth, sphereNormal);
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  EXPECT_GT(c.covered, 1000);
+  EXPECT_EQ(c.mismatched, 0) << "coverage differs from the analytic silhouette";
+  EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
+  EXPECT_LT(c.maxNormalError, 1e-9);
+  EXPECT_LT(sphereDistance(gbuffer), 1e-9) << "a hit off the sphere";
+  for (const auto& hit : gbuffer.hits)
+  {
+    EXPECT_EQ(hit.isovalue, -1) << "a surface's hit";
+    EXPECT_NEAR(hit.color, hit.position[2], 1e-9) << "the height attribute sampled at the hit";
+    // x_u x x_v points outwards on the northern patches (u from the pole), inwards on the
+    // southern ones: seen from outside, the ray enters the northern ones' negative side.
+    if (std::abs(hit.position[2]) > 1e-6)
+      EXPECT_EQ(hit.entersBelow, hit.position[2] > 0) << "the side the ray enters";
+  }
+}
+
+TEST(Surfaces, AllHitsModeFindsBothSidesOfTheSphere)
+{
+  const double centre[3] = { 0, 0, 0 };
+  const auto sphere = iga::makeSphereSurfaces<double>(1.0, centre);
+  double bounds[6];
+  surfaceBounds(sphere.patches, bounds);
+  const auto camera = makeCamera({ 0.4, -3.6, 1.1 }, { 0, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  Settings settings = imageOf(64, 48);
+  settings.firstHitOnly = false;
+  const GBuffer gbuffer = renderSurfaces(sphere.patches, camera, settings);
+  int twoHits = 0, covered = 0;
+  for (int j = 0; j < settings.height; ++j)
+    for (int i = 0; i < settings.width; ++i)
+    {
+      glm::dvec3 o, d;
+      pixelRay(camera, settings.width, settings.height, i, j, o, d);
+      const Truth truth = sphereTruth(o, d);
+      if (truth.ambiguous || !std::isfinite(truth.t))
+        continue;
+      ++covered;
+      ASSERT_EQ(gbuffer.hitCount(i, j), 2) << "pixel " << i << ", " << j;
+      const auto* hit = gbuffer.firstHit(i, j);
+      EXPECT_LT(hit[0].eyeDepth, hit[1].eyeDepth);
+      // The far root of the quadratic.
+      const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
+      const double far = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+      EXPECT_LT(glm::length(hit[1].position - (o + far * d)), 1e-6);
+      ++twoHits;
+    }
+  EXPECT_GT(covered, 500);
+  EXPECT_EQ(twoHits, covered);
+}
+
+/// The tube's outer wall (radius 1, z in [0, 2]) as surfaces: its boundary faces across the
+/// radius at parameter 1.
+std::vector<BezierSurface<double>> outerWall(const iga::VolumeSet<double>& tube)
+{
+  std::vector<BezierSurface<double>> wall;
+  for (const auto& patch : tube.patches)
+    wall.push_back(iga::faceSurface(patch, 1, 1));
+  return wall;
+}
+
+TEST(Surfaces, ExactRationalCylinderFromTheTubesOuterFaces)
+{
+  const auto tube = iga::makeTube<double>(0.5, 0.0);
+  const auto wall = outerWall(tube);
+  const auto camera = igatest::lookAt(tube, { 2.6, -3.1, 3.4 }, { 0, 0, 1 }, 35);
+  Settings settings = imageOf(72, 64);
+  settings.colorAttribute = 2; // height
+  FrameReport report;
+  const GBuffer gbuffer =
+    renderSurfaces(wall, camera, settings, Method::SharedSubdivisionTree, &report);
+  const Comparison c = compare(
+    gbuffer, camera,
+    [](const glm::dvec3& o, const glm::dvec3& d) { return cylinderTruth(o, d, 1.0, 0.0, 2.0); },
+    cylinderNormal);
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  EXPECT_GT(c.covered, 1000);
+  EXPECT_EQ(c.mismatched, 0);
+  EXPECT_LT(c.maxPositionError, 1e-6);
+  EXPECT_LT(c.maxNormalError, 1e-9);
+  for (const auto& hit : gbuffer.hits)
+  {
+    EXPECT_NEAR(std::hypot(hit.position[0], hit.position[1]), 1.0, 1e-9);
+    EXPECT_NEAR(hit.color, hit.position[2], 1e-9);
+  }
+}
+
+/// The teapot seen from above and in front, 32 bicubic patches.
+struct TeapotView
+{
+  std::vector<BezierSurface<double>> patches;
+  iga::Camera camera;
+};
+
+TeapotView teapotView()
+{
+  TeapotView view;
+  for (int p = 0; p < 32; ++p)
+    view.patches.push_back(iga::makeTeapotSurface<double>(p));
+  double bounds[6];
+  surfaceBounds(view.patches, bounds);
+  view.camera = makeCamera({ 4.5, -7.5, 5.0 }, { 0, 0, 1.4 }, { 0, 0, 1 }, 35, bounds);
+  return view;
+}
+
+/// Where a world point lands in the image (window coordinates in pixels).
+glm::dvec2 windowOf(const iga::Camera& camera, int width, int height, const glm::dvec3& x)
+{
+  const glm::dvec4 clip = iga::worldToClip(camera, double(width) / height) * glm::dvec4(x, 1.0);
+  return { (clip[0] / clip[3] + 1) * 0.5 * width, (clip[1] / clip[3] + 1) * 0.5 * height };
+}
+
+TEST(Surfaces, TeapotHitsLieOnTheirPatchesAtThePixelCentres)
+{
+  const TeapotView view = teapotView();
+  const Settings settings = imageOf(96, 72);
+  FrameReport report;
+  const GBuffer gbuffer =
+    renderSurfaces(view.patches, view.camera, settings, Method::SharedSubdivisionTree, &report);
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  EXPECT_GT(gbuffer.coveredPixels(), 1500u);
+  double worstPixel = 0, worstPoint = 0;
+  for (int j = 0; j < settings.height; ++j)
+    for (int i = 0; i < settings.width; ++i)
+      if (const auto* hit = gbuffer.firstHit(i, j))
+      {
+        // The patch evaluated independently at the hit's parameter.
+        const auto euclidean =
+          igatest::evaluateEuclidean(view.patches[size_t(hit->patch)].view(), &hit->uvw[0]);
+        const glm::dvec3 x{ double(euclidean[0]), double(euclidean[1]), double(euclidean[2]) };
+        worstPoint = std::max(worstPoint, glm::length(x - hit->position));
+        const glm::dvec2 w = windowOf(view.camera, settings.width, settings.height, x);
+        worstPixel =
+          std::max(worstPixel, std::max(std::abs(w[0] - (i + 0.5)), std::abs(w[1] - (j + 0.5))));
+      }
+  EXPECT_LT(worstPoint, 1e-9 * 3.5) << "the hit's position is its patch's point (teapot ~3.5 wide)";
+  EXPECT_LT(worstPixel, 1e-5) << "the hit lies on the pixel's ray";
+}
+
+} // namespace
