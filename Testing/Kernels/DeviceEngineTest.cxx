@@ -105,6 +105,24 @@ std::vector<Scene> scenes()
     all.back().settings.firstHitOnly = false;
   }
   {
+    Scene teapot{ "teapot surfaces, all hits", {}, {}, {}, {} };
+    for (int p = 0; p < 32; ++p)
+      teapot.surfaces.push_back(iga::makeTeapotSurface<double>(p));
+    teapot.camera = lookAt(teapot.patches(), { 4.5, -7.5, 5.0 }, { 0, 0, 1.4 }, 35);
+    teapot.settings.width = 72;
+    teapot.settings.height = 56;
+    teapot.settings.firstHitOnly = false;
+    all.push_back(std::move(teapot));
+  }
+  {
+    // A sphere surface (coloured by its height) through the unit sphere's isosurface.
+    const double centre[3] = { 0.6, 0, 0 };
+    all.push_back(scene("sphere surface and isosurface, colour", iga::makeMarsdenSphere<double>(2),
+      { 1.2, -3.5, 2.1 }, { 0.1, 0, 0 }, 40, 64, 56, { 0.0 }));
+    all.back().surfaces = iga::makeSphereSurfaces<double>(0.8, centre).patches;
+    all.back().settings.colorAttribute = 0;
+  }
+  {
     const glm::dvec3 position{ 0, -4, 0 };
     all.push_back(
       scene("depth cap", iga::makeMarsdenSphere<double>(4), position, origin, 35, 32, 32, { 0.0 }));
@@ -129,7 +147,7 @@ bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string
 #ifdef IGAVIEW_DEVICE_LOGIC
   (void)skipped;
   report = FrameReport();
-  logicDriver().render(s.set.patches, view, s.settings, out, report);
+  logicDriver().render(s.patches(), view, s.settings, out, report);
   return true;
 #else
   if (!iga::sst::cuda::usable(skipped))
@@ -139,7 +157,7 @@ bool deviceRender(const Scene& s, GBuffer& out, FrameReport& report, std::string
   Settings settings = s.settings;
   settings.backend = iga::sst::Backend::Cuda;
   report =
-    iga::sst::render(s.set.patches, view, settings, iga::sst::Method::SharedSubdivisionTree, out);
+    iga::sst::render(s.patches(), view, settings, iga::sst::Method::SharedSubdivisionTree, out);
   EXPECT_EQ(report.backend, "cuda") << report.notice;
   return true;
 #endif
@@ -236,8 +254,8 @@ void expectMatchesTheCpuDriver(
   Settings settings = s.settings;
   settings.backend = iga::sst::Backend::Cpu;
   GBuffer cpu;
-  const FrameReport cpuReport = iga::sst::render(
-    s.set.patches, s.camera, settings, iga::sst::Method::SharedSubdivisionTree, cpu);
+  const FrameReport cpuReport =
+    iga::sst::render(s.patches(), s.camera, settings, iga::sst::Method::SharedSubdivisionTree, cpu);
   ASSERT_EQ(device.width, cpu.width);
   ASSERT_EQ(device.height, cpu.height);
   ASSERT_EQ(device.offsets.size(), cpu.offsets.size());
@@ -341,15 +359,15 @@ TEST(DeviceEngineCaps, BudgetCapsTheWorkingSet)
     cpu.backend = iga::sst::Backend::Cpu;
     GBuffer out;
     const size_t unbounded =
-      iga::sst::render(s.set.patches, s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out)
+      iga::sst::render(s.patches(), s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out)
         .peakBudgetedBytes;
     for (size_t fraction : { 2, 4, 8 })
     {
       SCOPED_TRACE(fraction);
       const size_t loopBudget = unbounded / fraction;
       cpu.memoryBudgetBytes = s.settings.memoryBudgetBytes = iga::sst::imageBytes(cpu) + loopBudget;
-      const FrameReport cpuReport = iga::sst::render(
-        s.set.patches, s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
+      const FrameReport cpuReport =
+        iga::sst::render(s.patches(), s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
       EXPECT_LE(cpuReport.peakBudgetedBytes, loopBudget);
       EXPECT_GT(cpuReport.unresolvedAtBudget, 0u);
       GBuffer device;
@@ -428,7 +446,7 @@ TEST(DeviceEngineCaps, TransfersGoInChunks)
 
   const NurbsBall ball(1.0);
   Scene n{ "NURBS ball, 4 KiB chunks", { iga::sst::extractElements(ball.volumes(0)), { "ball" } },
-    {}, s.settings };
+    {}, s.settings, {} };
   n.camera = lookAt(n.set, s.camera.position, { 0, 0, 0 }, 35);
   n.settings.colorAttribute = -1;
   ASSERT_GT(ball.patch.net.size() * sizeof(double), n.settings.transferChunkBytes);
@@ -480,7 +498,7 @@ TEST(DeviceEngineCaps, RoundOverTheBudgetMovesOnABandAtATime)
   double bounds[6];
   iga::sst::patchBounds(blade.patches, bounds);
   Scene s{ "blade, 128 KiB", std::move(blade),
-    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30), {} };
+    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30), {}, {} };
   s.settings.width = 160;
   s.settings.height = 120;
   s.settings.isovalues = { 0.3 };
@@ -489,7 +507,7 @@ TEST(DeviceEngineCaps, RoundOverTheBudgetMovesOnABandAtATime)
   cpu.backend = iga::sst::Backend::Cpu;
   GBuffer out;
   const FrameReport cpuReport =
-    iga::sst::render(s.set.patches, s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
+    iga::sst::render(s.patches(), s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
   EXPECT_LE(cpuReport.iterations, 4);
   EXPECT_GT(cpuReport.unresolvedAtBudget, 0u);
   EXPECT_GT(out.coveredPixels(), 50u);
@@ -514,7 +532,7 @@ TEST(DeviceEngineCaps, LargeChunksAreCopiedOnSeveralThreads)
   double bounds[6];
   iga::sst::patchBounds(blade.patches, bounds);
   Scene s{ "blade, 2 MiB chunks", std::move(blade),
-    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30), {} };
+    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30), {}, {} };
   s.settings.width = 1920;
   s.settings.height = 1080;
   s.settings.isovalues = { 0.3 };
@@ -544,7 +562,7 @@ void expectRefused(const Scene& s, const std::string& expected)
   cpu.backend = iga::sst::Backend::Cpu;
   try
   {
-    iga::sst::render(s.set.patches, s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
+    iga::sst::render(s.patches(), s.camera, cpu, iga::sst::Method::SharedSubdivisionTree, out);
     ADD_FAILURE() << "the CPU accepted the frame";
   }
   catch (const std::length_error& e)
@@ -579,10 +597,10 @@ int expectBandsMatchOnePass(
     Settings cpu = s.settings;
     cpu.backend = iga::sst::Backend::Cpu;
     GBuffer whole, banded;
-    const FrameReport wholeReport = iga::sst::render(s.set.patches, s.camera, cpu, method, whole);
+    const FrameReport wholeReport = iga::sst::render(s.patches(), s.camera, cpu, method, whole);
     EXPECT_EQ(wholeReport.bands, 1);
     cpu.memoryBudgetBytes = budget;
-    const FrameReport bandedReport = iga::sst::render(s.set.patches, s.camera, cpu, method, banded);
+    const FrameReport bandedReport = iga::sst::render(s.patches(), s.camera, cpu, method, banded);
     EXPECT_TRUE(bands == 0 || bandedReport.bands == bands);
     bands = bandedReport.bands;
     EXPECT_EQ(bandedReport.newtonSolves, wholeReport.newtonSolves) << "each pixel in one band";
@@ -627,8 +645,7 @@ TEST(DeviceEngineCaps, ManyPairsAreDrawnInBands)
               { iga::sst::Method::BasicScheme, iga::sst::Method::SharedSubdivisionTree }),
     30);
   GBuffer out;
-  iga::sst::render(
-    s.set.patches, s.camera, s.settings, iga::sst::Method::SharedSubdivisionTree, out);
+  iga::sst::render(s.patches(), s.camera, s.settings, iga::sst::Method::SharedSubdivisionTree, out);
   ASSERT_EQ(out.hits.size(), size_t(160 * 120)) << "one hit a pixel";
   for (const iga::sst::Hit& hit : out.hits)
   {
@@ -737,7 +754,7 @@ TEST(DeviceEngineCaps, HostSequenceCopiesAnyRange)
 /// The ball's host-extracted elements as a scene, for the CPU driver's reference frames.
 Scene ballScene(const NurbsBall& ball, uint64_t dataVersion)
 {
-  Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {} };
+  Scene s{ "NURBS ball", { iga::sst::extractElements(ball.volumes(0)), { "ball" } }, {}, {}, {} };
   const glm::dvec3 position{ 2.8, -3.6, 2.2 }, origin{ 0, 0, 0 };
   s.camera = lookAt(s.set, position, origin, 35);
   s.settings.width = 72;
@@ -870,7 +887,7 @@ TEST(DeviceEngineCaps, BadInputIsRejected)
     std::string cpuMessage;
     try
     {
-      iga::sst::render(s.set.patches,
+      iga::sst::render(s.patches(),
         iga::sst::makeView(s.camera, s.settings.width, s.settings.height), s.settings,
         iga::sst::Method::SharedSubdivisionTree, out);
     }

@@ -319,32 +319,6 @@ TEST(Engine, CameraInsideThePatchSeesTheSphereAllAround)
   EXPECT_EQ(report.unresolvedPixels, 0u);
 }
 
-/// Largest depth difference between two G-buffers' first hits and the pixels covered by one only.
-void expectSameFirstHits(
-  const GBuffer& a, const GBuffer& b, int allowedCoverageDifferences, double depthTolerance)
-{
-  int differ = 0, both = 0;
-  double maxDepth = 0;
-  for (int j = 0; j < a.height; ++j)
-    for (int i = 0; i < a.width; ++i)
-    {
-      const auto *ha = a.firstHit(i, j), *hb = b.firstHit(i, j);
-      if ((ha != nullptr) != (hb != nullptr))
-      {
-        ++differ;
-        continue;
-      }
-      if (ha)
-      {
-        ++both;
-        maxDepth = std::max(maxDepth, std::abs(ha->eyeDepth - hb->eyeDepth));
-      }
-    }
-  EXPECT_LE(differ, allowedCoverageDifferences);
-  EXPECT_GT(both, 100);
-  EXPECT_LT(maxDepth, depthTolerance);
-}
-
 TEST(Engine, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTwistedTeardrop)
 {
   const auto set = iga::makeTeardrop<double>(1.2);
@@ -358,28 +332,11 @@ TEST(Engine, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTwistedTeardrop)
   const GBuffer basic = renderSet(set, camera, settings, Method::BasicScheme);
   const GBuffer brute = renderSet(set, camera, settings, Method::BruteForce);
   // The two subdivision schemes find the same roots.
-  expectSameFirstHits(sst, basic, 0, 1e-6);
+  igatest::expectSameFirstHits(sst, basic, 0, 1e-6);
   ASSERT_EQ(sst.offsets, basic.offsets);
   for (size_t h = 0; h < sst.hits.size(); ++h)
     EXPECT_NEAR(sst.hits[h].eyeDepth, basic.hits[h].eyeDepth, 1e-6);
-  // Brute force (multi-start Newton in uniform leaves) finds no root the trees miss, and misses
-  // few of theirs.
-  int found = 0, missing = 0;
-  for (int p = 0; p < 40 * 40; ++p)
-  {
-    for (uint32_t b = brute.offsets[p]; b < brute.offsets[p + 1]; ++b)
-    {
-      bool present = false;
-      for (uint32_t s = sst.offsets[p]; s < sst.offsets[p + 1]; ++s)
-        present = present || std::abs(sst.hits[s].eyeDepth - brute.hits[b].eyeDepth) < 1e-6;
-      EXPECT_TRUE(present) << "pixel " << p << " depth " << brute.hits[b].eyeDepth;
-      found += present;
-    }
-    missing +=
-      int(sst.offsets[p + 1] - sst.offsets[p]) - int(brute.offsets[p + 1] - brute.offsets[p]);
-  }
-  EXPECT_GT(found, 200);
-  EXPECT_LE(missing, int(sst.hits.size() / 50));
+  igatest::expectBruteForceWithinTrees(sst, brute, 200);
 }
 
 TEST(Engine, FoldedSelfIntersectingVolumeAgreesWithTheReferences)
@@ -436,19 +393,8 @@ TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
   const GBuffer one = renderSet(set, camera, settings);
   settings.threads = 2;
   const GBuffer two = renderSet(set, camera, settings);
-  ASSERT_EQ(one.offsets, two.offsets);
   ASSERT_GT(one.hits.size(), 500u);
-  for (size_t h = 0; h < one.hits.size(); ++h)
-  {
-    EXPECT_EQ(one.hits[h].ndcDepth, two.hits[h].ndcDepth);
-    EXPECT_EQ(one.hits[h].patch, two.hits[h].patch);
-    EXPECT_EQ(one.hits[h].isovalue, two.hits[h].isovalue);
-    for (int d = 0; d < 3; ++d)
-    {
-      EXPECT_EQ(one.hits[h].position[d], two.hits[h].position[d]);
-      EXPECT_EQ(one.hits[h].normal[d], two.hits[h].normal[d]);
-    }
-  }
+  EXPECT_TRUE(igatest::identicalGBuffers(one, two));
 }
 
 TEST(Engine, DepthCapIsReportedNotLooped)

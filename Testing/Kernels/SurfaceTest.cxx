@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace
 {
@@ -210,6 +211,196 @@ TEST(Surfaces, TeapotHitsLieOnTheirPatchesAtThePixelCentres)
       }
   EXPECT_LT(worstPoint, 1e-9 * 3.5) << "the hit's position is its patch's point (teapot ~3.5 wide)";
   EXPECT_LT(worstPixel, 1e-5) << "the hit lies on the pixel's ray";
+}
+
+} // namespace
+
+namespace
+{
+
+/// Per pixel whether a dense tessellation of the surfaces (n x n quads a patch, two triangles
+/// each, vertices on the patches) covers its centre.
+std::vector<char> tessellatedCoverage(const std::vector<BezierSurface<double>>& surfaces,
+  const iga::Camera& camera, int width, int height, int n)
+{
+  std::vector<char> covered(size_t(width) * height, 0);
+  for (const auto& surface : surfaces)
+  {
+    std::vector<glm::dvec2> grid;
+    for (int b = 0; b <= n; ++b)
+      for (int a = 0; a <= n; ++a)
+      {
+        const double u[2] = { double(a) / n, double(b) / n };
+        const auto e = igatest::evaluateEuclidean(surface.view(), u);
+        grid.push_back(
+          windowOf(camera, width, height, glm::dvec3{ double(e[0]), double(e[1]), double(e[2]) }));
+      }
+    auto fill = [&](glm::dvec2 p, glm::dvec2 q, glm::dvec2 r)
+    {
+      const double area = (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+      if (area == 0)
+        return;
+      const int i0 = std::max(0, int(std::floor(std::min({ p.x, q.x, r.x }))));
+      const int i1 = std::min(width - 1, int(std::ceil(std::max({ p.x, q.x, r.x }))));
+      const int j0 = std::max(0, int(std::floor(std::min({ p.y, q.y, r.y }))));
+      const int j1 = std::min(height - 1, int(std::ceil(std::max({ p.y, q.y, r.y }))));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+        {
+          const glm::dvec2 c{ i + 0.5, j + 0.5 };
+          auto edge = [&](glm::dvec2 a, glm::dvec2 b)
+          { return ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)) / area; };
+          if (edge(p, q) >= 0 && edge(q, r) >= 0 && edge(r, p) >= 0)
+            covered[size_t(j) * width + i] = 1;
+        }
+    };
+    for (int b = 0; b < n; ++b)
+      for (int a = 0; a < n; ++a)
+      {
+        const size_t k = size_t(b) * (n + 1) + a;
+        fill(grid[k], grid[k + 1], grid[k + n + 2]);
+        fill(grid[k], grid[k + n + 2], grid[k + n + 1]);
+      }
+  }
+  return covered;
+}
+
+/// Pixels whose coverage differs from the reference's, leaving out the reference's silhouette
+/// pixels (those with a neighbour of the other coverage).
+int coverageMismatches(const GBuffer& gbuffer, const std::vector<char>& reference)
+{
+  const int w = gbuffer.width, h = gbuffer.height;
+  int mismatched = 0;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const char mine = gbuffer.firstHit(i, j) != nullptr, theirs = reference[size_t(j) * w + i];
+      bool silhouette = false;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di)
+        {
+          const int a = std::clamp(i + di, 0, w - 1), b = std::clamp(j + dj, 0, h - 1);
+          silhouette = silhouette || reference[size_t(b) * w + a] != theirs;
+        }
+      mismatched += mine != theirs && !silhouette ? 1 : 0;
+    }
+  return mismatched;
+}
+
+TEST(Surfaces, TeapotCoverageMatchesADenseTessellation)
+{
+  const TeapotView view = teapotView();
+  const Settings settings = imageOf(160, 120);
+  const GBuffer gbuffer = renderSurfaces(view.patches, view.camera, settings);
+  const auto reference =
+    tessellatedCoverage(view.patches, view.camera, settings.width, settings.height, 64);
+  EXPECT_GT(gbuffer.coveredPixels(), 5000u);
+  EXPECT_EQ(coverageMismatches(gbuffer, reference), 0);
+}
+
+TEST(Surfaces, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTeapot)
+{
+  const TeapotView view = teapotView();
+  const Settings settings = imageOf(96, 72);
+  FrameReport sst, basic;
+  const GBuffer a =
+    renderSurfaces(view.patches, view.camera, settings, Method::SharedSubdivisionTree, &sst);
+  const GBuffer b =
+    renderSurfaces(view.patches, view.camera, settings, Method::BasicScheme, &basic);
+  Settings allHits = settings;
+  allHits.firstHitOnly = false;
+  const GBuffer c = renderSurfaces(view.patches, view.camera, allHits, Method::BruteForce);
+  igatest::expectSameFirstHits(a, b, 0, 1e-6);
+  // Depths within 1e-6 of the teapot's distance (about 8): the spout's grazing rays.
+  igatest::expectBruteForceWithinTrees(
+    renderSurfaces(view.patches, view.camera, allHits), c, 2000, 1e-5);
+  EXPECT_EQ(sst.unresolvedPixels + basic.unresolvedPixels, 0u);
+  EXPECT_LT(sst.subdividedPatches, basic.subdividedPatches) << "pixels share the tree";
+  Settings oneThread = settings;
+  oneThread.threads = 1;
+  const GBuffer single = renderSurfaces(view.patches, view.camera, oneThread);
+  EXPECT_TRUE(igatest::identicalGBuffers(single, a)) << "bit-identical for any thread count";
+}
+
+TEST(Surfaces, SurfacesAndIsosurfacesShareOneFrame)
+{
+  // The unit sphere as an isosurface and a sphere surface of radius 0.8 about (0.6, 0, 0): each
+  // pixel's first hit is the nearer of the two frames drawn apart.
+  const auto volume = iga::makeMarsdenSphere<double>(2);
+  const double centre[3] = { 0.6, 0, 0 };
+  const auto surface = iga::makeSphereSurfaces<double>(0.8, centre);
+  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
+  const auto camera = makeCamera({ 1.2, -3.5, 2.1 }, { 0.1, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  Settings settings = imageOf(80, 64);
+  settings.isovalues = { 0.0 };
+  GBuffer both, isosurface;
+  iga::sst::render(iga::sst::Scene(volume.patches, surface.patches), camera, settings,
+    Method::SharedSubdivisionTree, both);
+  iga::sst::render(volume.patches, camera, settings, Method::SharedSubdivisionTree, isosurface);
+  const GBuffer alone = renderSurfaces(surface.patches, camera, settings);
+  int fromSurface = 0, fromVolume = 0;
+  for (int j = 0; j < settings.height; ++j)
+    for (int i = 0; i < settings.width; ++i)
+    {
+      const auto *x = isosurface.firstHit(i, j), *y = alone.firstHit(i, j);
+      const auto* hit = both.firstHit(i, j);
+      ASSERT_EQ(hit != nullptr, x || y);
+      if (!hit)
+        continue;
+      const bool surfaceNearer = y && (!x || y->eyeDepth < x->eyeDepth);
+      const auto* expected = surfaceNearer ? y : x;
+      EXPECT_NEAR(hit->eyeDepth, expected->eyeDepth, 1e-12);
+      EXPECT_EQ(hit->patch, surfaceNearer ? int(volume.patches.size()) + y->patch : x->patch);
+      EXPECT_EQ(hit->isovalue, surfaceNearer ? -1 : 0);
+      (surfaceNearer ? fromSurface : fromVolume) += 1;
+    }
+  EXPECT_GT(fromSurface, 300);
+  EXPECT_GT(fromVolume, 300);
+}
+
+TEST(Surfaces, BadSurfacesAreRejectedWithTheSurfaceNamed)
+{
+  const double centre[3] = { 0, 0, 0 };
+  const auto sphere = iga::makeSphereSurfaces<double>(1.0, centre);
+  double bounds[6];
+  surfaceBounds(sphere.patches, bounds);
+  const auto camera = makeCamera({ 0, -4, 1 }, { 0, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  auto message = [&](std::vector<BezierSurface<double>> surfaces, Settings settings)
+  {
+    try
+    {
+      renderSurfaces(surfaces, camera, settings);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const Settings settings = imageOf(16, 16);
+  auto withPoint = [&](int surface, int channel, double value)
+  {
+    auto surfaces = sphere.patches;
+    surfaces[size_t(surface)].view().point(4)[channel] = value;
+    return surfaces;
+  };
+  EXPECT_EQ(message(withPoint(3, iga::kWeightChannel, NAN), settings),
+    "surface 3: control point 4 has a non-finite weight (channel 3): nan");
+  EXPECT_EQ(message(withPoint(5, iga::kWeightChannel, -1), settings),
+    "surface 5: control point 4 has non-positive weight -1.000000");
+  Settings colour = settings;
+  colour.colorAttribute = 1;
+  EXPECT_EQ(message(sphere.patches, colour), "surface 0 has 1 attributes; the colour 1");
+  const int zeroDegree[2] = { 0, 2 };
+  EXPECT_EQ(message({ BezierSurface<double>(zeroDegree, 4) }, settings),
+    "surface 0: degree 0 in direction 0 is outside 1..16");
+  // A scene of surfaces needs no isovalue, one with volumes does.
+  EXPECT_EQ(message(sphere.patches, settings), "no error");
+  GBuffer gbuffer;
+  const auto volume = iga::makeMarsdenSphere<double>(2);
+  EXPECT_THROW(iga::sst::render(iga::sst::Scene(volume.patches, sphere.patches), camera, settings,
+                 Method::SharedSubdivisionTree, gbuffer),
+    std::invalid_argument);
 }
 
 } // namespace

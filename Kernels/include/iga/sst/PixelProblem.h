@@ -261,7 +261,7 @@ IGA_HD void analyzeNodeSolver(const VolumeView<const T>& node, NodeInfo<T>& info
     return;
   }
   info.certified = certifyUniqueRoot<T, Dim>(scaled);
-  glm::mat<Dim, Dim, T> inverse, spread;
+  glm::mat<Dim, Dim, T> inverse(T(0)), spread(T(0)); // kept only where canExclude
   info.canExclude = preconditioner<T, Dim>(jacobian, inverse, spread);
   info.inverse = glm::mat<3, 3, T>(inverse);
   info.spread = glm::mat<3, 3, T>(spread);
@@ -283,7 +283,7 @@ IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info
   }
   info.centreWeights[0] = values[kScreenW];
   info.centreWeights[1] = values[kScreenWeight];
-  glm::mat<Dim, Dim, T> inverse;
+  glm::mat<Dim, Dim, T> inverse(T(0)); // kept only where hasCentre
   info.hasCentre = invertMatrix<T, Dim>(glm::transpose(gradients), inverse);
   info.centreInverse = glm::mat<3, 3, T>(inverse);
 }
