@@ -1,5 +1,6 @@
 // CPU drivers of the isosurface rasterizer: the Shared Subdivision Tree algorithm (Liu et al.),
-// the per-pixel basic scheme and a brute-force reference, over the shared pixel-problem kernels.
+// the per-pixel basic scheme and a brute-force reference, over the shared pixel-problem kernels,
+// and per-pixel Bézier clipping (Nishita et al.) for surfaces, independent of them.
 #include "iga/sst/Engine.h"
 
 #include "BlockCache.h"
@@ -9,6 +10,7 @@
 #include "sst/CpuExec.h"
 #include "sst/Loop.h"
 
+#include "iga/BezierClipping.h"
 #include "iga/Validation.h"
 #include "iga/sst/PixelProblem.h"
 #include "iga/sst/Tree.h"
@@ -40,6 +42,8 @@ const char* methodName(Method method)
       return "basic";
     case Method::BruteForce:
       return "brute-force";
+    case Method::BezierClipping:
+      return "bezier-clipping";
   }
   return "unknown";
 }
@@ -111,6 +115,14 @@ public:
         break;
       case Method::BruteForce:
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::bruteForce); });
+        break;
+      case Method::BezierClipping:
+        if (this->Patches.volumeCount() > 0)
+        {
+          throw std::invalid_argument("Bézier clipping draws surfaces only, the scene has " +
+                                      std::to_string(this->Patches.volumeCount()) + " volumes");
+        }
+        drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::bezierClipping); });
         break;
     }
     const Clock::time_point stage = Clock::now();
@@ -412,6 +424,59 @@ private:
         solves += local;
       });
     this->Report.newtonSolves += solves;
+    this->appendPixelHits(perPixel);
+  }
+
+  // ---- Bézier clipping ---------------------------------------------------------------------
+
+  /// Every initial node covering a pixel clipped against its ray (bezierClip), each root kept
+  /// where it lies in the clip range, on the kept side of the clipping planes and within
+  /// Newton's pixel tolerance of the ray (a check of the clipping, never failed in the tests).
+  void bezierClipping()
+  {
+    const LoopState<CpuExec>& s = this->Loop;
+    const size_t first = passFirstPixel(s.frame), count = passPixelCount(s.frame);
+    std::vector<std::vector<RawHit>> perPixel(count);
+    std::atomic<size_t> unresolved{ 0 };
+    parallelFor(count, this->Plan.threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t k = begin; k < end; ++k)
+        {
+          const size_t p = first + k;
+          const double x = double(p % this->Config.width) + 0.5,
+                       y = double(p / this->Config.width) + 0.5;
+          bool complete = true;
+          for (uint32_t item = s.ItemOffsets[p]; item < s.ItemOffsets[p + 1]; ++item)
+          {
+            const Node& node = this->Plan.initialNodes[s.ItemNodes[item]];
+            const auto view = this->nodeView(node, this->Plan.initialPool);
+            const ClippingResult clipped = bezierClip(surfaceOf(view), x, y, 1e-7, 100000);
+            complete = complete && clipped.complete;
+            for (const glm::dvec2& root : clipped.roots)
+            {
+              const double u[3] = { root.x, root.y, 0 };
+              double values[kScreenChannels];
+              evaluateHomogeneous<double, 3>(view, u, values, nullptr);
+              const double ndc = values[kScreenZ] / values[kScreenW];
+              const bool onRay =
+                std::abs(values[kScreenX] / values[kScreenW] - x) <= s.frame.tolerance[0] &&
+                std::abs(values[kScreenY] / values[kScreenW] - y) <= s.frame.tolerance[1];
+              complete = complete && onRay;
+              if (onRay && ndc >= -1 && ndc <= 1 && clipKeeps(s.frame.clip, values))
+              {
+                perPixel[k].push_back(rawHitOf(uint32_t(p), node, u, ndc));
+              }
+            }
+          }
+          if (!complete)
+          {
+            this->Loop.Unresolved[p] = 1;
+            ++unresolved;
+          }
+        }
+      });
+    this->Report.unresolvedAtDepthCap += unresolved;
     this->appendPixelHits(perPixel);
   }
 

@@ -81,6 +81,11 @@ TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
   EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
   EXPECT_LT(c.maxNormalError, 1e-9);
   EXPECT_LT(sphereDistance(gbuffer), 1e-9) << "a hit off the sphere";
+  const GBuffer clipped = renderSurfaces(sphere.patches, camera, settings, Method::BezierClipping);
+  const Comparison byClipping = compare(clipped, camera, sphereTruth, sphereNormal);
+  EXPECT_EQ(byClipping.mismatched, 0) << "Bézier clipping";
+  EXPECT_LT(byClipping.maxPositionError, 1e-6);
+  EXPECT_LT(sphereDistance(clipped), 1e-9);
   for (const auto& hit : gbuffer.hits)
   {
     EXPECT_EQ(hit.isovalue, -1) << "a surface's hit";
@@ -298,7 +303,7 @@ TEST(Surfaces, TeapotCoverageMatchesADenseTessellation)
   EXPECT_EQ(coverageMismatches(gbuffer, reference), 0);
 }
 
-TEST(Surfaces, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTeapot)
+TEST(Surfaces, SharedTreesAndTheThreeReferencesAgreeOnTheTeapot)
 {
   const TeapotView view = teapotView();
   const Settings settings = imageOf(96, 72);
@@ -307,10 +312,17 @@ TEST(Surfaces, SharedTreesBasicSchemeAndBruteForceAgreeOnTheTeapot)
     renderSurfaces(view.patches, view.camera, settings, Method::SharedSubdivisionTree, &sst);
   const GBuffer b =
     renderSurfaces(view.patches, view.camera, settings, Method::BasicScheme, &basic);
+  FrameReport clippingReport;
+  const GBuffer clipped =
+    renderSurfaces(view.patches, view.camera, settings, Method::BezierClipping, &clippingReport);
   Settings allHits = settings;
   allHits.firstHitOnly = false;
   const GBuffer c = renderSurfaces(view.patches, view.camera, allHits, Method::BruteForce);
   igatest::expectSameFirstHits(a, b, 0, 1e-6);
+  // Clipping stops where a region's window box is 1e-7 pixel wide, Newton 1e-6 pixel from the
+  // ray: on the spout's grazing rays that is up to 1e-6 of the teapot's distance (about 8).
+  igatest::expectSameFirstHits(a, clipped, 0, 1e-5);
+  EXPECT_EQ(clippingReport.unresolvedPixels, 0u);
   // Depths within 1e-6 of the teapot's distance (about 8): the spout's grazing rays.
   igatest::expectBruteForceWithinTrees(
     renderSurfaces(view.patches, view.camera, allHits), c, 2000, 1e-5);
@@ -401,6 +413,12 @@ TEST(Surfaces, BadSurfacesAreRejectedWithTheSurfaceNamed)
   EXPECT_THROW(iga::sst::render(iga::sst::Scene(volume.patches, sphere.patches), camera, settings,
                  Method::SharedSubdivisionTree, gbuffer),
     std::invalid_argument);
+  Settings withIsovalue = settings;
+  withIsovalue.isovalues = { 0.0 };
+  EXPECT_THROW(iga::sst::render(iga::sst::Scene(volume.patches, sphere.patches), camera,
+                 withIsovalue, Method::BezierClipping, gbuffer),
+    std::invalid_argument)
+    << "Bézier clipping draws surfaces only";
 }
 
 } // namespace

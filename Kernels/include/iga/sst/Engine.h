@@ -25,6 +25,7 @@ enum class Method
                          ///< pixels
   BasicScheme,           ///< one subdivision tree per pixel (the paper's comparison baseline)
   BruteForce,            ///< uniform subdivision and multi-start Newton: slow, for tests only
+  BezierClipping,        ///< per pixel, Nishita et al.'s Bézier clipping: surfaces only
 };
 
 /// Where the shared-subdivision-tree engine runs. Automatic picks CUDA when the library was
