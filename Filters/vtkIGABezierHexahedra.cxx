@@ -77,20 +77,22 @@ std::string pointProblem(vtkUnstructuredGrid* grid, vtkIdType id, vtkDataArray* 
 }
 
 /// Calls fn(linear Kernels index, VTK point index within the cell) for every control point of a
-/// hexahedron of the given degrees; `mirrored` puts point (i, j, k) where (degree - i, j, k) goes,
-/// which turns a left-handed patch into a right-handed cell of the same volume.
-template<class Fn>
+/// hexahedron (Dim 3) or quadrilateral (Dim 2) of the given degrees; `mirrored` puts point
+/// (i, j, k) where (degree - i, j, k) goes, which turns a left-handed patch into a right-handed
+/// cell of the same volume.
+template<int Dim = 3, class Fn>
 void forEachControlPoint(const int* degree, bool mirrored, Fn fn)
 {
   int linear = 0;
-  for (int k = 0; k <= degree[2]; ++k)
+  for (int k = 0; k <= (Dim == 3 ? degree[2] : 0); ++k)
   {
     for (int j = 0; j <= degree[1]; ++j)
     {
       for (int i = 0; i <= degree[0]; ++i, ++linear)
       {
-        fn(linear,
-          vtkHigherOrderHexahedron::PointIndexFromIJK(mirrored ? degree[0] - i : i, j, k, degree));
+        const int first = mirrored ? degree[0] - i : i;
+        fn(linear, Dim == 3 ? vtkHigherOrderHexahedron::PointIndexFromIJK(first, j, k, degree)
+                            : vtkHigherOrderQuadrilateral::PointIndexFromIJK(first, j, degree));
       }
     }
   }
@@ -181,33 +183,38 @@ std::string findArrays(
   return problem;
 }
 
-/// The degrees of cell c: from the degrees array, or VTK's fallback (equal degrees from the
-/// point count) without one; 1 for a linear hexahedron. Returns "" or the problem.
-std::string cellDegrees(
-  vtkUnstructuredGrid* grid, vtkIdType c, vtkDataArray* degrees, vtkIdType npts, int* degree)
+/// The parametric dimension of a cell type IGAView reads: 3 for hexahedra, 2 for
+/// quadrilaterals, 0 for any other.
+int cellDimension(int type)
+{
+  return type == VTK_HEXAHEDRON || type == VTK_BEZIER_HEXAHEDRON ? 3
+         : type == VTK_QUAD || type == VTK_BEZIER_QUADRILATERAL  ? 2
+                                                                 : 0;
+}
+
+/// The degrees of cell c of dimension `dim`: from the degrees array, or VTK's fallback (equal
+/// degrees from the point count) without one; 1 for a linear cell. Returns "" or the problem.
+std::string cellDegrees(vtkUnstructuredGrid* grid, vtkIdType c, vtkDataArray* degrees,
+  vtkIdType npts, int dim, int* degree)
 {
   const int type = grid->GetCellType(c);
-  if (type == VTK_HEXAHEDRON)
+  if (type == VTK_HEXAHEDRON || type == VTK_QUAD)
   {
     return std::string();
-  }
-  if (type != VTK_BEZIER_HEXAHEDRON)
-  {
-    return "cell type " + std::to_string(type) +
-           " is not a hexahedron (expected VTK_BEZIER_HEXAHEDRON = 79 or VTK_HEXAHEDRON = 12)";
   }
   if (!degrees)
   {
-    const int order = static_cast<int>(std::lround(std::cbrt(static_cast<double>(npts))));
-    if (order < 2 || order * order * order != npts)
+    const double root = dim == 3 ? std::cbrt(double(npts)) : std::sqrt(double(npts));
+    const int order = static_cast<int>(std::lround(root));
+    if (order < 2 || (dim == 3 ? order * order * order : order * order) != npts)
     {
-      return std::to_string(npts) +
-             " points are no cube of an order and there is no HigherOrderDegrees array";
+      return std::to_string(npts) + " points are no " + (dim == 3 ? "cube" : "square") +
+             " of an order and there is no HigherOrderDegrees array";
     }
-    degree[0] = degree[1] = degree[2] = order - 1;
+    std::fill_n(degree, dim, order - 1);
     return std::string();
   }
-  for (int d = 0; d < 3; ++d)
+  for (int d = 0; d < dim; ++d)
   {
     const double value = degrees->GetComponent(c, d);
     if (!(value >= 1 && value <= iga::kMaxDegree && value == std::floor(value)))
@@ -222,21 +229,26 @@ std::string cellDegrees(
 
 /// Fills `patch` (its degrees set) from the cell's points `pts` and checks them; returns "" or
 /// the problem.
+template<int Dim>
 std::string readCell(vtkUnstructuredGrid* grid, vtkIdType npts, const vtkIdType* pts,
-  const GridArrays& arrays, iga::BezierVolume<double>& patch)
+  const GridArrays& arrays, iga::BezierPatch<double, Dim>& patch)
 {
   const auto view = patch.view();
   const int* degree = view.degree;
   if (npts != view.pointCount())
   {
-    return "has " + std::to_string(npts) + " points, degrees " + std::to_string(degree[0]) + "x" +
-           std::to_string(degree[1]) + "x" + std::to_string(degree[2]) + " need " +
+    std::string degrees = std::to_string(degree[0]);
+    for (int d = 1; d < Dim; ++d)
+    {
+      degrees += "x" + std::to_string(degree[d]);
+    }
+    return "has " + std::to_string(npts) + " points, degrees " + degrees + " need " +
            std::to_string(view.pointCount());
   }
   const vtkIdType pointCount = grid->GetNumberOfPoints();
   bool badId = false;
   std::vector<vtkIdType> ids(static_cast<size_t>(view.pointCount()));
-  forEachControlPoint(degree, false,
+  forEachControlPoint<Dim>(degree, false,
     [&](int linear, int vtkIndex)
     {
       const vtkIdType id = ids[linear] = pts[vtkIndex];
@@ -263,8 +275,46 @@ std::string readCell(vtkUnstructuredGrid* grid, vtkIdType npts, const vtkIdType*
   {
     return "refers to a point outside 0.." + std::to_string(pointCount - 1);
   }
-  const int bad = iga::firstInvalidPoint<double, 3>(view);
+  const int bad = iga::firstInvalidPoint<double, Dim>(view);
   return bad < 0 ? std::string() : pointProblem(grid, ids[bad], arrays.weights, arrays.attributes);
+}
+
+/// Reads cell c into `patches` (a volume or a surface); returns "" or the problem.
+std::string readAnyCell(vtkUnstructuredGrid* grid, vtkIdType c, const GridArrays& arrays,
+  int channels, vtkIGABezierHexahedra::Patches& patches)
+{
+  const int type = grid->GetCellType(c);
+  const int dim = cellDimension(type);
+  if (dim == 0)
+  {
+    return "cell type " + std::to_string(type) +
+           " is neither a hexahedron (VTK_BEZIER_HEXAHEDRON = 79, VTK_HEXAHEDRON = 12) nor a "
+           "quadrilateral (VTK_BEZIER_QUADRILATERAL = 77, VTK_QUAD = 9)";
+  }
+  vtkIdType npts;
+  const vtkIdType* pts;
+  grid->GetCellPoints(c, npts, pts);
+  int degree[3] = { 1, 1, 1 };
+  std::string problem = cellDegrees(grid, c, arrays.degrees, npts, dim, degree);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  if (dim == 3)
+  {
+    iga::BezierVolume<double> patch(degree, channels);
+    problem = readCell<3>(grid, npts, pts, arrays, patch);
+    patches.volumes.patches.push_back(std::move(patch));
+    patches.volumeCells.push_back(c);
+  }
+  else
+  {
+    iga::BezierSurface<double> patch(degree, channels);
+    problem = readCell<2>(grid, npts, pts, arrays, patch);
+    patches.surfaces.push_back(std::move(patch));
+    patches.surfaceCells.push_back(c);
+  }
+  return problem;
 }
 }
 
@@ -380,10 +430,10 @@ vtkIdType vtkIGABezierHexahedra::AppendQuadrilateral(vtkUnstructuredGrid* grid,
     VTK_BEZIER_QUADRILATERAL, static_cast<vtkIdType>(ids.size()), ids.data());
 }
 
-bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
-  iga::VolumeSet<double>& set, std::string& error, std::vector<std::string>& warnings)
+bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid, Patches& patches,
+  std::string& error, std::vector<std::string>& warnings)
 {
-  set = iga::VolumeSet<double>();
+  patches = Patches();
   if (!grid || grid->GetNumberOfCells() == 0)
   {
     error = "the grid has no cells";
@@ -397,29 +447,24 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
   }
   for (vtkDataArray* array : arrays.attributes)
   {
-    set.attributeNames.emplace_back(array->GetName());
+    patches.volumes.attributeNames.emplace_back(array->GetName());
   }
   const int channels = iga::kFirstAttributeChannel + static_cast<int>(arrays.attributes.size());
   vtkIdType leftHanded = 0;
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
   {
-    vtkIdType npts;
-    const vtkIdType* pts;
-    grid->GetCellPoints(c, npts, pts);
-    int degree[3] = { 1, 1, 1 };
-    std::string problem = cellDegrees(grid, c, arrays.degrees, npts, degree);
-    iga::BezierVolume<double> patch(degree, channels);
-    if (problem.empty())
-    {
-      problem = readCell(grid, npts, pts, arrays, patch);
-    }
+    const size_t volumes = patches.volumes.patches.size();
+    const std::string problem = readAnyCell(grid, c, arrays, channels, patches);
     if (!problem.empty())
     {
       error = "cell " + std::to_string(c) + ": " + problem;
       return false;
     }
-    leftHanded += iga::signedVolume<double>(std::as_const(patch).view()) < 0;
-    set.patches.push_back(std::move(patch));
+    if (patches.volumes.patches.size() > volumes)
+    {
+      leftHanded +=
+        iga::signedVolume<double>(std::as_const(patches.volumes.patches.back()).view()) < 0;
+    }
   }
   if (leftHanded > 0)
   {
@@ -429,5 +474,24 @@ bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
                        "determinant); they are drawn as they are, but VTK's own filters "
                        "(Contour, Clip, Integrate Variables) may fail on them");
   }
+  return true;
+}
+
+bool vtkIGABezierHexahedra::FromUnstructuredGrid(vtkUnstructuredGrid* grid,
+  iga::VolumeSet<double>& set, std::string& error, std::vector<std::string>& warnings)
+{
+  Patches patches;
+  set = iga::VolumeSet<double>();
+  if (!FromUnstructuredGrid(grid, patches, error, warnings))
+  {
+    return false;
+  }
+  if (!patches.surfaces.empty())
+  {
+    error = "cell " + std::to_string(patches.surfaceCells.front()) +
+            " is a quadrilateral (a surface), where hexahedra are needed";
+    return false;
+  }
+  set = std::move(patches.volumes);
   return true;
 }

@@ -13,7 +13,9 @@
  * left-handed patch (negative signed volume) becomes the cell of the same volume with its first
  * parametric direction reversed (see CellLayout).
  *
- * Reading accepts VTK_BEZIER_HEXAHEDRON (and linear VTK_HEXAHEDRON as degree 1). Every
+ * Reading accepts VTK_BEZIER_HEXAHEDRON (and linear VTK_HEXAHEDRON as degree 1) as volumes and
+ * VTK_BEZIER_QUADRILATERAL (and VTK_QUAD) as surfaces, whose HigherOrderDegrees' third
+ * component is not read. Every
  * single-component point array other than the weights becomes an attribute. Problems are
  * reported as one sentence naming the cell and the problem; missing or inactive weight and
  * degree arrays are reported as warnings, as VTK would otherwise drop them without a word;
@@ -68,8 +70,22 @@ public:
   static vtkIdType AppendQuadrilateral(vtkUnstructuredGrid* grid,
     const iga::PatchView<const double, 2>& surface, const std::vector<vtkDataArray*>& attributes);
 
-  /// Grid to patches. Returns false and sets `error` when the grid cannot be converted; appends
-  /// non-fatal notes to `warnings`.
+  /// A grid's cells as patches: its hexahedra as volumes, its quadrilaterals as surfaces, each
+  /// with the id of the cell it came from, all with every attribute (volumes.attributeNames).
+  struct Patches
+  {
+    iga::VolumeSet<double> volumes;
+    std::vector<iga::BezierSurface<double>> surfaces;
+    std::vector<vtkIdType> volumeCells;
+    std::vector<vtkIdType> surfaceCells;
+  };
+
+  /// Grid to patches (hexahedra and quadrilaterals). Returns false and sets `error` when the
+  /// grid cannot be converted; appends non-fatal notes to `warnings`.
+  static bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, Patches& patches, std::string& error,
+    std::vector<std::string>& warnings);
+
+  /// The same for a grid of hexahedra only: a quadrilateral is an error.
   static bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, iga::VolumeSet<double>& set,
     std::string& error, std::vector<std::string>& warnings);
 };

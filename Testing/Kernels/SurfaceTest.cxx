@@ -7,6 +7,7 @@
 #include "TestPatches.h"
 
 #include "iga/Boundary.h"
+#include "iga/sst/ElementEdges.h"
 
 #include <gtest/gtest.h>
 
@@ -419,6 +420,87 @@ TEST(Surfaces, BadSurfacesAreRejectedWithTheSurfaceNamed)
                  withIsovalue, Method::BezierClipping, gbuffer),
     std::invalid_argument)
     << "Bézier clipping draws surfaces only";
+}
+
+} // namespace
+
+namespace
+{
+
+/// The plane z = 0 over [0, 4] x [0, 3] as 4 x 3 biquadratic elements whose parameters are not
+/// affine in x and y (control points at 0, 1/4 and 1 of each element's width): element
+/// boundaries at the whole numbers.
+std::vector<BezierSurface<double>> elementGrid()
+{
+  std::vector<BezierSurface<double>> grid;
+  const int degree[2] = { 2, 2 };
+  const double along[3] = { 0, 0.25, 1 };
+  for (int b = 0; b < 3; ++b)
+    for (int a = 0; a < 4; ++a)
+    {
+      BezierSurface<double> patch(degree, iga::kFirstAttributeChannel);
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+        {
+          double* cp = patch.view().point(3 * j + i);
+          cp[0] = a + along[i];
+          cp[1] = b + along[j];
+          cp[2] = 0;
+          cp[iga::kWeightChannel] = 1;
+        }
+      grid.push_back(std::move(patch));
+    }
+  return grid;
+}
+
+/// Distance in pixels from a pixel centre to the nearest element boundary of elementGrid, the
+/// projected segments x = 0..4 and y = 0..3.
+double distanceToBoundaries(const iga::Camera& camera, int width, int height, int i, int j)
+{
+  const glm::dvec2 c{ i + 0.5, j + 0.5 };
+  double nearest = HUGE_VAL;
+  auto segment = [&](glm::dvec3 a, glm::dvec3 b)
+  {
+    const glm::dvec2 p = windowOf(camera, width, height, a), q = windowOf(camera, width, height, b);
+    const double t = std::clamp(glm::dot(c - p, q - p) / glm::dot(q - p, q - p), 0.0, 1.0);
+    nearest = std::min(nearest, glm::length(c - (p + t * (q - p))));
+  };
+  for (int x = 0; x <= 4; ++x)
+    segment({ x, 0, 0 }, { x, 3, 0 });
+  for (int y = 0; y <= 3; ++y)
+    segment({ 0, y, 0 }, { 4, y, 0 });
+  return nearest;
+}
+
+TEST(Surfaces, ElementEdgesLieOnTheElementBoundaries)
+{
+  const auto grid = elementGrid();
+  double bounds[6];
+  surfaceBounds(grid, bounds);
+  for (const glm::dvec3& eye : { glm::dvec3{ 2, 1.5, 6 }, glm::dvec3{ 2.6, -2.5, 4.5 } })
+  {
+    const auto camera = makeCamera(eye, { 2, 1.5, 0 }, { 0, 1, 0 }, 45, bounds);
+    const Settings settings = imageOf(160, 120);
+    const GBuffer gbuffer = renderSurfaces(grid, camera, settings);
+    const auto coverage = iga::sst::elementEdgeCoverage(gbuffer, 1.0);
+    int edges = 0, misplaced = 0, missing = 0;
+    for (int j = 0; j < settings.height; ++j)
+      for (int i = 0; i < settings.width; ++i)
+      {
+        if (!gbuffer.firstHit(i, j))
+          continue;
+        const double distance = distanceToBoundaries(camera, settings.width, settings.height, i, j);
+        const float covered = coverage[size_t(j) * settings.width + i];
+        edges += covered > 0;
+        // The parameters' screen gradients come from finite differences between neighbouring
+        // pixels: the line's distance is good to a few hundredths of a pixel.
+        misplaced += covered > 0 && distance > 1.05;
+        missing += distance < 0.25 && covered < 0.5;
+      }
+    EXPECT_GT(edges, 500) << "eye " << eye.x << ", " << eye.y << ", " << eye.z;
+    EXPECT_EQ(misplaced, 0) << "edge pixels more than 1.05 pixels from a boundary";
+    EXPECT_EQ(missing, 0) << "boundary pixels without an edge";
+  }
 }
 
 } // namespace
