@@ -5,6 +5,7 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataObjectTreeIterator.h"
@@ -32,7 +33,9 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtk_glew.h"
 
+#include "iga/Boundary.h"
 #include "iga/NurbsSet.h"
+#include "iga/sst/ElementEdges.h"
 #include "iga/sst/Engine.h"
 
 #include "vtkIGAIsosurfaceDeclFS.h"
@@ -83,13 +86,26 @@ void moveControlPoints(vtkMatrix4x4* matrix, double* points, size_t count, int c
 
 struct vtkIGAIsosurfaceMapper::Internals
 {
-  // Data, converted when the input changes; per patch, its block's flat index (composite
-  // input) and its cell id in the block, for hardware selection.
+  // Data, converted when the input changes: the hexahedra (Set) and the quadrilaterals (Quads);
+  // per patch of each, its block's flat index (composite input) and its cell id in the block,
+  // for hardware selection; what the topology of the grids is (their cell arrays).
   iga::VolumeSet<double> Set;
   std::vector<unsigned int> PatchBlock;
   std::vector<vtkIdType> PatchCell;
+  std::vector<iga::BezierSurface<double>> Quads;
+  std::vector<unsigned int> QuadBlock;
+  std::vector<vtkIdType> QuadCell;
+  std::vector<uint64_t> Topology;
   vtkMTimeType SetTime = 0;
   bool SetValid = false;
+  // The surfaces drawn (the quadrilaterals, then in DRAW_SURFACES the volumes' boundary faces)
+  // for the data of SurfacesTime and the draw mode SurfacesMode; the faces, found again only
+  // when the topology changes.
+  std::vector<iga::BezierSurface<double>> Surfaces;
+  vtkMTimeType SurfacesTime = 0;
+  int SurfacesMode = -1;
+  std::vector<iga::PatchFace> Faces;
+  std::vector<uint64_t> FacesTopology;
   // The last frame: what it depended on, and its colour and window depth.
   std::vector<double> FrameKey;
   int Size[2] = { 0, 0 };
@@ -117,8 +133,12 @@ struct vtkIGAIsosurfaceMapper::Internals
   uint64_t DataVersion = 0;
   vtkMTimeType VersionSetTime = 0;
   double VersionMatrix[16] = {};
-  /// The data's patches moved by that matrix (empty for the identity).
+  /// The data's patches and surfaces moved by that matrix (empty for the identity).
   std::vector<iga::BezierVolume<double>> World;
+  std::vector<iga::BezierSurface<double>> SurfaceWorld;
+  int VersionMode = -1;
+  /// Whether the last frame's engine scene held the volumes (their isosurfaces).
+  bool DrewVolumes = false;
   // The NURBS form of the input, collected when the engine prefers it; valid for the input of
   // NurbsTime. Its nets moved by the actor's matrix, for the data version NurbsWorldVersion.
   vtkIGANurbsCells Nurbs;
@@ -267,6 +287,14 @@ void vtkIGAIsosurfaceMapper::ReportEmptyFrame(const iga::sst::FrameReport& repor
   {
     return;
   }
+  if (!in.DrewVolumes)
+  {
+    this->ReportOnce("empty surfaces",
+      "nothing drawn: the surfaces lie outside the view or the clipping planes cut them away; "
+      "not reported again until the settings or the input change",
+      false);
+    return;
+  }
   const double lo = report.attributeRange[0], hi = report.attributeRange[1];
   std::string isovalues;
   bool inRange = false;
@@ -355,35 +383,57 @@ void vtkIGAIsosurfaceMapper::ReleaseGraphicsResources(vtkWindow* window)
 namespace
 {
 
+/// The input's cells as patches: the hexahedra, the quadrilaterals, per patch its block's flat
+/// index and cell id, and the grids' topology (their cell arrays and sizes).
+struct CollectedPatches
+{
+  iga::VolumeSet<double> volumes;
+  std::vector<unsigned int> volumeBlocks;
+  std::vector<vtkIdType> volumeCells;
+  std::vector<iga::BezierSurface<double>> surfaces;
+  std::vector<unsigned int> surfaceBlocks;
+  std::vector<vtkIdType> surfaceCells;
+  std::vector<uint64_t> topology;
+};
+
 /// Converts the input (one grid, or the grid leaves of a composite dataset, which must share
-/// their attribute names) to patches; per patch, its block's flat index and cell id.
-bool collectPatches(vtkDataObject* input, iga::VolumeSet<double>& set,
-  std::vector<unsigned int>& patchBlock, std::vector<vtkIdType>& patchCell, std::string& error,
+/// their attribute names) to patches.
+bool collectPatches(vtkDataObject* input, CollectedPatches& out, std::string& error,
   std::vector<std::string>& warnings)
 {
-  set = iga::VolumeSet<double>();
-  patchBlock.clear();
-  patchCell.clear();
+  out = CollectedPatches();
+  bool first = true;
   auto append = [&](vtkUnstructuredGrid* grid, unsigned int block, const std::string& where)
   {
-    iga::VolumeSet<double> part;
+    vtkIGABezierHexahedra::Patches part;
     if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, part, error, warnings))
     {
       error = where + error;
       return false;
     }
-    if (!set.patches.empty() && part.attributeNames != set.attributeNames)
+    if (!first && part.volumes.attributeNames != out.volumes.attributeNames)
     {
       error = where + "its point arrays differ from the first block's";
       return false;
     }
-    set.attributeNames = part.attributeNames;
-    for (size_t c = 0; c < part.patches.size(); ++c)
+    first = false;
+    out.volumes.attributeNames = part.volumes.attributeNames;
+    for (size_t c = 0; c < part.volumes.patches.size(); ++c)
     {
-      set.patches.push_back(std::move(part.patches[c]));
-      patchBlock.push_back(block);
-      patchCell.push_back(vtkIdType(c));
+      out.volumes.patches.push_back(std::move(part.volumes.patches[c]));
+      out.volumeBlocks.push_back(block);
+      out.volumeCells.push_back(part.volumeCells[c]);
     }
+    for (size_t c = 0; c < part.surfaces.size(); ++c)
+    {
+      out.surfaces.push_back(std::move(part.surfaces[c]));
+      out.surfaceBlocks.push_back(block);
+      out.surfaceCells.push_back(part.surfaceCells[c]);
+    }
+    vtkCellArray* cells = grid->GetCells();
+    out.topology.insert(out.topology.end(),
+      { uint64_t(block), uint64_t(reinterpret_cast<uintptr_t>(cells)), uint64_t(cells->GetMTime()),
+        uint64_t(grid->GetNumberOfCells()), uint64_t(grid->GetNumberOfPoints()) });
     return true;
   };
   if (auto* grid = vtkUnstructuredGrid::SafeDownCast(input))
@@ -494,6 +544,7 @@ struct vtkIGAIsosurfaceMapper::Frame
   iga::sst::View View;
   iga::sst::Settings Settings;
   bool ByScalars = false;
+  bool Volumes = false;               ///< the hexahedra's isosurfaces are drawn
   double MostPairs = 0, Progress = 0; ///< of the progress reported during the frame
 };
 
@@ -518,7 +569,7 @@ void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
 {
   Internals& in = *this->Internal;
-  if (!this->GetInputDataObject(0, 0) || this->Isovalues.empty())
+  if (!this->GetInputDataObject(0, 0))
   {
     return false;
   }
@@ -529,7 +580,15 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
   {
     std::string error;
     std::vector<std::string> warnings;
-    in.SetValid = collectPatches(input, in.Set, in.PatchBlock, in.PatchCell, error, warnings);
+    CollectedPatches collected;
+    in.SetValid = collectPatches(input, collected, error, warnings);
+    in.Set = std::move(collected.volumes);
+    in.PatchBlock = std::move(collected.volumeBlocks);
+    in.PatchCell = std::move(collected.volumeCells);
+    in.Quads = std::move(collected.surfaces);
+    in.QuadBlock = std::move(collected.surfaceBlocks);
+    in.QuadCell = std::move(collected.surfaceCells);
+    in.Topology = std::move(collected.topology);
     in.SetTime = input->GetMTime();
     for (const auto& warning : warnings)
     {
@@ -544,6 +603,12 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
   {
     return false;
   }
+  this->UpdateSurfaces();
+  frame.Volumes = this->DrawMode == DRAW_ISOSURFACES && !this->Isovalues.empty();
+  if (!frame.Volumes && in.Surfaces.empty())
+  {
+    return false;
+  }
   // Messages are reported once until the settings (the mapper's own, not the lookup table's)
   // or the input change.
   const vtkMTimeType reportFor[2] = { this->vtkAbstractMapper::GetMTime(), input->GetMTime() };
@@ -555,6 +620,65 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
   return true;
 }
 
+void vtkIGAIsosurfaceMapper::UpdateSurfaces()
+{
+  Internals& in = *this->Internal;
+  if (in.SurfacesTime == in.SetTime && in.SurfacesMode == this->DrawMode)
+  {
+    return;
+  }
+  in.SurfacesTime = in.SetTime;
+  in.SurfacesMode = this->DrawMode;
+  in.Surfaces = in.Quads;
+  if (this->DrawMode != DRAW_SURFACES)
+  {
+    return;
+  }
+  // Which faces are outer depends on the topology alone: found again only when it changes.
+  if (in.FacesTopology != in.Topology || in.Faces.empty())
+  {
+    in.Faces = iga::boundaryFaces(in.Set.patches);
+    in.FacesTopology = in.Topology;
+  }
+  for (const iga::PatchFace& face : in.Faces)
+  {
+    in.Surfaces.push_back(
+      iga::faceSurface(in.Set.patches[size_t(face.patch)], face.direction, face.side));
+  }
+}
+
+iga::sst::Scene vtkIGAIsosurfaceMapper::EngineScene(bool identity) const
+{
+  static const std::vector<iga::BezierVolume<double>> noVolumes;
+  const Internals& in = *this->Internal;
+  const auto& volumes = !in.DrewVolumes ? noVolumes : identity ? in.Set.patches : in.World;
+  return iga::sst::Scene(volumes, identity ? in.Surfaces : in.SurfaceWorld);
+}
+
+void vtkIGAIsosurfaceMapper::PatchSource(int patch, vtkIdType& cell, unsigned int& block) const
+{
+  // The engine numbers the volumes drawn, then the quadrilaterals, then the boundary faces.
+  const Internals& in = *this->Internal;
+  size_t k = size_t(patch);
+  const size_t volumes = in.DrewVolumes ? in.Set.patches.size() : 0;
+  if (k < volumes)
+  {
+    cell = in.PatchCell[k];
+    block = in.PatchBlock[k];
+    return;
+  }
+  k -= volumes;
+  if (k < in.Quads.size())
+  {
+    cell = in.QuadCell[k];
+    block = in.QuadBlock[k];
+    return;
+  }
+  const size_t owner = size_t(in.Faces[k - in.Quads.size()].patch);
+  cell = in.PatchCell[owner];
+  block = in.PatchBlock[owner];
+}
+
 bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* actor, Frame& frame)
 {
   Internals& in = *this->Internal;
@@ -562,7 +686,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   auto indexOf = [&](const std::string& name)
   { return int(std::find(names.begin(), names.end(), name) - names.begin()); };
   const int surfaceAttribute = this->SurfaceArrayName.empty() ? 0 : indexOf(this->SurfaceArrayName);
-  if (names.empty() || surfaceAttribute >= int(names.size()))
+  if (frame.Volumes && (names.empty() || surfaceAttribute >= int(names.size())))
   {
     this->ReportOnce("surface array",
       "no point array named '" + this->SurfaceArrayName + "' to draw isosurfaces of", true);
@@ -609,7 +733,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   settings.width = frame.Width;
   settings.height = frame.Height;
   settings.threads = this->NumberOfThreads;
-  settings.isovalues = this->Isovalues;
+  settings.isovalues = frame.Volumes ? this->Isovalues : std::vector<double>();
   // Clipping planes (world coordinates, as vtkOpenGLPolyDataMapper takes them).
   settings.clipPlanes.resize(size_t(this->GetNumberOfClippingPlanes()));
   vtkNew<vtkMatrix4x4> identity;
@@ -618,7 +742,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
     this->GetClippingPlaneInDataCoords(identity, int(k), settings.clipPlanes[k].data());
     frame.Key.insert(frame.Key.end(), settings.clipPlanes[k].begin(), settings.clipPlanes[k].end());
   }
-  settings.surfaceAttribute = surfaceAttribute;
+  settings.surfaceAttribute = frame.Volumes ? surfaceAttribute : 0;
   frame.ByScalars = this->ScalarVisibility && this->ArrayName && *this->ArrayName &&
                     indexOf(this->ArrayName) < int(names.size());
   settings.colorAttribute = frame.ByScalars ? indexOf(this->ArrayName) : -1;
@@ -722,15 +846,17 @@ bool vtkIGAIsosurfaceMapper::SameFrame(const std::vector<double>& key)
 
 void vtkIGAIsosurfaceMapper::UpdateDataVersion(vtkMatrix4x4* matrix)
 {
-  // Patches in world space, made again only when the data or the actor's matrix change (a new
-  // data version): the matrix acts linearly on homogeneous control points, exactly, whatever
-  // the matrix.
+  // Patches in world space, made again only when the data, what is drawn of it or the actor's
+  // matrix change (a new data version): the matrix acts linearly on homogeneous control
+  // points, exactly, whatever the matrix.
   Internals& in = *this->Internal;
-  if (in.DataVersion && in.VersionSetTime == in.SetTime &&
+  const int mode = 2 * this->DrawMode + (in.DrewVolumes ? 1 : 0);
+  if (in.DataVersion && in.VersionSetTime == in.SetTime && in.VersionMode == mode &&
       std::equal(in.VersionMatrix, in.VersionMatrix + 16, matrix->GetData()))
   {
     return;
   }
+  in.VersionMode = mode;
   static std::atomic<uint64_t> mappers{ 0 };
   const uint64_t mapper = in.DataVersion ? in.DataVersion >> 40 : ++mappers;
   const uint64_t changes = in.DataVersion ? (in.DataVersion & ((uint64_t(1) << 40) - 1)) : 0;
@@ -739,13 +865,20 @@ void vtkIGAIsosurfaceMapper::UpdateDataVersion(vtkMatrix4x4* matrix)
   std::copy(matrix->GetData(), matrix->GetData() + 16, in.VersionMatrix);
   // The identity (the usual case) needs no copy.
   in.World.clear();
+  in.SurfaceWorld.clear();
   if (!matrix->IsIdentity())
   {
-    in.World = in.Set.patches;
+    in.World = in.DrewVolumes ? in.Set.patches : in.World;
+    in.SurfaceWorld = in.Surfaces;
   }
   for (auto& patch : in.World)
   {
     const auto view = patch.view();
+    moveControlPoints(matrix, view.coeffs, size_t(view.pointCount()), view.channels);
+  }
+  for (auto& surface : in.SurfaceWorld)
+  {
+    const auto view = surface.view();
     moveControlPoints(matrix, view.coeffs, size_t(view.pointCount()), view.channels);
   }
 }
@@ -754,6 +887,7 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
 {
   Internals& in = *this->Internal;
   vtkMatrix4x4* matrix = actor->GetMatrix();
+  in.DrewVolumes = frame.Volumes;
   this->UpdateDataVersion(matrix);
   frame.Settings.dataVersion = in.DataVersion;
   this->UpdateProgress(0.0);
@@ -762,6 +896,7 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
     // The engine says which form it runs best on: NURBS nets (elements extracted on a GPU),
     // checked once per input, or the cells the mapper already has.
     const bool nurbs =
+      frame.Volumes && in.Surfaces.empty() &&
       iga::sst::preferredInput(frame.Settings.backend) == iga::sst::InputForm::NurbsVolumes &&
       this->UpdateNurbs(matrix);
     in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
@@ -770,7 +905,7 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
     const auto report =
       nurbs ? iga::sst::render(in.Nurbs.Volumes(matrix->IsIdentity() ? nullptr : &in.NurbsWorld),
                 frame.View, frame.Settings, method, in.GBuffer)
-            : iga::sst::render(matrix->IsIdentity() ? in.Set.patches : in.World, frame.View,
+            : iga::sst::render(this->EngineScene(matrix->IsIdentity() != 0), frame.View,
                 frame.Settings, method, in.GBuffer);
     this->UpdateProgress(1.0);
     this->ReportEngine(report);
@@ -929,7 +1064,29 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
       in.Depth[p] = float(0.5 * (hit->ndcDepth + 1.0));
     }
   }
+  if (property->GetEdgeVisibility())
+  {
+    this->DrawEdges(property);
+  }
   in.FrameTime.Modified();
+}
+
+void vtkIGAIsosurfaceMapper::DrawEdges(vtkProperty* property)
+{
+  // In the edge colour, unlit, over the shading (premultiplied colours).
+  Internals& in = *this->Internal;
+  const std::vector<float> coverage =
+    iga::sst::elementEdgeCoverage(in.GBuffer, std::max(1.0f, property->GetLineWidth()));
+  double edge[3];
+  property->GetEdgeColor(edge);
+  for (size_t p = 0; p < coverage.size(); ++p)
+  {
+    float* rgba = &in.Colour[4 * p];
+    for (int c = 0; c < 3; ++c)
+    {
+      rgba[c] = (1 - coverage[p]) * rgba[c] + coverage[p] * float(edge[c]) * rgba[3];
+    }
+  }
 }
 
 void vtkIGAIsosurfaceMapper::SelectionIds(
@@ -941,9 +1098,12 @@ void vtkIGAIsosurfaceMapper::SelectionIds(
   Internals& in = *this->Internal;
   const int pass = selector->GetCurrentPass();
   const bool composite = vtkCompositeDataSet::SafeDownCast(input) != nullptr;
-  if (!in.PatchCell.empty())
+  for (const auto* cells : { &in.PatchCell, &in.QuadCell })
   {
-    selector->UpdateMaximumCellId(*std::max_element(in.PatchCell.begin(), in.PatchCell.end()));
+    if (!cells->empty())
+    {
+      selector->UpdateMaximumCellId(*std::max_element(cells->begin(), cells->end()));
+    }
   }
   ids.assign(in.Colour.size(), 0.0f);
   for (int j = 0; j < in.Size[1]; ++j)
@@ -956,7 +1116,9 @@ void vtkIGAIsosurfaceMapper::SelectionIds(
       {
         continue;
       }
-      const vtkIdType cellId = in.PatchCell[hit->patch];
+      vtkIdType cellId;
+      unsigned int block;
+      this->PatchSource(hit->patch, cellId, block);
       switch (pass)
       {
         case vtkHardwareSelector::CELL_ID_LOW24:
@@ -970,7 +1132,7 @@ void vtkIGAIsosurfaceMapper::SelectionIds(
           selectionColour(0, rgba);
           break;
         case vtkHardwareSelector::COMPOSITE_INDEX_PASS:
-          selector->RenderCompositeIndex(composite ? in.PatchBlock[hit->patch] : 1);
+          selector->RenderCompositeIndex(composite ? block : 1);
           VTK_FALLTHROUGH;
         default: // actor and process passes
           std::copy(selector->GetPropColorValue(), selector->GetPropColorValue() + 3, rgba);

@@ -3,9 +3,17 @@
  * @brief   Draws pixel-exact isosurfaces of rational Bézier volumes into VTK's framebuffer,
  *          colour and depth, so they composite with every other prop.
  *
- * Input: a vtkUnstructuredGrid of VTK_BEZIER_HEXAHEDRON cells (RationalWeights,
- * HigherOrderDegrees; see vtkIGABezierHexahedra), or a composite dataset whose grid leaves share
- * their point arrays. Each render the mapper runs the SST engine for
+ * Input: a vtkUnstructuredGrid of VTK_BEZIER_HEXAHEDRON and VTK_BEZIER_QUADRILATERAL cells
+ * (RationalWeights, HigherOrderDegrees; see vtkIGABezierHexahedra), or a composite dataset whose
+ * grid leaves share their point arrays. DrawMode says what is drawn: the hexahedra's
+ * isosurfaces (DRAW_ISOSURFACES, the default) or their boundary (DRAW_SURFACES: the faces of
+ * the volumes that no other volume shares and that are not collapsed, found once per topology
+ * and sliced from the control nets every time the data change, so a deforming volume's
+ * boundary moves with it); quadrilateral cells are drawn as the surfaces they are in both.
+ * With the property's EdgeVisibility on (ParaView's "Surface With Edges") the element edges are
+ * drawn over the shading in EdgeColor, LineWidth pixels wide and anti-aliased: where a hit's
+ * parameter in its Bézier element reaches 0 or 1 (iga/sst/ElementEdges.h), so at every knot line
+ * of NURBS input, exactly at any zoom. Each render the mapper runs the SST engine for
  * the renderer's camera, the actor's matrix and the tiled viewport (only when one of them, the
  * data, the properties or the lights changed), shades the first hits with the actor's property
  * and the renderer's lights, and draws them with a full-screen pass that writes gl_FragDepth:
@@ -81,6 +89,7 @@ namespace iga
 namespace sst
 {
 struct FrameReport;
+class Scene;
 }
 }
 #endif
@@ -94,6 +103,7 @@ class vtkHardwareSelector;
 class vtkMatrix4x4;
 class vtkOpenGLRenderPass;
 class vtkOpenGLRenderWindow;
+class vtkProperty;
 
 class IGAVIEWRENDERING_EXPORT vtkIGAIsosurfaceMapper : public vtkMapper
 {
@@ -107,11 +117,25 @@ public:
   void SetInputData(vtkDataObject* input);
 
   ///@{
-  /// Isovalues of the surface attribute (at least one is needed to draw anything).
+  /// Isovalues of the surface attribute (at least one is needed to draw isosurfaces).
   void SetNumberOfIsovalues(int count);
   int GetNumberOfIsovalues() const;
   void SetIsovalue(int index, double value);
   double GetIsovalue(int index) const;
+  ///@}
+
+  enum DrawModeType
+  {
+    DRAW_ISOSURFACES = 0, ///< the hexahedra's isosurfaces (and quadrilaterals as surfaces)
+    DRAW_SURFACES = 1,    ///< the hexahedra's boundary faces and the quadrilaterals
+  };
+
+  ///@{
+  /// What is drawn (DrawModeType); default the isosurfaces. Surfaces need no isovalue.
+  vtkSetClampMacro(DrawMode, int, DRAW_ISOSURFACES, DRAW_SURFACES);
+  vtkGetMacro(DrawMode, int);
+  void SetDrawModeToIsosurfaces() { this->SetDrawMode(DRAW_ISOSURFACES); }
+  void SetDrawModeToSurfaces() { this->SetDrawMode(DRAW_SURFACES); }
   ///@}
 
   ///@{
@@ -236,6 +260,12 @@ private:
   struct Frame;
   /// The input's patches, converted when it changed; false when there is nothing to draw.
   bool CollectInput(Frame& frame);
+  /// The surfaces drawn: the quadrilaterals, and in DRAW_SURFACES the volumes' boundary faces.
+  void UpdateSurfaces();
+  /// The scene the engine draws, in world space.
+  iga::sst::Scene EngineScene(bool identity) const;
+  /// The cell and composite block a hit's patch (the engine's numbering) came from.
+  void PatchSource(int patch, vtkIdType& cell, unsigned int& block) const;
   /// Size, view, lights, clipping planes and engine settings of the frame, and its key.
   bool DescribeFrame(vtkRenderer* renderer, vtkActor* actor, Frame& frame);
   void DescribeLights(vtkRenderer* renderer, Frame& frame);
@@ -257,6 +287,8 @@ private:
   void ReportDeadline(const iga::sst::FrameReport& report);
   /// Colour and window depth of every pixel from the G-buffer, with VTK's lights.
   void ShadeFrame(vtkActor* actor, const Frame& frame);
+  /// The element edges over the shaded colours (the property's EdgeVisibility).
+  void DrawEdges(vtkProperty* property);
   /// Colours, or a hardware selector's ids, drawn as a full-screen pass with gl_FragDepth.
   void DrawFrame(vtkRenderer* renderer, vtkActor* actor, vtkDataObject* input);
   void SelectionIds(vtkHardwareSelector* selector, vtkDataObject* input, std::vector<float>& ids);
@@ -271,6 +303,7 @@ private:
   std::unique_ptr<Internals> Internal;
   std::vector<double> Isovalues;
   std::string SurfaceArrayName;
+  int DrawMode = DRAW_ISOSURFACES;
   int NumberOfThreads = 0;
   int Backend = BACKEND_AUTOMATIC;
   int MaximumSubdivisionDepth = 22;

@@ -1,6 +1,7 @@
 // Regression images of vtkIGAIsosurfaceMapper scenes (baselines in Testing/Data/Baseline, compared
 // with vtkTesting's image difference), plus numeric checks of what the images show.
 // IGAVIEW_WRITE_BASELINES=1 writes the baselines instead of comparing.
+#include "RenderingTestUtilities.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGAIsosurfaceMapper.h"
 
@@ -11,7 +12,6 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkPNGWriter.h"
 #include "vtkPlane.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
@@ -20,7 +20,6 @@
 #include "vtkRenderer.h"
 #include "vtkScalarBarActor.h"
 #include "vtkSphereSource.h"
-#include "vtkTesting.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkWindowToImageFilter.h"
 
@@ -30,10 +29,6 @@
 
 #include <cstdlib>
 #include <string>
-
-#ifndef IGAVIEW_BASELINE_DIR
-#error "IGAVIEW_BASELINE_DIR must name the baseline image folder"
-#endif
 
 namespace
 {
@@ -71,29 +66,7 @@ struct ImageScene
   }
 
   /// Compares the window with the baseline `name`.png (or writes it).
-  void compare(const std::string& name)
-  {
-    window->Render();
-    const std::string baseline = std::string(IGAVIEW_BASELINE_DIR) + "/" + name + ".png";
-    if (std::getenv("IGAVIEW_WRITE_BASELINES"))
-    {
-      vtkNew<vtkWindowToImageFilter> grab;
-      grab->SetInput(window);
-      grab->ReadFrontBufferOff();
-      vtkNew<vtkPNGWriter> writer;
-      writer->SetInputConnection(grab->GetOutputPort());
-      writer->SetFileName(baseline.c_str());
-      writer->Write();
-      GTEST_SKIP() << "wrote " << baseline;
-    }
-    vtkNew<vtkTesting> testing;
-    testing->AddArgument("-V");
-    testing->AddArgument(baseline.c_str());
-    testing->AddArgument("-T");
-    testing->AddArgument(::testing::TempDir().c_str());
-    testing->SetRenderWindow(window);
-    EXPECT_EQ(testing->RegressionTest(10), vtkTesting::PASSED) << "image differs from " << baseline;
-  }
+  void compare(const std::string& name) { igatest::compareWithBaseline(window, name); }
 };
 
 TEST(MapperImage, DefaultDataset)

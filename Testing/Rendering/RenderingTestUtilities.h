@@ -4,11 +4,22 @@
 #include <vtkCamera.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPNGWriter.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkRenderWindow.h>
 #include <vtkSmartPointer.h>
 #include <vtkSphereSource.h>
+#include <vtkTesting.h>
 #include <vtkWindowToImageFilter.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#ifndef IGAVIEW_BASELINE_DIR
+#error "IGAVIEW_BASELINE_DIR must name the baseline image folder"
+#endif
 
 namespace igatest
 {
@@ -46,6 +57,33 @@ inline vtkSmartPointer<vtkPolyDataMapper> sphereMapper(double x, double y, doubl
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputConnection(source->GetOutputPort());
   return mapper;
+}
+
+/// Renders the window and compares it with the baseline `name`.png of Testing/Data/Baseline
+/// (vtkTesting's image difference, threshold 10); IGAVIEW_WRITE_BASELINES=1 writes it instead
+/// and skips the test, visibly.
+inline void compareWithBaseline(vtkRenderWindow* window, const std::string& name)
+{
+  window->Render();
+  const std::string baseline = std::string(IGAVIEW_BASELINE_DIR) + "/" + name + ".png";
+  if (std::getenv("IGAVIEW_WRITE_BASELINES"))
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->SetFileName(baseline.c_str());
+    writer->Write();
+    GTEST_SKIP() << "wrote " << baseline;
+  }
+  vtkNew<vtkTesting> testing;
+  testing->AddArgument("-V");
+  testing->AddArgument(baseline.c_str());
+  testing->AddArgument("-T");
+  testing->AddArgument(::testing::TempDir().c_str());
+  testing->SetRenderWindow(window);
+  EXPECT_EQ(testing->RegressionTest(10), vtkTesting::PASSED) << "image differs from " << baseline;
 }
 
 } // namespace igatest
