@@ -1,4 +1,5 @@
-// Writes the bundled sample datasets (VTK XML unstructured grids of rational Bézier hexahedra)
+// Writes the bundled sample datasets (VTK XML unstructured grids of rational Bézier hexahedra,
+// and the teapot's quadrilaterals)
 // and, on request, deforming time series and the large wind blade:
 //   igaview-generate-data OUTPUT_DIRECTORY [--series STEPS] [--benchmark STEPS] [--blade PATCHES]
 //                         [--zoo]
@@ -32,7 +33,8 @@
 
 namespace
 {
-bool write(const iga::VolumeSet<double>& set, const std::string& file)
+template<class Set>
+bool write(const Set& set, const std::string& file)
 {
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(set));
@@ -265,6 +267,7 @@ int main(int argc, char** argv)
            [&](double time) { return iga::makeBlade<double>(layout, time); }) &&
          ok;
   }
+  ok = write(iga::makeTeapot<double>(), dir + "teapot.vtu") && ok;
   if (zoo)
   {
     ok = write(iga::makeDegenerateZoo<double>(), dir + "degenerate_zoo.vtu") && ok;

@@ -93,10 +93,10 @@ std::string updateQuietly(
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierFileReading::Read(const std::string& name,
-  const std::string* text, iga::VolumeSet<double>& set, std::string& error,
+  const std::string* text, vtkIGABezierHexahedra::Patches& patches, std::string& error,
   std::vector<std::string>& warnings, double memoryLimitBytes)
 {
-  set = iga::VolumeSet<double>();
+  patches = vtkIGABezierHexahedra::Patches();
   if (!text && !std::ifstream(name))
   {
     error = "cannot open '" + name + "'";
@@ -142,14 +142,9 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierFileReading::Read(const std::st
   {
     warnings.push_back(readerMessage);
   }
-  if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings))
+  if (!vtkIGABezierHexahedra::FromUnstructuredGrid(grid, patches, error, warnings))
   {
     error = "'" + name + "': " + error;
-    return nullptr;
-  }
-  if (set.attributeNames.empty())
-  {
-    error = "'" + name + "': no scalar point attribute to take an isosurface of";
     return nullptr;
   }
   return grid;

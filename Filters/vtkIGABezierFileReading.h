@@ -1,7 +1,8 @@
 /**
  * @class   vtkIGABezierFileReading
- * @brief   Reads a VTK XML unstructured grid of Bézier hexahedra into Kernels patches, refusing
- *          what VTK's reader would crash or abort on, with one message naming the file.
+ * @brief   Reads a VTK XML unstructured grid of Bézier hexahedra and quadrilaterals into Kernels
+ *          patches, refusing what VTK's reader would crash or abort on, with one message naming
+ *          the file.
  *
  * VTK's vtkXMLUnstructuredGridReader aborts the process when a piece claims more points or
  * cells than it can allocate, and prints its errors over several lines. Read() first scans the
@@ -20,8 +21,8 @@
 #define vtkIGABezierFileReading_h
 
 #include "IGAViewFiltersModule.h" // for export macro
-#include "iga/Datasets.h"         // for VolumeSet
-#include "vtkSmartPointer.h"      // for return value
+#include "vtkIGABezierHexahedra.h" // for Patches
+#include "vtkSmartPointer.h"       // for return value
 
 #include <string>
 #include <vector>
@@ -35,8 +36,8 @@ public:
   /// messages). Returns the grid, or null with `error` set (starting with 'NAME'); non-fatal
   /// notes go to `warnings`. `memoryLimitBytes` 0: this machine's physical memory.
   static vtkSmartPointer<vtkUnstructuredGrid> Read(const std::string& name, const std::string* text,
-    iga::VolumeSet<double>& set, std::string& error, std::vector<std::string>& warnings,
-    double memoryLimitBytes = 0);
+    vtkIGABezierHexahedra::Patches& patches, std::string& error,
+    std::vector<std::string>& warnings, double memoryLimitBytes = 0);
 };
 
 #endif

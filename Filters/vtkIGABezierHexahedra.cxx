@@ -403,6 +403,40 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(v
   return grid;
 }
 
+vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
+  const iga::SurfaceSet<double>& set)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  grid->SetPoints(points);
+  grid->AllocateExact(vtkIdType(set.patches.size()), 16 * vtkIdType(set.patches.size()));
+  vtkNew<vtkDoubleArray> weights;
+  weights->SetName(kWeightsName);
+  grid->GetPointData()->SetRationalWeights(weights);
+  vtkNew<vtkIntArray> degrees;
+  degrees->SetName(kDegreesName);
+  degrees->SetNumberOfComponents(3);
+  grid->GetCellData()->SetHigherOrderDegrees(degrees);
+  std::vector<vtkDataArray*> attributes;
+  for (const std::string& name : set.attributeNames)
+  {
+    vtkNew<vtkDoubleArray> attribute;
+    attribute->SetName(name.c_str());
+    grid->GetPointData()->AddArray(attribute);
+    attributes.push_back(attribute);
+  }
+  if (!attributes.empty())
+  {
+    grid->GetPointData()->SetActiveScalars(attributes.front()->GetName());
+  }
+  for (const auto& surface : set.patches)
+  {
+    AppendQuadrilateral(grid, surface.view(), attributes);
+  }
+  return grid;
+}
+
 vtkIdType vtkIGABezierHexahedra::AppendQuadrilateral(vtkUnstructuredGrid* grid,
   const iga::PatchView<const double, 2>& surface, const std::vector<vtkDataArray*>& attributes)
 {

@@ -64,6 +64,9 @@ public:
     vtkIdType pointCount, const std::vector<std::string>& attributeNames,
     const std::function<const iga::BezierVolume<double>&(vtkIdType)>& cell, CellLayout layout);
 
+  /// Surfaces (standard layout, every attribute named) to a grid of Bézier quadrilaterals.
+  static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(const iga::SurfaceSet<double>& set);
+
   /// Appends a rational Bézier surface (standard layout) as a VTK_BEZIER_QUADRILATERAL cell:
   /// its points, weights (the grid's RationalWeights), attribute channels (into `attributes`,
   /// in order) and degrees (the grid's HigherOrderDegrees, third component 0). Returns its id.

@@ -1,12 +1,15 @@
 // igaview: the command-line front end. `igaview render` draws isosurfaces of rational Bézier
-// volumes through vtkIGAIsosurfaceMapper in an offscreen VTK render window and writes a PNG and,
-// on request, the engine's OpenEXR G-buffer of the same frame. `igaview view` shows them in an
-// interactive window (trackball camera, keys for the isovalue and time, frame-time readout).
+// volumes, or the surfaces of a geometry (volumes' boundaries, surface patches), through
+// vtkIGAIsosurfaceMapper in an offscreen VTK render window and writes a PNG and, on request, the
+// engine's OpenEXR G-buffer of the same frame. `igaview view` shows them in an interactive
+// window (trackball camera, keys for the isovalue and time, frame-time readout).
 #include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAEXRWriter.h"
 #include "vtkIGAGBufferImage.h"
+#include "vtkIGAGeoPDEsReader.h"
+#include "vtkIGAGismoReader.h"
 
 #include "vtkIGAIsosurfaceMapper.h"
 
@@ -47,8 +50,9 @@ namespace
 const char* const kUsage = R"(usage: igaview render [INPUT] [options]
        igaview view [INPUT] [options]
 
-render: draws isosurfaces of rational Bezier volumes pixel-exactly (Shared Subdivision Trees) to
-a PNG image and optionally an OpenEXR G-buffer.
+render: draws isosurfaces of rational Bezier volumes, or the surfaces of a geometry (the
+boundary of its volumes and its surface patches), pixel-exactly (Shared Subdivision Trees) to a
+PNG image and optionally an OpenEXR G-buffer.
 view: shows them in an interactive window: drag to rotate (trackball), right-drag or wheel to
 zoom, middle-drag to pan; Up/Down raise/lower the isovalue by 2% of the attribute's range,
 Right/Left step the time (inputs with time steps, e.g. the default dataset), r resets the camera,
@@ -56,8 +60,13 @@ q quits. The corner shows the isovalue, the time and the last frame's engine and
 With no INPUT both use the bundled default dataset (a twisted rational tube of 8 tri-quadratic
 patches, deforming over the time steps 0..1).
 
-INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON cells with
-                         RationalWeights (and HigherOrderDegrees where a cell's degrees differ)
+INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON and
+                         VTK_BEZIER_QUADRILATERAL cells with RationalWeights (and
+                         HigherOrderDegrees where a cell's degrees differ), or a G+Smo XML or
+                         GeoPDEs text geometry (geometry only: drawn as surfaces by default)
+  --surface              draw the surfaces (volumes' boundaries, surface patches), not
+                         isosurfaces; the default for geometry files and for input without volumes
+  --edges                draw the element edges (every knot line of NURBS input) over the surface
   --iso V                isovalue (repeatable; default: the middle of the attribute's range)
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour)
@@ -85,6 +94,7 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
 struct Options
 {
   bool view = false; ///< `igaview view`
+  bool surface = false, edges = false;
   std::vector<std::string> keys;
   bool hasOutput = false;
   std::string input;
@@ -200,6 +210,10 @@ Options parseArguments(int argc, char** argv)
     }
     else if (arg == "--iso")
       options.isovalues.push_back(parseNumber(value(), arg));
+    else if (arg == "--surface")
+      options.surface = true;
+    else if (arg == "--edges")
+      options.edges = true;
     else if (arg == "--surface-by")
       options.surfaceBy = value();
     else if (arg == "--color-by")
@@ -281,79 +295,135 @@ Options parseArguments(int argc, char** argv)
   return options;
 }
 
-/// The input's producer (the default dataset's source, or the grid of a .vtu read as the
-/// mapper would take it), updated, and its patches.
-vtkSmartPointer<vtkAlgorithm> loadInput(const Options& options, iga::VolumeSet<double>& set)
+/// The input: its producer, updated, and its patches; `geometry` says whether it came from a
+/// geometry-only format (G+Smo, GeoPDEs), whose attributes are the readers' coordinates.
+struct Input
+{
+  vtkSmartPointer<vtkAlgorithm> producer;
+  vtkIGABezierHexahedra::Patches patches;
+  bool geometry = false;
+};
+
+/// A NURBS reader's output read like the mapper takes it, failing with the reader's message.
+void readGeometry(vtkIGANurbsReader* reader, const std::string& file, Input& input,
+  std::string& error, std::vector<std::string>& warnings)
+{
+  std::string message;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&message);
+  onError->SetCallback([](vtkObject*, unsigned long, void* data, void* text)
+    { *static_cast<std::string*>(data) = static_cast<const char*>(text); });
+  reader->AddObserver(vtkCommand::ErrorEvent, onError);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  if (!message.empty())
+  {
+    fail(message);
+  }
+  input.producer = reader;
+  input.geometry = true;
+  if (!vtkIGABezierHexahedra::FromUnstructuredGrid(
+        reader->GetOutput(), input.patches, error, warnings))
+  {
+    fail("'" + file + "': " + error);
+  }
+}
+
+/// The default dataset's source, a G+Smo or GeoPDEs geometry's reader, or the grid of a .vtu
+/// read as the mapper would take it.
+Input loadInput(const Options& options)
 {
   std::string error;
   std::vector<std::string> warnings;
-  vtkSmartPointer<vtkAlgorithm> producer;
+  Input input;
   std::string name = options.input;
+  vtkNew<vtkIGAGismoReader> gismo;
+  vtkNew<vtkIGAGeoPDEsReader> geopdes;
   if (options.input.empty())
   {
     auto source = vtkSmartPointer<vtkIGADefaultVolumeSource>::New();
     source->SetTime(options.time);
     source->Update();
-    producer = source;
+    input.producer = source;
     name = "default dataset";
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
       options.time);
-    if (!vtkIGABezierHexahedra::FromUnstructuredGrid(source->GetOutput(), set, error, warnings))
+    if (!vtkIGABezierHexahedra::FromUnstructuredGrid(
+          source->GetOutput(), input.patches, error, warnings))
     {
       fail(name + ": " + error);
     }
   }
+  else if (gismo->CanReadFile(options.input.c_str()))
+  {
+    readGeometry(gismo, options.input, input, error, warnings);
+  }
+  else if (geopdes->CanReadFile(options.input.c_str()))
+  {
+    readGeometry(geopdes, options.input, input, error, warnings);
+  }
   else
   {
-    const auto grid = vtkIGABezierFileReading::Read(options.input, nullptr, set, error, warnings);
+    const auto grid =
+      vtkIGABezierFileReading::Read(options.input, nullptr, input.patches, error, warnings);
     if (!grid)
     {
       fail(error);
     }
     auto trivial = vtkSmartPointer<vtkTrivialProducer>::New();
     trivial->SetOutput(grid);
-    producer = trivial;
+    input.producer = trivial;
   }
   for (const auto& warning : warnings)
   {
     std::fprintf(stderr, "igaview: warning: %s: %s\n", name.c_str(), warning.c_str());
   }
-  return producer;
+  return input;
 }
 
-int attributeIndex(const iga::VolumeSet<double>& set, const std::string& name, const char* option)
+int attributeIndex(const Input& input, const std::string& name, const char* option)
 {
-  const auto it = std::find(set.attributeNames.begin(), set.attributeNames.end(), name);
-  if (it == set.attributeNames.end())
+  const auto& names = input.patches.volumes.attributeNames;
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end())
   {
     std::string known;
-    for (const auto& n : set.attributeNames)
+    for (const auto& n : names)
       known += (known.empty() ? "" : ", ") + n;
     fail(std::string(option) + ": no attribute named '" + name + "' (have: " + known + ")");
   }
-  return int(it - set.attributeNames.begin());
+  return int(it - names.begin());
 }
 
-/// Range of an attribute over all patches (Bernstein coefficients bound the field).
-void attributeRange(const iga::VolumeSet<double>& set, int attribute, double* range)
+/// The scene of the input's patches, volumes and surfaces.
+iga::sst::Scene sceneOf(const Input& input)
+{
+  return iga::sst::Scene(input.patches.volumes.patches, input.patches.surfaces);
+}
+
+/// Range of an attribute over the volumes, and the surfaces with `surfaces` (Bernstein
+/// coefficients bound the field).
+void attributeRange(const Input& input, int attribute, bool surfaces, double* range)
 {
   range[0] = INFINITY;
   range[1] = -INFINITY;
-  for (const auto& patch : set.patches)
+  const iga::sst::Scene scene = sceneOf(input);
+  const size_t count = surfaces ? scene.size() : scene.volumeCount();
+  for (size_t p = 0; p < count; ++p)
   {
     double lo, hi;
     iga::rationalRange<double, 3>(
-      patch.view(), iga::kFirstAttributeChannel + attribute, iga::kWeightChannel, lo, hi);
+      scene[p], iga::kFirstAttributeChannel + attribute, iga::kWeightChannel, lo, hi);
     range[0] = std::min(range[0], lo);
     range[1] = std::max(range[1], hi);
   }
 }
 
-iga::Camera chooseCamera(const Options& options, const iga::VolumeSet<double>& set)
+iga::Camera chooseCamera(const Options& options, const Input& input)
 {
   double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
+  iga::sst::patchBounds(sceneOf(input), bounds);
   // Default view: from the front right and above, z up, framing the data like ResetCamera.
   iga::Camera camera =
     iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, options.viewAngle);
@@ -426,7 +496,7 @@ struct Viewer
 
   std::string state() const
   {
-    std::string text = this->surfaceName + " =";
+    std::string text = this->isovalues.empty() ? "surfaces" : this->surfaceName + " =";
     for (double iso : this->isovalues)
     {
       text += " " + std::to_string(iso);
@@ -512,65 +582,101 @@ void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
   interactor->Start();
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/// What a run draws: isosurfaces of an attribute at isovalues, or the surfaces; the colouring
+/// attribute (-1: none) and its range.
+struct Drawing
 {
-  const Options options = parseArguments(argc, argv);
-  iga::VolumeSet<double> set;
-  const vtkSmartPointer<vtkAlgorithm> producer = loadInput(options, set);
+  bool surfaces = false;
+  int surface = 0;
+  std::vector<double> isovalues;
+  double surfaceRange[2] = { 0, 1 };
+  int colour = -1;
+  double colourRange[2] = { 0, 1 };
+};
 
-  const int surface =
-    options.surfaceBy.empty() ? 0 : attributeIndex(set, options.surfaceBy, "--surface-by");
-  const int colour =
-    options.colorBy.empty() ? -1 : attributeIndex(set, options.colorBy, "--color-by");
-  double surfaceRange[2], colourRange[2] = { 0, 1 };
-  attributeRange(set, surface, surfaceRange);
-  std::vector<double> isovalues = options.isovalues;
-  if (isovalues.empty())
-    isovalues.push_back(0.5 * (surfaceRange[0] + surfaceRange[1]));
-  const iga::Camera view = chooseCamera(options, set);
+/// Isosurfaces when asked for (--iso, --surface-by) or when the input holds volumes of a field;
+/// the surfaces when asked for (--surface), for geometry files and for input without volumes.
+Drawing chooseDrawing(const Options& options, const Input& input)
+{
+  Drawing drawing;
+  const auto& names = input.patches.volumes.attributeNames;
+  const bool isosurfaces = !options.isovalues.empty() || !options.surfaceBy.empty();
+  drawing.surfaces =
+    options.surface || (!isosurfaces && (input.geometry || input.patches.volumes.patches.empty()));
+  if (!drawing.surfaces && input.patches.volumes.patches.empty())
+    fail("'" + options.input + "' holds no volumes to take an isosurface of: --surface draws it");
+  if (!drawing.surfaces && names.empty())
+    fail("'" + options.input +
+         "': no scalar point attribute to take an isosurface of: --surface "
+         "draws its shape");
+  if (!drawing.surfaces)
+  {
+    drawing.surface =
+      options.surfaceBy.empty() ? 0 : attributeIndex(input, options.surfaceBy, "--surface-by");
+    attributeRange(input, drawing.surface, false, drawing.surfaceRange);
+    drawing.isovalues = options.isovalues;
+    if (drawing.isovalues.empty())
+      drawing.isovalues.push_back(0.5 * (drawing.surfaceRange[0] + drawing.surfaceRange[1]));
+  }
+  drawing.colour =
+    options.colorBy.empty() ? -1 : attributeIndex(input, options.colorBy, "--color-by");
+  if (drawing.colour >= 0)
+  {
+    attributeRange(input, drawing.colour, true, drawing.colourRange);
+    if (!(drawing.colourRange[1] > drawing.colourRange[0]))
+      drawing.colourRange[1] = drawing.colourRange[0] + 1;
+  }
+  return drawing;
+}
 
-  vtkNew<vtkIGAIsosurfaceMapper> mapper;
-  mapper->SetInputConnection(producer->GetOutputPort());
-  mapper->SetSurfaceArrayName(set.attributeNames[surface].c_str());
+/// The mapper for the options and the drawing, ParaView's cool-to-warm map for a colouring.
+void configureMapper(const Options& options, const Input& input, const Drawing& drawing,
+  vtkIGAIsosurfaceMapper* mapper, vtkColorTransferFunction* coolToWarm)
+{
+  const auto& names = input.patches.volumes.attributeNames;
+  mapper->SetInputConnection(input.producer->GetOutputPort());
+  mapper->SetDrawMode(drawing.surfaces ? vtkIGAIsosurfaceMapper::DRAW_SURFACES
+                                       : vtkIGAIsosurfaceMapper::DRAW_ISOSURFACES);
+  if (!drawing.surfaces)
+    mapper->SetSurfaceArrayName(names[drawing.surface].c_str());
   mapper->SetNumberOfThreads(options.threads);
   mapper->SetMemoryBudgetMB(options.memoryBudgetMB);
   // An interactive window answers within two seconds unless told otherwise.
   mapper->SetFrameDeadline(options.deadline >= 0 ? options.deadline : options.view ? 2.0 : 0.0);
   // The mapper's BackendType follows the engine's Backend order (auto, CPU, CUDA).
   mapper->SetBackend(int(options.backend));
-  for (size_t k = 0; k < isovalues.size(); ++k)
-    mapper->SetIsovalue(int(k), isovalues[k]);
-  vtkNew<vtkColorTransferFunction> coolToWarm; // ParaView's default map
-  if (colour >= 0)
+  for (size_t k = 0; k < drawing.isovalues.size(); ++k)
+    mapper->SetIsovalue(int(k), drawing.isovalues[k]);
+  mapper->ScalarVisibilityOff();
+  if (drawing.colour >= 0)
   {
-    attributeRange(set, colour, colourRange);
-    if (!(colourRange[1] > colourRange[0]))
-      colourRange[1] = colourRange[0] + 1;
     coolToWarm->SetColorSpaceToDiverging();
-    coolToWarm->AddRGBPoint(colourRange[0], 0.231, 0.298, 0.753);
-    coolToWarm->AddRGBPoint(colourRange[1], 0.706, 0.016, 0.150);
+    coolToWarm->AddRGBPoint(drawing.colourRange[0], 0.231, 0.298, 0.753);
+    coolToWarm->AddRGBPoint(drawing.colourRange[1], 0.706, 0.016, 0.150);
     mapper->SetLookupTable(coolToWarm);
     mapper->SetScalarModeToUsePointFieldData();
-    mapper->SelectColorArray(set.attributeNames[colour].c_str());
-    mapper->SetScalarRange(colourRange);
+    mapper->SelectColorArray(names[drawing.colour].c_str());
+    mapper->SetScalarRange(drawing.colourRange);
     mapper->ScalarVisibilityOn();
   }
-  else
-  {
-    mapper->ScalarVisibilityOff();
-  }
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(0.9, 0.75, 0.45);
-  actor->GetProperty()->SetAmbient(0.1);
-  actor->GetProperty()->SetDiffuse(0.9);
-  actor->GetProperty()->SetSpecular(0.35);
-  actor->GetProperty()->SetSpecularPower(40);
+}
 
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddActor(actor);
+/// The actor's look, with the element edges for --edges.
+void configureActor(const Options& options, vtkActor* actor)
+{
+  vtkProperty* property = actor->GetProperty();
+  property->SetColor(0.9, 0.75, 0.45);
+  property->SetAmbient(0.1);
+  property->SetDiffuse(0.9);
+  property->SetSpecular(0.35);
+  property->SetSpecularPower(40);
+  property->SetEdgeVisibility(options.edges);
+  property->SetEdgeColor(0.15, 0.15, 0.2);
+}
+
+/// The renderer with its gradient background and the chosen camera.
+void configureRenderer(const iga::Camera& view, vtkRenderer* renderer)
+{
   renderer->SetBackground(0.12, 0.14, 0.18);
   renderer->SetBackground2(0.32, 0.36, 0.42);
   renderer->GradientBackgroundOn();
@@ -580,29 +686,32 @@ int main(int argc, char** argv)
   camera->SetViewUp(glm::value_ptr(view.viewUp));
   camera->SetViewAngle(view.viewAngle);
   camera->SetClippingRange(view.clippingRange);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->AddRenderer(renderer);
-  window->SetSize(options.size[0], options.size[1]);
+}
 
+/// One line saying what is drawn.
+void describe(const Options& options, const Input& input, const Drawing& drawing)
+{
+  const auto& names = input.patches.volumes.attributeNames;
+  if (drawing.surfaces)
+  {
+    std::printf("igaview: surfaces of %zu volumes (their boundary) and %zu surface patches, "
+                "%dx%d pixels\n",
+      input.patches.volumes.patches.size(), input.patches.surfaces.size(), options.size[0],
+      options.size[1]);
+    return;
+  }
   std::string isoText;
-  for (double iso : isovalues)
+  for (double iso : drawing.isovalues)
     isoText += (isoText.empty() ? "" : ", ") + std::to_string(iso);
-  std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n", set.patches.size(),
-    set.attributeNames[surface].c_str(), isoText.c_str(), options.size[0], options.size[1]);
-  if (options.view)
-  {
-    vtkNew<vtkTextActor> readout;
-    Viewer viewer{ producer, mapper, renderer, readout, set.attributeNames[surface], isovalues,
-      0.02 * (surfaceRange[1] - surfaceRange[0]), {}, 0 };
-    runViewer(options, viewer, window);
-    if (options.keys.empty() || !options.hasOutput)
-      return 0;
-  }
-  else
-  {
-    window->Render();
-  }
+  std::printf("igaview: %zu patches, isosurface %s = %s, %dx%d pixels\n",
+    input.patches.volumes.patches.size(), names[drawing.surface].c_str(), isoText.c_str(),
+    options.size[0], options.size[1]);
+}
+
+/// The PNG of the window and, for --exr, the G-buffer.
+void writeOutputs(const Options& options, const Input& input, const Drawing& drawing,
+  vtkRenderWindow* window, vtkIGAIsosurfaceMapper* mapper)
+{
   // Errors of the engine surface as VTK errors; make them fatal and on one line.
   const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
   if (gbuffer.width != options.size[0] || gbuffer.height != options.size[1])
@@ -611,7 +720,6 @@ int main(int argc, char** argv)
   }
   std::printf("igaview: %zu pixels covered in %.1f ms (SST engine, %s)\n", gbuffer.coveredPixels(),
     mapper->GetLastEngineTime(), mapper->GetLastBackend());
-
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->ReadFrontBufferOff();
@@ -624,14 +732,54 @@ int main(int argc, char** argv)
   std::printf("igaview: wrote %s\n", options.output.c_str());
   if (!options.exr.empty())
   {
+    const auto& names = input.patches.volumes.attributeNames;
     vtkNew<vtkIGAEXRWriter> writer;
     writer->SetInputData(vtkIGAGBufferImage::Convert(
-      gbuffer, mapper->GetLastColours().data(), colour >= 0 ? set.attributeNames[colour] : ""));
+      gbuffer, mapper->GetLastColours().data(), drawing.colour >= 0 ? names[drawing.colour] : ""));
     writer->SetFileName(options.exr.c_str());
     writer->Write();
     if (writer->GetErrorCode() != 0)
       fail(writer->GetLastError());
     std::printf("igaview: wrote %s\n", options.exr.c_str());
   }
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const Options options = parseArguments(argc, argv);
+  const Input input = loadInput(options);
+  const Drawing drawing = chooseDrawing(options, input);
+  vtkNew<vtkIGAIsosurfaceMapper> mapper;
+  vtkNew<vtkColorTransferFunction> coolToWarm;
+  configureMapper(options, input, drawing, mapper, coolToWarm);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  configureActor(options, actor);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  configureRenderer(chooseCamera(options, input), renderer);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->AddRenderer(renderer);
+  window->SetSize(options.size[0], options.size[1]);
+  describe(options, input, drawing);
+  if (options.view)
+  {
+    vtkNew<vtkTextActor> readout;
+    const auto& names = input.patches.volumes.attributeNames;
+    Viewer viewer{ input.producer, mapper, renderer, readout,
+      drawing.surfaces ? std::string() : names[drawing.surface], drawing.isovalues,
+      0.02 * (drawing.surfaceRange[1] - drawing.surfaceRange[0]), {}, 0 };
+    runViewer(options, viewer, window);
+    if (options.keys.empty() || !options.hasOutput)
+      return 0;
+  }
+  else
+  {
+    window->Render();
+  }
+  writeOutputs(options, input, drawing, window, mapper);
   return 0;
 }

@@ -48,10 +48,10 @@ vtkSmartPointer<vtkUnstructuredGrid> quarterRing()
 /// when it reads.
 std::string readingError(const std::string& text, double memory = 0)
 {
-  iga::VolumeSet<double> set;
+  vtkIGABezierHexahedra::Patches patches;
   std::string error;
   std::vector<std::string> warnings;
-  const auto grid = vtkIGABezierFileReading::Read("test.vtu", &text, set, error, warnings, memory);
+  const auto grid = vtkIGABezierFileReading::Read("test.vtu", &text, patches, error, warnings, memory);
   EXPECT_EQ(grid == nullptr, !error.empty());
   return error;
 }
@@ -197,11 +197,11 @@ TEST(BezierVTU, InlineArraysPastTheFirstMegabyteAreRead)
   writer->SetCompressorTypeToZLib();
   ASSERT_EQ(writer->Write(), 1);
   ASSERT_GT(fileText(file).size(), size_t(2) << 20);
-  iga::VolumeSet<double> set;
+  vtkIGABezierHexahedra::Patches patches;
   std::string error;
   std::vector<std::string> warnings;
-  EXPECT_NE(vtkIGABezierFileReading::Read(file, nullptr, set, error, warnings), nullptr) << error;
-  EXPECT_EQ(set.patches.size(), size_t(blade->GetNumberOfCells()));
+  EXPECT_NE(vtkIGABezierFileReading::Read(file, nullptr, patches, error, warnings), nullptr) << error;
+  EXPECT_EQ(patches.volumes.patches.size(), size_t(blade->GetNumberOfCells()));
 }
 
 /// Appended data (raw or base64) has its binary headers checked as inline data does.

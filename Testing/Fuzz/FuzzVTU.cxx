@@ -15,13 +15,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   vtkObject::GlobalWarningDisplayOff();
   const std::string text(reinterpret_cast<const char*>(data), size);
-  iga::VolumeSet<double> set;
+  vtkIGABezierHexahedra::Patches patches;
   std::string error;
   std::vector<std::string> warnings;
   const auto grid =
-    vtkIGABezierFileReading::Read("fuzz.vtu", &text, set, error, warnings, 256.0 * (1 << 20));
+    vtkIGABezierFileReading::Read("fuzz.vtu", &text, patches, error, warnings, 256.0 * (1 << 20));
   // Either a grid with its patches or one message; never both, never neither.
-  if (!grid == error.empty() || (grid && set.patches.size() != size_t(grid->GetNumberOfCells())))
+  const size_t cells = patches.volumes.patches.size() + patches.surfaces.size();
+  if (!grid == error.empty() || (grid && cells != size_t(grid->GetNumberOfCells())))
   {
     __builtin_trap();
   }

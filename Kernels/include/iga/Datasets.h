@@ -440,6 +440,29 @@ BezierSurface<T> makeTeapotSurface(int index)
   return surface;
 }
 
+/// The Utah teapot: its 32 bicubic Bézier patches (polynomial), attribute "height" = z exactly.
+template<class T>
+SurfaceSet<T> makeTeapot()
+{
+  SurfaceSet<T> set;
+  set.attributeNames = { "height" };
+  const int degree[2] = { 3, 3 };
+  for (int index = 0; index < 32; ++index)
+  {
+    const BezierSurface<T> geometry = makeTeapotSurface<T>(index);
+    BezierSurface<T> patch(degree, kFirstAttributeChannel + 1);
+    for (int p = 0; p < 16; ++p)
+    {
+      const T* from = geometry.view().point(p);
+      T* to = patch.view().point(p);
+      std::copy(from, from + kFirstAttributeChannel, to);
+      to[kFirstAttributeChannel] = from[2];
+    }
+    set.patches.push_back(std::move(patch));
+  }
+  return set;
+}
+
 /// The teapot as a thin shell volume for isosurface rendering: per patch, degree (3, 3, 1), the
 /// control points P_ij -+ thickness/2 n_ij at w = 0 / 1, n_ij the unit surface normal at the
 /// parameter (i/3, j/3) (taken slightly inside where the patch is degenerate). Attributes:
