@@ -20,6 +20,8 @@
 #include "vtkTransform.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <string>
+
 vtkStandardNewMacro(vtkIGAIsosurfaceRepresentation);
 
 vtkIGAIsosurfaceRepresentation::vtkIGAIsosurfaceRepresentation()
@@ -90,7 +92,7 @@ int vtkIGAIsosurfaceRepresentation::RequestData(
   }
   else if (input)
   {
-    vtkErrorMacro(<< "IGA Isosurface needs an unstructured grid of Bézier hexahedra, not a "
+    vtkErrorMacro(<< "IGA representations need an unstructured grid of Bézier cells, not a "
                   << input->GetClassName());
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -239,6 +241,32 @@ void vtkIGAIsosurfaceRepresentation::SetInputArrayToProcess(
   }
   this->Mapper->SetScalarVisibility(byPoints ? 1 : 0);
   this->Mapper->SelectColorArray(byPoints ? name : nullptr);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetRepresentation(const char* name)
+{
+  const std::string type = name ? name : "";
+  if (type != "IGA Isosurface" && type != "IGA Surface" && type != "IGA Surface With Edges")
+  {
+    vtkErrorMacro(<< "unknown representation '" << type
+                  << "' (IGA Isosurface, IGA Surface, IGA Surface With Edges)");
+    return;
+  }
+  this->Mapper->SetDrawMode(type == "IGA Isosurface" ? vtkIGAIsosurfaceMapper::DRAW_ISOSURFACES
+                                                     : vtkIGAIsosurfaceMapper::DRAW_SURFACES);
+  this->Property->SetEdgeVisibility(type == "IGA Surface With Edges");
+  this->SetProgressText(type.c_str());
+  this->Modified();
+}
+
+void vtkIGAIsosurfaceRepresentation::SetEdgeColor(double r, double g, double b)
+{
+  this->Property->SetEdgeColor(r, g, b);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetLineWidth(double width)
+{
+  this->Property->SetLineWidth(float(width));
 }
 
 void vtkIGAIsosurfaceRepresentation::SetLookupTable(vtkScalarsToColors* lut)

@@ -1,8 +1,14 @@
 /**
  * @class   vtkIGAIsosurfaceRepresentation
- * @brief   ParaView representation "IGA Isosurface": draws the pixel-exact isosurfaces of an
- *          unstructured grid of Bézier hexahedra with vtkIGAIsosurfaceMapper, without
- *          tessellating (vtkGeometryRepresentation would extract a surface first).
+ * @brief   ParaView representations "IGA Isosurface", "IGA Surface" and "IGA Surface With
+ *          Edges": draw the pixel-exact isosurfaces of an unstructured grid of Bézier
+ *          hexahedra, or its surfaces (the hexahedra's boundary and its Bézier
+ *          quadrilaterals), with vtkIGAIsosurfaceMapper, without tessellating
+ *          (vtkGeometryRepresentation would extract a surface first).
+ *
+ * Which of the three is drawn comes from ParaView's representation type through
+ * SetRepresentation (the XML's RepresentationType subtype), as for vtkGeometryRepresentation's
+ * "Surface With Edges"; the edges take the shared EdgeColor and LineWidth.
  *
  * Each rank keeps its own piece of the input (SetPiece) and reports its bounds; the view must
  * render remotely (SetRequiresDistributedRendering), so every pvserver/pvbatch rank draws its
@@ -71,6 +77,15 @@ public:
   void SetMemoryBudget(int megabytes);
   /// Seconds after which a frame stops (0: never).
   void SetFrameDeadline(double seconds);
+  ///@}
+
+  /// "IGA Isosurface", "IGA Surface" or "IGA Surface With Edges" (any other name is an error).
+  void SetRepresentation(const char* name);
+
+  ///@{
+  /// The element edges of "IGA Surface With Edges", forwarded to the property.
+  void SetEdgeColor(double r, double g, double b);
+  void SetLineWidth(double width);
   ///@}
 
   ///@{
