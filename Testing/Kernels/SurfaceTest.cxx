@@ -504,3 +504,80 @@ TEST(Surfaces, ElementEdgesLieOnTheElementBoundaries)
 }
 
 } // namespace
+
+namespace
+{
+
+/// Ray parameters where the ray meets the tube's boundary (radii 0.5 and 1, z in [0, 2]): its
+/// walls and its end annuli; false when the ray passes within 1e-6 of an edge or a silhouette.
+bool tubeBoundaryCrossings(const glm::dvec3& o, const glm::dvec3& d, std::vector<double>& t)
+{
+  t.clear();
+  for (double r : { 0.5, 1.0 })
+  {
+    const double a = d.x * d.x + d.y * d.y, b = 2 * (o.x * d.x + o.y * d.y),
+                 c = o.x * o.x + o.y * o.y - r * r, disc = b * b - 4 * a * c;
+    if (disc < 0)
+      continue;
+    if (disc < 1e-6 * b * b)
+      return false;
+    for (double s : { -1.0, 1.0 })
+    {
+      const double root = (-b + s * std::sqrt(disc)) / (2 * a), z = o.z + root * d.z;
+      if (std::abs(z) < 1e-6 || std::abs(z - 2) < 1e-6)
+        return false;
+      if (root > 0 && z > 0 && z < 2)
+        t.push_back(root);
+    }
+  }
+  for (double z : { 0.0, 2.0 })
+  {
+    const double root = (z - o.z) / d.z, r = std::hypot(o.x + root * d.x, o.y + root * d.y);
+    if (std::abs(r - 0.5) < 1e-6 || std::abs(r - 1) < 1e-6)
+      return false;
+    if (root > 0 && r > 0.5 && r < 1)
+      t.push_back(root);
+  }
+  return true;
+}
+
+TEST(Surfaces, RaysThroughAMultiPatchBlockHitOnlyItsOuterFaces)
+{
+  // The tube's 8 patches share 12 inner faces (between quadrants, and across z = 1); its
+  // boundary is 24 faces: the walls and the end annuli.
+  const auto tube = iga::makeTube<double>(0.5, 0.0);
+  std::vector<BezierSurface<double>> boundary;
+  for (const iga::PatchFace& face : iga::boundaryFaces(tube.patches))
+    boundary.push_back(
+      iga::faceSurface(tube.patches[size_t(face.patch)], face.direction, face.side));
+  ASSERT_EQ(boundary.size(), 24u);
+  const auto camera = igatest::lookAt(tube, { 2.2, -2.9, 3.6 }, { 0, 0, 0.9 }, 40);
+  Settings settings = imageOf(96, 80);
+  settings.firstHitOnly = false;
+  const GBuffer gbuffer = renderSurfaces(boundary, camera, settings);
+  int checked = 0, wrong = 0, throughTheHole = 0;
+  std::vector<double> crossings;
+  for (int j = 0; j < settings.height; ++j)
+    for (int i = 0; i < settings.width; ++i)
+    {
+      glm::dvec3 o, d;
+      pixelRay(camera, settings.width, settings.height, i, j, o, d);
+      if (!tubeBoundaryCrossings(o, d, crossings))
+        continue;
+      ++checked;
+      throughTheHole += crossings.size() == 4;
+      if (gbuffer.hitCount(i, j) != int(crossings.size()))
+      {
+        ++wrong;
+        continue;
+      }
+      std::sort(crossings.begin(), crossings.end());
+      for (size_t k = 0; k < crossings.size(); ++k)
+        EXPECT_LT(glm::length(gbuffer.firstHit(i, j)[k].position - (o + crossings[k] * d)), 1e-6);
+    }
+  EXPECT_GT(checked, 4000);
+  EXPECT_GT(throughTheHole, 200) << "rays through both walls on both sides";
+  EXPECT_EQ(wrong, 0) << "rays whose hits are not the boundary's crossings";
+}
+
+} // namespace
