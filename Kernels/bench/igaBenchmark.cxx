@@ -6,8 +6,10 @@
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
 // peak memory over resolutions 256^2..2048^2 (fig. 11); 1 vs 2 threads; the 512^2 tri-quadratic
-// sphere frame; the default dataset; the deforming 10k-patch blade at 1080p. Ratios compare runs
-// of the same process.
+// sphere frame; the default dataset; the deforming 10k-patch blade at 1080p; surfaces (the
+// paper's surface study): the teapot's 32 bicubic patches and the deforming blade's boundary
+// (over 10 000 biquadratic faces) at 512^2 and 1080p, SST against the basic scheme and per-pixel
+// Bézier clipping. Ratios compare runs of the same process.
 //
 // --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
@@ -15,6 +17,7 @@
 // deforming), with stage times and peak device memory, next to the CPU engine at 1080p. Without a
 // usable device it says why and measures nothing. --only NAME keeps the datasets whose names
 // contain NAME (a profiler's run: one dataset, not the whole study).
+#include "iga/Boundary.h"
 #include "iga/Datasets.h"
 #include "iga/sst/Engine.h"
 
@@ -41,10 +44,10 @@ struct Measurement
   iga::sst::FrameReport report; ///< of the median run
 };
 
-iga::Camera frame(const iga::VolumeSet<double>& set)
+iga::Camera frame(const iga::sst::Scene& scene)
 {
   double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
+  iga::sst::patchBounds(scene, bounds);
   return iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
 }
 
@@ -107,7 +110,7 @@ Measurement measure(const std::string& study, const std::string& dataset,
   iga::sst::Backend backend = iga::sst::Backend::Cpu,
   const std::function<iga::VolumeSet<double>(int)>& frames = {})
 {
-  const iga::Camera camera = frame(set);
+  const iga::Camera camera = frame(set.patches);
   return measureFrames(study, dataset, isovalue, degree, width, height, threads, method,
     repetitions, backend, bool(frames),
     [&](int r, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
@@ -115,6 +118,75 @@ Measurement measure(const std::string& study, const std::string& dataset,
       return frames ? iga::sst::render(frames(r).patches, camera, settings, m, out)
                     : iga::sst::render(set.patches, camera, settings, m, out);
     });
+}
+
+/// Frames of surfaces (of the ones `frames` returns for repetition r, for deforming data).
+Measurement measureSurfaces(const std::string& dataset,
+  const std::vector<iga::BezierSurface<double>>& surfaces, int width, int height, int threads,
+  iga::sst::Method method, int repetitions,
+  const std::function<std::vector<iga::BezierSurface<double>>(int)>& frames = {})
+{
+  static const std::vector<iga::BezierVolume<double>> noVolumes;
+  const iga::Camera camera = frame(iga::sst::Scene(noVolumes, surfaces));
+  return measureFrames("surfaces", dataset, 0, 0, width, height, threads, method, repetitions,
+    iga::sst::Backend::Cpu, bool(frames),
+    [&](int r, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+    {
+      return iga::sst::render(
+        iga::sst::Scene(noVolumes, frames ? frames(r) : surfaces), camera, settings, m, out);
+    });
+}
+
+/// The surface study: per dataset and size, SST against the better of the basic scheme and
+/// Bézier clipping (ratio `referenceOverSst_...`).
+void surfaceStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  using iga::sst::Method;
+  const auto teapot = iga::makeTeapot<double>().patches;
+  // The blade's boundary, found once for its topology and sliced from every frame's net.
+  const iga::BladeLayout layout = iga::bladeLayout(quick ? 1000 : 10000);
+  const auto rest = iga::makeBlade<double>(layout, 0.0);
+  const auto faces = iga::boundaryFaces(rest.patches);
+  auto boundary = [&](int r)
+  {
+    const auto blade = iga::makeBlade<double>(layout, 0.1 * (r % 10));
+    std::vector<iga::BezierSurface<double>> surfaces;
+    for (const iga::PatchFace& face : faces)
+      surfaces.push_back(
+        iga::faceSurface(blade.patches[size_t(face.patch)], face.direction, face.side));
+    return surfaces;
+  };
+  const std::string bladeName = "blade-boundary-" + std::to_string(faces.size()) + "-deforming";
+  struct Size
+  {
+    int width, height;
+  };
+  for (const Size size : { Size{ 512, 512 }, Size{ 1920, 1080 } })
+  {
+    const std::string tag = std::to_string(size.width) + "x" + std::to_string(size.height);
+    for (const bool blade : { false, true })
+    {
+      auto run = [&](Method method, int repetitions)
+      {
+        return blade ? measureSurfaces(bladeName, boundary(0), size.width, size.height, threads,
+                         method, repetitions, boundary)
+                     : measureSurfaces(
+                         "teapot", teapot, size.width, size.height, threads, method, repetitions);
+      };
+      // The deforming blade's references draw the same frames as SST (a few milliseconds
+      // each), the teapot's one frame (seconds at 1080p).
+      const int referenceReps = blade ? reps : 1;
+      const auto sst = run(Method::SharedSubdivisionTree, reps);
+      const auto basic = run(Method::BasicScheme, referenceReps);
+      const auto clipping = run(Method::BezierClipping, referenceReps);
+      all.insert(all.end(), { sst, basic, clipping });
+      const std::string name = (blade ? "bladeBoundary_" : "teapot_") + tag;
+      ratios.emplace_back("basicOverSst_" + name, basic.ms / sst.ms);
+      ratios.emplace_back("clippingOverSst_" + name, clipping.ms / sst.ms);
+      ratios.emplace_back("referenceOverSst_" + name, std::min(basic.ms, clipping.ms) / sst.ms);
+    }
+  }
 }
 
 std::string json(
@@ -238,7 +310,7 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
   };
   iga::VolumeSet<double> ballElements;
   ballElements.patches = iga::sst::extractElements(ballVolumes(0));
-  const iga::Camera ballCamera = frame(ballElements);
+  const iga::Camera ballCamera = frame(ballElements.patches);
   for (bool nets : { true, false })
   {
     const std::string name = ballName + (nets ? "-nets" : "-elements");
@@ -269,7 +341,7 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
     // The same set deforming: two time steps in turn, a new data version every frame (the
     // whole set is checked and sent again).
     const auto flapped = iga::makeBlade<double>(large, 0.6);
-    const iga::Camera camera = frame(big);
+    const iga::Camera camera = frame(big.patches);
     all.push_back(measureFrames("gpu", largeName + "-deforming", 0.3, 2, 1920, 1080, 0,
       Method::SharedSubdivisionTree, 3, Backend::Cuda, true,
       [&](int r, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
@@ -399,6 +471,8 @@ int main(int argc, char** argv)
   all.push_back(measure("patches",
     "blade-" + std::to_string(bladeLayout.patchCount()) + "-deforming", flapping(0), 0.3, 2, 1920,
     1080, threads, Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, flapping));
+
+  surfaceStudy(quick, threads, reps, all, ratios);
 
   return emit(json(all, ratios));
 }

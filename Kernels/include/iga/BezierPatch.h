@@ -248,6 +248,73 @@ IGA_HD void evaluateFactorised(const T* coeffs, const Shape& shape, const T (&ba
   }
 }
 
+/// Bivariate evaluation contracting u first: about 3 (p+1)^2 C operations for value and
+/// gradient, no scratch.
+template<class T, class Shape>
+IGA_HD void evaluateFactorised2(const T* coeffs, const Shape& shape, const T (&basis)[2][kMaxOrder],
+  const T (&dbasis)[2][kMaxOrder], T* values, T* derivatives)
+{
+  const int n0 = shape.n0, n1 = shape.n1, C = shape.channels;
+  for (int c = 0; c < C; ++c)
+  {
+    T value = T(0), du = T(0), dv = T(0);
+    for (int j = 0; j < n1; ++j)
+    {
+      T v = T(0), vu = T(0);
+      const T* p = coeffs + (j * n0) * C + c;
+      for (int i = 0; i < n0; ++i)
+      {
+        v += basis[0][i] * p[i * C];
+        vu += dbasis[0][i] * p[i * C];
+      }
+      value += basis[1][j] * v;
+      du += basis[1][j] * vu;
+      dv += dbasis[1][j] * v;
+    }
+    values[c] = value;
+    if (derivatives)
+    {
+      derivatives[c] = du;
+      derivatives[C + c] = dv;
+    }
+  }
+}
+
+/// The same with a compile-time shape for equal degrees 1..5 with 6 channels (the engine's
+/// screen and shading patches), the run-time one otherwise.
+template<class T>
+IGA_HD void evaluateFactorised(const PatchView<const T, 2>& patch, const T (&basis)[2][kMaxOrder],
+  const T (&dbasis)[2][kMaxOrder], T* values, T* derivatives)
+{
+  const int p = patch.degree[0];
+  if (patch.channels == 6 && patch.degree[1] == p)
+  {
+    switch (p)
+    {
+      case 1:
+        return evaluateFactorised2(
+          patch.coeffs, FixedShape<2, 6>(), basis, dbasis, values, derivatives);
+      case 2:
+        return evaluateFactorised2(
+          patch.coeffs, FixedShape<3, 6>(), basis, dbasis, values, derivatives);
+      case 3:
+        return evaluateFactorised2(
+          patch.coeffs, FixedShape<4, 6>(), basis, dbasis, values, derivatives);
+      case 4:
+        return evaluateFactorised2(
+          patch.coeffs, FixedShape<5, 6>(), basis, dbasis, values, derivatives);
+      case 5:
+        return evaluateFactorised2(
+          patch.coeffs, FixedShape<6, 6>(), basis, dbasis, values, derivatives);
+      default:
+        break;
+    }
+  }
+  evaluateFactorised2(patch.coeffs,
+    RuntimeShape{ patch.order(0), patch.order(1), 1, patch.channels }, basis, dbasis, values,
+    derivatives);
+}
+
 /// Picks a compile-time shape for equal degrees 1..5 with 6 channels (the engine's screen and
 /// shading patches), the run-time one otherwise.
 template<class T>
@@ -295,6 +362,11 @@ IGA_HD void evaluateHomogeneous(
     bernsteinBasis(patch.degree[d], u[d], basis[d], dbasis[d]);
   }
   const int channels = patch.channels;
+  if constexpr (Dim == 2)
+  {
+    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
+    return;
+  }
   if constexpr (Dim == 3)
   {
     if (patch.order(1) * patch.order(2) * channels <= detail::kFactorisedScratch)

@@ -527,8 +527,9 @@ inline ShadingView shadingViewOf(const View& view, const Settings& settings)
 IGA_HD inline Hit shadeHit(
   const VolumeView<const double>& shading, const RawHit& raw, const ShadingView& viewer)
 {
-  double values[kShadeChannels], derivatives[3 * kShadeChannels];
-  evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives);
+  double values[kShadeChannels], derivatives[3 * kShadeChannels] = {};
+  isSurface(shading) ? evaluateHomogeneous<double, 2>(surfaceOf(shading), raw.u, values, derivatives)
+                     : evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives);
   Hit hit;
   hit.ndcDepth = raw.ndcDepth;
   hit.patch = raw.patch;
