@@ -28,13 +28,12 @@ enum class ProjectionStatus
   BehindEye,         ///< every projected weight is <= 0: the patch cannot be visible
 };
 
-/// Box of the patch's control points after the projective map M (e.g. world to clip space)
-/// followed by the perspective division. Uses channels 0..3 of the standard layout. Because the
-/// projected patch is a rational Bézier patch whose weights are the projected w's, the box bounds
-/// the patch exactly when all of them are positive; otherwise the status says why it does not.
-template<class T, int Dim>
-IGA_HD ProjectionStatus projectedBounds(
-  const PatchView<const T, Dim>& patch, const glm::mat<4, 4, T>& M, Box3<T>& box)
+namespace detail
+{
+/// Box of the control points `point(p)` maps to homogeneous (x, y, z, w), after the perspective
+/// division, and where the patch lies relative to the plane w = 0.
+template<class T, int Dim, class Map>
+IGA_HD ProjectionStatus projectedBounds(const PatchView<const T, Dim>& patch, Map map, Box3<T>& box)
 {
   int positive = 0;
   const int count = patch.pointCount();
@@ -45,7 +44,7 @@ IGA_HD ProjectionStatus projectedBounds(
   }
   for (int p = 0; p < count; ++p)
   {
-    const glm::vec<4, T> clip = M * glm::make_vec4(patch.point(p));
+    const glm::vec<4, T> clip = map(patch.point(p));
     if (!(clip[3] > T(0)))
     {
       continue;
@@ -63,6 +62,27 @@ IGA_HD ProjectionStatus projectedBounds(
     return ProjectionStatus::InFront;
   }
   return positive == 0 ? ProjectionStatus::BehindEye : ProjectionStatus::StraddlesEyePlane;
+}
+} // namespace detail
+
+/// Box of the patch's control points after the projective map M (e.g. world to clip space)
+/// followed by the perspective division. Uses channels 0..3 of the standard layout. Because the
+/// projected patch is a rational Bézier patch whose weights are the projected w's, the box bounds
+/// the patch exactly when all of them are positive; otherwise the status says why it does not.
+template<class T, int Dim>
+IGA_HD ProjectionStatus projectedBounds(
+  const PatchView<const T, Dim>& patch, const glm::mat<4, 4, T>& M, Box3<T>& box)
+{
+  return detail::projectedBounds(
+    patch, [&](const T* point) { return M * glm::make_vec4(point); }, box);
+}
+
+/// The same for channels 0..3 already in the projected space (M the identity).
+template<class T, int Dim>
+IGA_HD ProjectionStatus projectedBounds(const PatchView<const T, Dim>& patch, Box3<T>& box)
+{
+  return detail::projectedBounds(
+    patch, [](const T* point) { return glm::make_vec4(point); }, box);
 }
 
 /// Range [lo, hi] of the rational function numerator/denominator over the patch, valid when every

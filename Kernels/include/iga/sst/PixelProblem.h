@@ -172,7 +172,7 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(
   const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip = ClipPlanes<T>())
 {
   NodeInfo<T> info;
-  info.status = projectedBounds(node, glm::mat<4, 4, T>(T(1)), info.box);
+  info.status = projectedBounds(node, info.box);
   T lo = T(0), hi = T(0);
   const bool known =
     !isSurface(node) && rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi);

@@ -528,8 +528,9 @@ IGA_HD inline Hit shadeHit(
   const VolumeView<const double>& shading, const RawHit& raw, const ShadingView& viewer)
 {
   double values[kShadeChannels], derivatives[3 * kShadeChannels] = {};
-  isSurface(shading) ? evaluateHomogeneous<double, 2>(surfaceOf(shading), raw.u, values, derivatives)
-                     : evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives);
+  isSurface(shading)
+    ? evaluateHomogeneous<double, 2>(surfaceOf(shading), raw.u, values, derivatives)
+    : evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives);
   Hit hit;
   hit.ndcDepth = raw.ndcDepth;
   hit.patch = raw.patch;
