@@ -868,7 +868,10 @@ void vtkIGAIsosurfaceMapper::UpdateDataVersion(vtkMatrix4x4* matrix)
   in.SurfaceWorld.clear();
   if (!matrix->IsIdentity())
   {
-    in.World = in.DrewVolumes ? in.Set.patches : in.World;
+    if (in.DrewVolumes)
+    {
+      in.World = in.Set.patches;
+    }
     in.SurfaceWorld = in.Surfaces;
   }
   for (auto& patch : in.World)

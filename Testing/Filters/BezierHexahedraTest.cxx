@@ -5,6 +5,8 @@
 #include "TestPatches.h"
 #include "vtkIGABezierHexahedra.h"
 
+#include "iga/Boundary.h"
+
 #include "vtkBezierHexahedron.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
@@ -17,6 +19,8 @@
 #include "vtkUnstructuredGrid.h"
 
 #include <cmath>
+#include <functional>
+#include <utility>
 
 using namespace igatest;
 
@@ -248,6 +252,91 @@ TEST(BezierHexahedra, InactiveWeightsAreUsedWithAWarning)
   EXPECT_EQ(error, "");
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("not flagged as the active rational weights"), std::string::npos);
+}
+
+} // namespace
+
+namespace
+{
+
+/// The teapot's 32 quadrilaterals and, appended one by one, the tube's outer wall (8), all with
+/// the height as attribute.
+vtkSmartPointer<vtkUnstructuredGrid> mixedGrid()
+{
+  auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTeapot<double>());
+  const auto tube = iga::makeTube<double>(0.5, 0.0);
+  std::vector<vtkDataArray*> attributes = { grid->GetPointData()->GetArray("height") };
+  for (const auto& patch : tube.patches)
+  {
+    auto face = iga::faceSurface(patch, 1, 1);
+    iga::BezierSurface<double> surface(face.view().degree, iga::kFirstAttributeChannel + 1);
+    for (int p = 0; p < face.view().pointCount(); ++p)
+    {
+      std::copy_n(face.view().point(p), iga::kFirstAttributeChannel + 1, surface.view().point(p));
+      surface.view().point(p)[iga::kFirstAttributeChannel] = face.view().point(p)[2];
+    }
+    vtkIGABezierHexahedra::AppendQuadrilateral(grid, std::as_const(surface).view(), attributes);
+  }
+  return grid;
+}
+
+TEST(BezierHexahedra, QuadrilateralsRoundTripAsSurfaces)
+{
+  const auto teapot = iga::makeTeapot<double>();
+  const auto grid = mixedGrid();
+  vtkIGABezierHexahedra::Patches patches;
+  std::string error;
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(vtkIGABezierHexahedra::FromUnstructuredGrid(grid, patches, error, warnings)) << error;
+  ASSERT_EQ(patches.surfaces.size(), 40u);
+  EXPECT_TRUE(patches.volumes.patches.empty());
+  EXPECT_EQ(patches.volumes.attributeNames, std::vector<std::string>{ "height" });
+  for (size_t s = 0; s < 32; ++s)
+  {
+    EXPECT_EQ(patches.surfaceCells[s], vtkIdType(s));
+    const auto& a = teapot.patches[s].coeffs();
+    const auto& b = patches.surfaces[s].coeffs();
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t k = 0; k < a.size(); ++k)
+      EXPECT_NEAR(a[k], b[k], 1e-14 * (1 + std::abs(a[k])));
+  }
+  // The volume-only reading refuses them, naming the first.
+  iga::VolumeSet<double> set;
+  EXPECT_FALSE(vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings));
+  EXPECT_EQ(error, "cell 0 is a quadrilateral (a surface), where hexahedra are needed");
+}
+
+TEST(BezierHexahedra, BadQuadrilateralsAreNamed)
+{
+  auto errorOf = [](const std::function<void(vtkUnstructuredGrid*)>& breakIt)
+  {
+    auto grid = mixedGrid();
+    breakIt(grid);
+    vtkIGABezierHexahedra::Patches patches;
+    std::string error;
+    std::vector<std::string> warnings;
+    vtkIGABezierHexahedra::FromUnstructuredGrid(grid, patches, error, warnings);
+    return error;
+  };
+  EXPECT_EQ(errorOf([](vtkUnstructuredGrid* g)
+              { g->GetPointData()->GetRationalWeights()->SetComponent(20, 0, NAN); }),
+    "cell 1: point 20: its rational weight ('RationalWeights') is nan, weights must be positive "
+    "and finite");
+  EXPECT_EQ(errorOf([](vtkUnstructuredGrid* g)
+              { g->GetCellData()->GetHigherOrderDegrees()->SetComponent(3, 1, 4); }),
+    "cell 3: has 16 points, degrees 3x4 need 20");
+  EXPECT_EQ(errorOf([](vtkUnstructuredGrid* g)
+              { g->GetCellData()->GetHigherOrderDegrees()->SetComponent(2, 0, 0); }),
+    "cell 2: degree 0 in direction 0 is not a whole number in 1..16");
+  EXPECT_EQ(errorOf(
+              [](vtkUnstructuredGrid* g)
+              {
+                const vtkIdType triangle[3] = { 0, 1, 2 };
+                g->InsertNextCell(VTK_TRIANGLE, 3, triangle);
+                g->GetCellData()->GetHigherOrderDegrees()->InsertNextTuple3(1, 1, 0);
+              }),
+    "cell 40: cell type 5 is neither a hexahedron (VTK_BEZIER_HEXAHEDRON = 79, VTK_HEXAHEDRON = "
+    "12) nor a quadrilateral (VTK_BEZIER_QUADRILATERAL = 77, VTK_QUAD = 9)");
 }
 
 } // namespace
