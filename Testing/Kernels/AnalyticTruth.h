@@ -151,5 +151,37 @@ inline glm::dvec3 cylinderNormal(const glm::dvec3& p)
   return glm::normalize(glm::dvec3(p[0], p[1], 0));
 }
 
+/// Pixels whose ray clearly crosses the unit sphere about the origin (not grazing) and how many
+/// of them hold exactly its two crossings, front then back, within 1e-6 of the analytic points.
+struct BothSides
+{
+  int crossing = 0, twoHits = 0;
+};
+
+inline BothSides unitSphereBothSides(const GBuffer& gbuffer, const iga::Camera& camera)
+{
+  BothSides result;
+  for (int j = 0; j < gbuffer.height; ++j)
+    for (int i = 0; i < gbuffer.width; ++i)
+    {
+      glm::dvec3 o, d;
+      pixelRay(camera, gbuffer.width, gbuffer.height, i, j, o, d);
+      const Truth truth = sphereTruth(o, d);
+      if (truth.ambiguous || !std::isfinite(truth.t))
+        continue;
+      ++result.crossing;
+      if (gbuffer.hitCount(i, j) != 2)
+        continue;
+      const auto* hit = gbuffer.firstHit(i, j);
+      const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
+      const double far = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+      const bool ordered = hit[0].ndcDepth < hit[1].ndcDepth && hit[0].eyeDepth < hit[1].eyeDepth;
+      const bool placed = glm::length(hit[0].position - (o + truth.t * d)) < 1e-6 &&
+                          glm::length(hit[1].position - (o + far * d)) < 1e-6;
+      result.twoHits += ordered && placed ? 1 : 0;
+    }
+  return result;
+}
+
 } // namespace truth
 } // namespace igatest

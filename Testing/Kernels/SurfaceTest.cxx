@@ -63,18 +63,31 @@ double sphereDistance(const GBuffer& gbuffer)
   return worst;
 }
 
-TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
+/// The unit sphere's 8 rational patches seen from `eye` towards `focal` (z up, 40 degrees).
+struct SphereSurfaces
+{
+  std::vector<BezierSurface<double>> patches;
+  iga::Camera camera;
+};
+
+SphereSurfaces unitSphereFrom(const glm::dvec3& eye, const glm::dvec3& focal)
 {
   const double centre[3] = { 0, 0, 0 };
-  const auto sphere = iga::makeSphereSurfaces<double>(1.0, centre);
+  SphereSurfaces view{ iga::makeSphereSurfaces<double>(1.0, centre).patches, {} };
   double bounds[6];
-  surfaceBounds(sphere.patches, bounds);
-  const auto camera = makeCamera({ 1.2, -3.5, 2.1 }, { 0.1, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  surfaceBounds(view.patches, bounds);
+  view.camera = makeCamera(eye, focal, { 0, 0, 1 }, 40, bounds);
+  return view;
+}
+
+TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
+{
+  const auto [patches, camera] = unitSphereFrom({ 1.2, -3.5, 2.1 }, { 0.1, 0, 0 });
   Settings settings = imageOf(80, 64);
   settings.colorAttribute = 0; // height
   FrameReport report;
   const GBuffer gbuffer =
-    renderSurfaces(sphere.patches, camera, settings, Method::SharedSubdivisionTree, &report);
+    renderSurfaces(patches, camera, settings, Method::SharedSubdivisionTree, &report);
   const Comparison c = compare(gbuffer, camera, sphereTruth, sphereNormal);
   EXPECT_EQ(report.unresolvedPixels, 0u);
   EXPECT_GT(c.covered, 1000);
@@ -82,7 +95,7 @@ TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
   EXPECT_LT(c.maxPositionError, 1e-6); // Newton stops 1e-6 pixel from the ray
   EXPECT_LT(c.maxNormalError, 1e-9);
   EXPECT_LT(sphereDistance(gbuffer), 1e-9) << "a hit off the sphere";
-  const GBuffer clipped = renderSurfaces(sphere.patches, camera, settings, Method::BezierClipping);
+  const GBuffer clipped = renderSurfaces(patches, camera, settings, Method::BezierClipping);
   const Comparison byClipping = compare(clipped, camera, sphereTruth, sphereNormal);
   EXPECT_EQ(byClipping.mismatched, 0) << "Bézier clipping";
   EXPECT_LT(byClipping.maxPositionError, 1e-6);
@@ -100,35 +113,12 @@ TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
 
 TEST(Surfaces, AllHitsModeFindsBothSidesOfTheSphere)
 {
-  const double centre[3] = { 0, 0, 0 };
-  const auto sphere = iga::makeSphereSurfaces<double>(1.0, centre);
-  double bounds[6];
-  surfaceBounds(sphere.patches, bounds);
-  const auto camera = makeCamera({ 0.4, -3.6, 1.1 }, { 0, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  const auto [patches, camera] = unitSphereFrom({ 0.4, -3.6, 1.1 }, { 0, 0, 0 });
   Settings settings = imageOf(64, 48);
   settings.firstHitOnly = false;
-  const GBuffer gbuffer = renderSurfaces(sphere.patches, camera, settings);
-  int twoHits = 0, covered = 0;
-  for (int j = 0; j < settings.height; ++j)
-    for (int i = 0; i < settings.width; ++i)
-    {
-      glm::dvec3 o, d;
-      pixelRay(camera, settings.width, settings.height, i, j, o, d);
-      const Truth truth = sphereTruth(o, d);
-      if (truth.ambiguous || !std::isfinite(truth.t))
-        continue;
-      ++covered;
-      ASSERT_EQ(gbuffer.hitCount(i, j), 2) << "pixel " << i << ", " << j;
-      const auto* hit = gbuffer.firstHit(i, j);
-      EXPECT_LT(hit[0].eyeDepth, hit[1].eyeDepth);
-      // The far root of the quadratic.
-      const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
-      const double far = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
-      EXPECT_LT(glm::length(hit[1].position - (o + far * d)), 1e-6);
-      ++twoHits;
-    }
-  EXPECT_GT(covered, 500);
-  EXPECT_EQ(twoHits, covered);
+  const BothSides sides = unitSphereBothSides(renderSurfaces(patches, camera, settings), camera);
+  EXPECT_GT(sides.crossing, 500);
+  EXPECT_EQ(sides.twoHits, sides.crossing);
 }
 
 /// The tube's outer wall (radius 1, z in [0, 2]) as surfaces: its boundary faces across the
@@ -373,11 +363,8 @@ TEST(Surfaces, SurfacesAndIsosurfacesShareOneFrame)
 
 TEST(Surfaces, BadSurfacesAreRejectedWithTheSurfaceNamed)
 {
-  const double centre[3] = { 0, 0, 0 };
-  const auto sphere = iga::makeSphereSurfaces<double>(1.0, centre);
-  double bounds[6];
-  surfaceBounds(sphere.patches, bounds);
-  const auto camera = makeCamera({ 0, -4, 1 }, { 0, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  const auto sphere = unitSphereFrom({ 0, -4, 1 }, { 0, 0, 0 });
+  const iga::Camera& camera = sphere.camera;
   auto message = [&](std::vector<BezierSurface<double>> surfaces, Settings settings)
   {
     try

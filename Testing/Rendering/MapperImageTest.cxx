@@ -33,36 +33,14 @@
 namespace
 {
 
-struct ImageScene
+struct ImageScene : igatest::MapperScene
 {
-  vtkNew<vtkRenderWindow> window;
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkIGAIsosurfaceMapper> mapper;
-  vtkNew<vtkActor> actor;
-
   explicit ImageScene(const iga::VolumeSet<double>& set)
+    : MapperScene(300, 240)
   {
-    window->SetOffScreenRendering(1);
-    window->SetSize(300, 240);
-    window->SetMultiSamples(0);
-    window->AddRenderer(renderer);
-    renderer->SetBackground(0.1, 0.1, 0.15);
     mapper->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(set));
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(0.9, 0.75, 0.45);
     actor->GetProperty()->SetSpecular(0.3);
     actor->GetProperty()->SetSpecularPower(30);
-    renderer->AddActor(actor);
-  }
-
-  void look(double x, double y, double z, double fx, double fy, double fz)
-  {
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(x, y, z);
-    camera->SetFocalPoint(fx, fy, fz);
-    camera->SetViewUp(0, 0, 1);
-    camera->SetViewAngle(30);
-    renderer->ResetCameraClippingRange();
   }
 
   /// Compares the window with the baseline `name`.png (or writes it).

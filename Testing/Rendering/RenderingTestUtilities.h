@@ -1,12 +1,17 @@
 // Helpers shared by the rendering tests.
 #pragma once
 
+#include "vtkIGAIsosurfaceMapper.h"
+
+#include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkSphereSource.h>
 #include <vtkTesting.h>
@@ -58,6 +63,39 @@ inline vtkSmartPointer<vtkPolyDataMapper> sphereMapper(double x, double y, doubl
   mapper->SetInputConnection(source->GetOutputPort());
   return mapper;
 }
+
+/// The image tests' scene: an offscreen window (no multisampling) of width x height, a dark
+/// background, and an actor of the IGA mapper in a sand colour.
+struct MapperScene
+{
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkIGAIsosurfaceMapper> mapper;
+  vtkNew<vtkActor> actor;
+
+  MapperScene(int width, int height)
+  {
+    window->SetOffScreenRendering(1);
+    window->SetSize(width, height);
+    window->SetMultiSamples(0);
+    window->AddRenderer(renderer);
+    renderer->SetBackground(0.1, 0.1, 0.15);
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(0.9, 0.75, 0.45);
+    renderer->AddActor(actor);
+  }
+
+  /// A z-up camera at (x, y, z) looking at (fx, fy, fz), 30 degrees, clipping range to the data.
+  void look(double x, double y, double z, double fx, double fy, double fz)
+  {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(x, y, z);
+    camera->SetFocalPoint(fx, fy, fz);
+    camera->SetViewUp(0, 0, 1);
+    camera->SetViewAngle(30);
+    renderer->ResetCameraClippingRange();
+  }
+};
 
 /// Renders the window and compares it with the baseline `name`.png of Testing/Data/Baseline
 /// (vtkTesting's image difference, threshold 10); IGAVIEW_WRITE_BASELINES=1 writes it instead

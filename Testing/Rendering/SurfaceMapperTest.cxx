@@ -32,34 +32,12 @@
 namespace
 {
 
-struct SurfaceScene
+struct SurfaceScene : igatest::MapperScene
 {
-  vtkNew<vtkRenderWindow> window;
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkIGAIsosurfaceMapper> mapper;
-  vtkNew<vtkActor> actor;
-
   SurfaceScene()
+    : MapperScene(240, 200)
   {
-    window->SetOffScreenRendering(1);
-    window->SetSize(240, 200);
-    window->SetMultiSamples(0);
-    window->AddRenderer(renderer);
-    renderer->SetBackground(0.1, 0.1, 0.15);
     mapper->SetDrawModeToSurfaces();
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(0.9, 0.75, 0.45);
-    renderer->AddActor(actor);
-  }
-
-  void look(double x, double y, double z, double fx, double fy, double fz)
-  {
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(x, y, z);
-    camera->SetFocalPoint(fx, fy, fz);
-    camera->SetViewUp(0, 0, 1);
-    camera->SetViewAngle(30);
-    renderer->ResetCameraClippingRange();
   }
 
   /// Renders `input` and returns the mapper's G-buffer of it.

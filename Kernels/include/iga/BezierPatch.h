@@ -280,74 +280,48 @@ IGA_HD void evaluateFactorised2(const T* coeffs, const Shape& shape, const T (&b
   }
 }
 
-/// The same with a compile-time shape for equal degrees 1..5 with 6 channels (the engine's
-/// screen and shading patches), the run-time one otherwise.
+/// Calls fn(shape) with a compile-time shape for equal degrees 1..5 and 6 channels (the
+/// engine's screen and shading patches, `fixed`), so that the loops unroll, else with `runtime`.
+template<class Fn>
+IGA_HD void withShape(bool fixed, int degree, const RuntimeShape& runtime, Fn fn)
+{
+  switch (fixed ? degree : 0)
+  {
+    case 1:
+      return fn(FixedShape<2, 6>());
+    case 2:
+      return fn(FixedShape<3, 6>());
+    case 3:
+      return fn(FixedShape<4, 6>());
+    case 4:
+      return fn(FixedShape<5, 6>());
+    case 5:
+      return fn(FixedShape<6, 6>());
+    default:
+      return fn(runtime);
+  }
+}
+
 template<class T>
 IGA_HD void evaluateFactorised(const PatchView<const T, 2>& patch, const T (&basis)[2][kMaxOrder],
   const T (&dbasis)[2][kMaxOrder], T* values, T* derivatives)
 {
   const int p = patch.degree[0];
-  if (patch.channels == 6 && patch.degree[1] == p)
-  {
-    switch (p)
-    {
-      case 1:
-        return evaluateFactorised2(
-          patch.coeffs, FixedShape<2, 6>(), basis, dbasis, values, derivatives);
-      case 2:
-        return evaluateFactorised2(
-          patch.coeffs, FixedShape<3, 6>(), basis, dbasis, values, derivatives);
-      case 3:
-        return evaluateFactorised2(
-          patch.coeffs, FixedShape<4, 6>(), basis, dbasis, values, derivatives);
-      case 4:
-        return evaluateFactorised2(
-          patch.coeffs, FixedShape<5, 6>(), basis, dbasis, values, derivatives);
-      case 5:
-        return evaluateFactorised2(
-          patch.coeffs, FixedShape<6, 6>(), basis, dbasis, values, derivatives);
-      default:
-        break;
-    }
-  }
-  evaluateFactorised2(patch.coeffs,
-    RuntimeShape{ patch.order(0), patch.order(1), 1, patch.channels }, basis, dbasis, values,
-    derivatives);
+  withShape(patch.channels == 6 && patch.degree[1] == p, p,
+    RuntimeShape{ patch.order(0), patch.order(1), 1, patch.channels },
+    [&](const auto& shape)
+    { evaluateFactorised2(patch.coeffs, shape, basis, dbasis, values, derivatives); });
 }
 
-/// Picks a compile-time shape for equal degrees 1..5 with 6 channels (the engine's screen and
-/// shading patches), the run-time one otherwise.
 template<class T>
 IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&basis)[3][kMaxOrder],
   const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
 {
   const int p = patch.degree[0];
-  if (patch.channels == 6 && patch.degree[1] == p && patch.degree[2] == p)
-  {
-    switch (p)
-    {
-      case 1:
-        return evaluateFactorised(
-          patch.coeffs, FixedShape<2, 6>(), basis, dbasis, values, derivatives);
-      case 2:
-        return evaluateFactorised(
-          patch.coeffs, FixedShape<3, 6>(), basis, dbasis, values, derivatives);
-      case 3:
-        return evaluateFactorised(
-          patch.coeffs, FixedShape<4, 6>(), basis, dbasis, values, derivatives);
-      case 4:
-        return evaluateFactorised(
-          patch.coeffs, FixedShape<5, 6>(), basis, dbasis, values, derivatives);
-      case 5:
-        return evaluateFactorised(
-          patch.coeffs, FixedShape<6, 6>(), basis, dbasis, values, derivatives);
-      default:
-        break;
-    }
-  }
-  evaluateFactorised(patch.coeffs,
-    RuntimeShape{ patch.order(0), patch.order(1), patch.order(2), patch.channels }, basis, dbasis,
-    values, derivatives);
+  withShape(patch.channels == 6 && patch.degree[1] == p && patch.degree[2] == p, p,
+    RuntimeShape{ patch.order(0), patch.order(1), patch.order(2), patch.channels },
+    [&](const auto& shape)
+    { evaluateFactorised(patch.coeffs, shape, basis, dbasis, values, derivatives); });
 }
 } // namespace detail
 
