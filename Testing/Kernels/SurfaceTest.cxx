@@ -107,7 +107,9 @@ TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
     // x_u x x_v points outwards on the northern patches (u from the pole), inwards on the
     // southern ones: seen from outside, the ray enters the northern ones' negative side.
     if (std::abs(hit.position[2]) > 1e-6)
+    {
       EXPECT_EQ(hit.entersBelow, hit.position[2] > 0) << "the side the ray enters";
+    }
   }
 }
 

@@ -325,30 +325,14 @@ IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&bas
 }
 } // namespace detail
 
-template<class T, int Dim>
-IGA_HD void evaluateHomogeneous(
-  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives)
+namespace detail
 {
-  T basis[Dim][kMaxOrder];
-  T dbasis[Dim][kMaxOrder];
-  for (int d = 0; d < Dim; ++d)
-  {
-    bernsteinBasis(patch.degree[d], u[d], basis[d], dbasis[d]);
-  }
+/// Evaluation point by point over the tensor product: for orders past the factorised scratch.
+template<class T, int Dim>
+IGA_HD void evaluateTensor(const PatchView<const T, Dim>& patch, const T (&basis)[Dim][kMaxOrder],
+  const T (&dbasis)[Dim][kMaxOrder], T* values, T* derivatives)
+{
   const int channels = patch.channels;
-  if constexpr (Dim == 2)
-  {
-    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
-    return;
-  }
-  if constexpr (Dim == 3)
-  {
-    if (patch.order(1) * patch.order(2) * channels <= detail::kFactorisedScratch)
-    {
-      detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
-      return;
-    }
-  }
   for (int c = 0; c < channels; ++c)
   {
     values[c] = T(0);
@@ -400,6 +384,31 @@ IGA_HD void evaluateHomogeneous(
       }
       index[d] = 0;
     }
+  }
+}
+} // namespace detail
+
+template<class T, int Dim>
+IGA_HD void evaluateHomogeneous(
+  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives)
+{
+  T basis[Dim][kMaxOrder];
+  T dbasis[Dim][kMaxOrder];
+  for (int d = 0; d < Dim; ++d)
+  {
+    bernsteinBasis(patch.degree[d], u[d], basis[d], dbasis[d]);
+  }
+  if constexpr (Dim == 2)
+  {
+    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
+  }
+  else if (patch.order(1) * patch.order(2) * patch.channels <= detail::kFactorisedScratch)
+  {
+    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
+  }
+  else
+  {
+    detail::evaluateTensor(patch, basis, dbasis, values, derivatives);
   }
 }
 
