@@ -1,5 +1,6 @@
 // libFuzzer target: the engine's input checks and a small frame on patches decoded from the
-// bytes: 1..4 patches of degrees 1..16 per direction, 0..2 attributes (none is refused), control
+// bytes: 1..4 patches, each a volume or a surface, of degrees 1..16 per direction, 0..2
+// attributes (none is refused for volumes, drawn for surfaces), control
 // values from pairs of bytes (v / 1000, with codes for NaN, infinities, 1e300 and -0), an isovalue,
 // first-hit or all-hits, an optional clipping plane. A frame either draws finite hits or throws
 // std::invalid_argument naming the problem.
@@ -47,16 +48,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   ByteReader in{ data, size };
   const int patchCount = in.byte() % 4 + 1;
   const int attributes = in.byte() % 3;
-  std::vector<iga::BezierVolume<double>> patches;
+  std::vector<iga::BezierVolume<double>> volumes;
+  std::vector<iga::BezierSurface<double>> surfaces;
   for (int p = 0; p < patchCount; ++p)
   {
+    const bool surface = (in.byte() & 1) != 0;
     int degree[3];
     for (int& d : degree)
     {
       d = 1 + in.byte() % iga::kMaxDegree;
     }
-    patches.emplace_back(degree, iga::kFirstAttributeChannel + attributes);
-    for (double& c : patches.back().coeffs())
+    std::vector<double>& coeffs =
+      surface ? surfaces.emplace_back(degree, iga::kFirstAttributeChannel + attributes).coeffs()
+              : volumes.emplace_back(degree, iga::kFirstAttributeChannel + attributes).coeffs();
+    for (double& c : coeffs)
     {
       c = in.value();
     }
@@ -87,7 +92,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   iga::sst::GBuffer gbuffer;
   try
   {
-    iga::sst::render(patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+    iga::sst::render(iga::sst::Scene(volumes, surfaces), camera, settings,
+      iga::sst::Method::SharedSubdivisionTree, gbuffer);
   }
   catch (const std::invalid_argument&)
   {

@@ -487,7 +487,9 @@ VolumeSet<T> makeTeapotShell(double thickness)
         for (double shrink = 1; length < 1e-9 && shrink > 0.9; shrink -= 0.01)
         {
           const double u[2] = { 0.5 + shrink * (i / 3.0 - 0.5), 0.5 + shrink * (j / 3.0 - 0.5) };
-          double values[kFirstAttributeChannel], derivatives[2 * kFirstAttributeChannel];
+          // Sized for the 6 channels evaluation's compile-time shapes write: GCC cannot tell that
+          // they are not taken for these 4 and warns of writes past the arrays.
+          double values[6] = {}, derivatives[2 * 6] = {};
           evaluateHomogeneous<double, 2>(surface.view(), u, values, derivatives);
           const double* du = derivatives;
           const double* dv = derivatives + kFirstAttributeChannel;
