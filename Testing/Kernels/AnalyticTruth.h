@@ -7,8 +7,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <array>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 namespace igatest
 {
@@ -181,6 +183,35 @@ inline BothSides unitSphereBothSides(const GBuffer& gbuffer, const iga::Camera& 
       result.twoHits += ordered && placed ? 1 : 0;
     }
   return result;
+}
+
+/// The clipping-plane tests' cuts of the unit sphere: kept where x + 0.2 y >= 0.1 and z <= 0.5.
+inline std::vector<std::array<double, 4>> sphereCuts()
+{
+  return { { 1, 0.2, 0, -0.1 }, { 0, 0, -2, 1 } };
+}
+
+inline bool keptBySphereCuts(const glm::dvec3& p)
+{
+  return p[0] + 0.2 * p[1] - 0.1 >= 0 && p[2] <= 0.5;
+}
+
+/// The first hit on the unit sphere's kept part; ambiguous within 1e-5 of a cut or grazing.
+inline Truth clippedSphereTruth(const glm::dvec3& o, const glm::dvec3& d)
+{
+  const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
+  double disc;
+  bool nearCut = false;
+  const double t = firstRoot(
+    a, b, c,
+    [&](double t)
+    {
+      const glm::dvec3 p = o + t * d;
+      nearCut = nearCut || std::abs(p[0] + 0.2 * p[1] - 0.1) < 1e-5 || std::abs(p[2] - 0.5) < 1e-5;
+      return keptBySphereCuts(p);
+    },
+    disc);
+  return { t, nearCut || std::abs(disc) < 1e-6 * b * b };
 }
 
 } // namespace truth

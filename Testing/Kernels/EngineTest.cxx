@@ -140,31 +140,12 @@ TEST(Engine, ClippingPlanesCutTheSurfaceExactly)
 {
   const glm::dvec3 position{ 0.6, -4, 1.1 };
   auto [set, camera, settings] = sphereView(3, position, 64);
-  // Kept: x + 0.2 y >= 0.1 and z <= 0.5.
-  settings.clipPlanes = { { 1, 0.2, 0, -0.1 }, { 0, 0, -2, 1 } };
-  auto kept = [](const glm::dvec3& p) { return p[0] + 0.2 * p[1] - 0.1 >= 0 && p[2] <= 0.5; };
-  auto truth = [&](const glm::dvec3& o, const glm::dvec3& d) -> Truth
-  {
-    const double a = glm::dot(d, d), b = 2 * glm::dot(o, d), c = glm::dot(o, o) - 1;
-    double disc;
-    bool nearCut = false;
-    const double t = firstRoot(
-      a, b, c,
-      [&](double t)
-      {
-        const glm::dvec3 p = o + t * d;
-        nearCut =
-          nearCut || std::abs(p[0] + 0.2 * p[1] - 0.1) < 1e-5 || std::abs(p[2] - 0.5) < 1e-5;
-        return kept(p);
-      },
-      disc);
-    return { t, nearCut || std::abs(disc) < 1e-6 * b * b };
-  };
+  settings.clipPlanes = sphereCuts();
   for (Method method : { Method::SharedSubdivisionTree, Method::BasicScheme })
   {
     iga::sst::FrameReport report;
     const GBuffer gbuffer = renderSet(set, camera, settings, method, &report);
-    const Comparison c = compare(gbuffer, camera, truth, sphereNormal);
+    const Comparison c = compare(gbuffer, camera, clippedSphereTruth, sphereNormal);
     EXPECT_EQ(report.unresolvedPixels, 0u) << iga::sst::methodName(method);
     EXPECT_GT(c.covered, 600) << iga::sst::methodName(method);
     EXPECT_EQ(c.mismatched, 0) << iga::sst::methodName(method);
@@ -180,7 +161,7 @@ TEST(Engine, ClippingPlanesCutTheSurfaceExactly)
   for (const auto& hit : brute.hits)
   {
     EXPECT_NEAR(glm::dot(hit.position, hit.position), 1.0, 1e-6);
-    EXPECT_TRUE(kept(hit.position))
+    EXPECT_TRUE(keptBySphereCuts(hit.position))
       << hit.position[0] << " " << hit.position[1] << " " << hit.position[2];
   }
   // The cut is visible: some pixels see the back of the sphere through the cut.

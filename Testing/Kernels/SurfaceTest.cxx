@@ -113,6 +113,24 @@ TEST(Surfaces, ExactRationalSphereMatchesTheAnalyticSphere)
   }
 }
 
+TEST(Surfaces, ClippingPlanesCutTheSphereExactly)
+{
+  const auto [patches, camera] = unitSphereFrom({ 0.6, -4, 1.1 }, { 0, 0, 0 });
+  Settings settings = imageOf(64, 64);
+  settings.clipPlanes = sphereCuts(); // the inside shows where they cut the sphere open
+  for (Method method :
+    { Method::SharedSubdivisionTree, Method::BasicScheme, Method::BezierClipping })
+  {
+    FrameReport report;
+    const GBuffer gbuffer = renderSurfaces(patches, camera, settings, method, &report);
+    const Comparison c = compare(gbuffer, camera, clippedSphereTruth, sphereNormal);
+    EXPECT_EQ(report.unresolvedPixels, 0u) << iga::sst::methodName(method);
+    EXPECT_GT(c.covered, 500) << iga::sst::methodName(method);
+    EXPECT_EQ(c.mismatched, 0) << iga::sst::methodName(method);
+    EXPECT_LT(c.maxPositionError, 1e-6) << iga::sst::methodName(method);
+  }
+}
+
 TEST(Surfaces, AllHitsModeFindsBothSidesOfTheSphere)
 {
   const auto [patches, camera] = unitSphereFrom({ 0.4, -3.6, 1.1 }, { 0, 0, 0 });

@@ -5,6 +5,7 @@
 #include "RenderingTestUtilities.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGABoundarySurface.h"
+#include "vtkIGAGeoPDEsReader.h"
 #include "vtkIGAGismoReader.h"
 #include "vtkIGAIsosurfaceMapper.h"
 #include "vtkIGASyntheticDeformation.h"
@@ -28,6 +29,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 
 namespace
 {
@@ -177,6 +179,39 @@ TEST(SurfaceMapper, TheRealTeapotOfGismosFile)
   for (const auto& hit : gbuffer.hits)
     ASSERT_LT(hit.patch, 32) << "32 bicubic patches, drawn as surfaces";
   igatest::compareWithBaseline(scene.window, "MapperGismoTeapotWithEdges");
+}
+
+TEST(SurfaceMapper, SharedGismoAndGeoPDEsFilesShowTheirBoundaries)
+{
+  const std::string shared = IGAVIEW_SHARED_DATA_DIR;
+  const std::vector<std::string> files = { "gismo/quarter_cylinder.xml", "gismo/twisted_pipe.xml",
+    "gismo/GshapedVolume.xml", "geopdes/geo_2cubesb.txt" };
+  if (!std::ifstream(shared + "/" + files[0]))
+    GTEST_SKIP() << shared << " not found (../shared is absent)";
+  for (const std::string& file : files)
+  {
+    SCOPED_TRACE(file);
+    vtkSmartPointer<vtkIGANurbsReader> reader;
+    if (file.rfind("gismo", 0) == 0)
+      reader = vtkSmartPointer<vtkIGAGismoReader>::New();
+    else
+      reader = vtkSmartPointer<vtkIGAGeoPDEsReader>::New();
+    reader->SetFileName((shared + "/" + file).c_str());
+    reader->Update();
+    SurfaceScene scene;
+    // From a corner, where a box shows three faces.
+    scene.renderer->GetActiveCamera()->SetPosition(1, -1.3, 1);
+    scene.renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+    scene.renderer->ResetCamera(reader->GetOutput()->GetBounds());
+    const iga::sst::GBuffer gbuffer = scene.draw(reader->GetOutput());
+    EXPECT_GT(gbuffer.coveredPixels(), 4000u) << "the volume's boundary fills the view";
+    EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
+    // Seen from a corner, several boundary faces show.
+    std::set<int> faces;
+    for (const auto& hit : gbuffer.hits)
+      faces.insert(hit.patch);
+    EXPECT_GT(faces.size(), 1u);
+  }
 }
 
 } // namespace
