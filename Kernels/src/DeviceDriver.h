@@ -461,7 +461,7 @@ struct Driver
         Node root = rootAt(r, volumeCount, isoCount);
         const PatchShape& shape = shapes[root.patch];
         const VolumeView<const double> view(screen + shape.screen, shape.degree, kScreenChannels);
-        root.info = analyzeNode(view, isovalueOf(root, frame), frame.clip);
+        root.info = analyzeNodeBounds(view, isovalueOf(root, frame), frame.clip);
         root.coeff = shape.screen;
         roots[r] = root;
         state[r] = !worthKeeping(root.info, frame)                 ? 0

@@ -111,6 +111,7 @@ public:
         drawFrame(s, this->Config, [&] { drawPass(s); });
         break;
       case Method::BasicScheme:
+        analyzeRoots(this->Plan, this->Patches);
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::basicScheme); });
         break;
       case Method::BruteForce:

@@ -93,8 +93,6 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
     }
     if (node.info.status == ProjectionStatus::InFront)
     {
-      analyzeNodeSolver(view, node.info);
-      analyzeNodeCentre(view, node.info);
       node.coeff = plan.initialPool.size();
       plan.initialPool.insert(plan.initialPool.end(), values, values + count);
       plan.initialNodes.push_back(node);
@@ -140,6 +138,22 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
     level.swap(straddling);
     pool.swap(straddlingPool);
   }
+}
+
+void analyzeRoots(FramePlan& plan, const Scene& scene)
+{
+  parallelFor(plan.initialNodes.size(), plan.threads,
+    [&](size_t begin, size_t end)
+    {
+      for (size_t n = begin; n < end; ++n)
+      {
+        Node& node = plan.initialNodes[n];
+        const VolumeView<const double> view(
+          plan.initialPool.data() + node.coeff, scene[size_t(node.patch)].degree, kScreenChannels);
+        analyzeNodeSolver(view, node.info);
+        analyzeNodeCentre(view, node.info);
+      }
+    });
 }
 
 bool usableShape(const int* degree, int channels, const Settings& s)

@@ -106,7 +106,9 @@ FramePlan planView(const View& view, const Settings& settings, const AttributeRa
 /// surface. A root straddling the eye plane has no finite window box: it is split breadth first
 /// until its parts lie in front of the eye, behind it, or in front of the near plane. Parts
 /// still straddling at the depth cap or beyond a node budget are counted in
-/// report.droppedAtEyePlane, not drawn.
+/// report.droppedAtEyePlane, not drawn. Roots carry the cheap part of their analysis
+/// (analyzeNodeBounds); the SST loop completes it when a round takes them, the reference methods
+/// with analyzeRoots.
 void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs,
   const Settings& settings, FrameReport& report);
 
@@ -115,6 +117,10 @@ inline int rootsOf(const int* degree, const Settings& settings)
 {
   return degree[2] == 0 ? 1 : int(settings.isovalues.size());
 }
+
+/// The solver and centre parts of the analysis of the plan's roots (of the scene's patches), on
+/// the plan's threads.
+void analyzeRoots(FramePlan& plan, const Scene& scene);
 
 /// All of the above for every patch and isovalue, plus the shading patches, on the settings'
 /// threads (the same plan for any thread count).

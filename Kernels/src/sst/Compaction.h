@@ -77,9 +77,11 @@ size_t gatherNodes(LoopState<Exec>& s, const Node* first, const double* firstPoo
         node.initial = uint32_t(n);
         node.implicit = true;
       }
-      else if (fromFirst && !node.implicit)
+      // Explicit children are analysed once they are known to receive pixels, roots once a
+      // round takes them (most roots of a first-hit frame never are: they lie behind nearer
+      // hits).
+      if (asRound || (fromFirst && !node.implicit))
       {
-        // Explicit children are analysed once they are known to receive pixels.
         const auto view = viewOf(node, pool, shapes);
         analyzeNodeSolver(view, node.info);
         analyzeNodeCentre(view, node.info);
