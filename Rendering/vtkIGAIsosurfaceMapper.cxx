@@ -604,7 +604,8 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
     return false;
   }
   this->UpdateSurfaces();
-  frame.Volumes = this->DrawMode == DRAW_ISOSURFACES && !this->Isovalues.empty();
+  frame.Volumes =
+    this->DrawMode == DRAW_ISOSURFACES && !this->Isovalues.empty() && !in.Set.patches.empty();
   if (!frame.Volumes && in.Surfaces.empty())
   {
     return false;
