@@ -12,6 +12,7 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
@@ -20,6 +21,7 @@
 #include "vtkRenderer.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
+#include "vtkTestErrorObserver.h"
 #include "vtkUnstructuredGrid.h"
 
 #include "iga/Datasets.h"
@@ -159,6 +161,23 @@ TEST(SurfaceMapper, EdgeVisibilityDrawsTheElementEdgesInTheEdgeColour)
   }
   EXPECT_GT(edges, 300);
   igatest::compareWithBaseline(scene.window, "MapperTubeBoundaryWithEdges");
+}
+
+TEST(SurfaceMapper, QuadrilateralsAreDrawnInIsosurfaceModeToo)
+{
+  // An isovalue and a surface array that no hexahedron has: the quadrilaterals are drawn as
+  // they are, with no complaint about the array.
+  SurfaceScene scene;
+  scene.mapper->SetDrawModeToIsosurfaces();
+  scene.mapper->SetIsovalue(0, 0.0);
+  scene.mapper->SetSurfaceArrayName("no such array");
+  scene.look(6.0, -10.0, 6.5, 0.2, 0, 1.2);
+  vtkNew<vtkTest::ErrorObserver> errors;
+  scene.mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+  const iga::sst::GBuffer gbuffer =
+    scene.draw(vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTeapot<double>()));
+  EXPECT_GT(gbuffer.coveredPixels(), 5000u);
+  EXPECT_FALSE(errors->GetError()) << errors->GetErrorMessage();
 }
 
 TEST(SurfaceMapper, TheRealTeapotOfGismosFile)
