@@ -6,6 +6,7 @@
 #include "iga/sst/GBuffer.h"
 
 #include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
@@ -212,6 +213,20 @@ inline Truth clippedSphereTruth(const glm::dvec3& o, const glm::dvec3& d)
     },
     disc);
   return { t, nearCut || std::abs(disc) < 1e-6 * b * b };
+}
+
+/// A frame of the unit sphere about the origin (first hits) against the analytic one: nothing
+/// unresolved, coverage equal off grazing rays, hits within 1e-6 (Newton stops 1e-6 pixel from
+/// the ray), normals to 1e-9.
+inline void expectTheUnitSphere(
+  const GBuffer& gbuffer, const iga::Camera& camera, size_t unresolvedPixels)
+{
+  const Comparison c = compare(gbuffer, camera, sphereTruth, sphereNormal);
+  EXPECT_EQ(unresolvedPixels, 0u);
+  EXPECT_GT(c.covered, 1000);
+  EXPECT_EQ(c.mismatched, 0) << "coverage differs from the analytic silhouette";
+  EXPECT_LT(c.maxPositionError, 1e-6);
+  EXPECT_LT(c.maxNormalError, 1e-9);
 }
 
 } // namespace truth
