@@ -20,7 +20,7 @@
 #ifndef vtkIGABezierFileReading_h
 #define vtkIGABezierFileReading_h
 
-#include "IGAViewFiltersModule.h" // for export macro
+#include "IGAViewFiltersModule.h"  // for export macro
 #include "vtkIGABezierHexahedra.h" // for Patches
 #include "vtkSmartPointer.h"       // for return value
 
@@ -36,8 +36,8 @@ public:
   /// messages). Returns the grid, or null with `error` set (starting with 'NAME'); non-fatal
   /// notes go to `warnings`. `memoryLimitBytes` 0: this machine's physical memory.
   static vtkSmartPointer<vtkUnstructuredGrid> Read(const std::string& name, const std::string* text,
-    vtkIGABezierHexahedra::Patches& patches, std::string& error,
-    std::vector<std::string>& warnings, double memoryLimitBytes = 0);
+    vtkIGABezierHexahedra::Patches& patches, std::string& error, std::vector<std::string>& warnings,
+    double memoryLimitBytes = 0);
 };
 
 #endif

@@ -65,7 +65,8 @@ public:
     const std::function<const iga::BezierVolume<double>&(vtkIdType)>& cell, CellLayout layout);
 
   /// Surfaces (standard layout, every attribute named) to a grid of Bézier quadrilaterals.
-  static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(const iga::SurfaceSet<double>& set);
+  static vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(
+    const iga::SurfaceSet<double>& set);
 
   /// Appends a rational Bézier surface (standard layout) as a VTK_BEZIER_QUADRILATERAL cell:
   /// its points, weights (the grid's RationalWeights), attribute channels (into `attributes`,

@@ -51,7 +51,8 @@ std::string readingError(const std::string& text, double memory = 0)
   vtkIGABezierHexahedra::Patches patches;
   std::string error;
   std::vector<std::string> warnings;
-  const auto grid = vtkIGABezierFileReading::Read("test.vtu", &text, patches, error, warnings, memory);
+  const auto grid =
+    vtkIGABezierFileReading::Read("test.vtu", &text, patches, error, warnings, memory);
   EXPECT_EQ(grid == nullptr, !error.empty());
   return error;
 }
@@ -200,7 +201,8 @@ TEST(BezierVTU, InlineArraysPastTheFirstMegabyteAreRead)
   vtkIGABezierHexahedra::Patches patches;
   std::string error;
   std::vector<std::string> warnings;
-  EXPECT_NE(vtkIGABezierFileReading::Read(file, nullptr, patches, error, warnings), nullptr) << error;
+  EXPECT_NE(vtkIGABezierFileReading::Read(file, nullptr, patches, error, warnings), nullptr)
+    << error;
   EXPECT_EQ(patches.volumes.patches.size(), size_t(blade->GetNumberOfCells()));
 }
 
