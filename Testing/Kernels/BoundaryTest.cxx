@@ -6,6 +6,9 @@
 #include "iga/Boundary.h"
 #include "iga/Datasets.h"
 #include "iga/DegenerateZoo.h"
+#include "iga/Orientation.h"
+
+#include <glm/geometric.hpp>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +54,59 @@ TEST(Boundary, FaceIsTheVolumeOnItsSide)
           EXPECT_NEAR(onFace[c], inVolume[c], 1e-14) << direction << side << " channel " << c;
       }
     }
+  }
+}
+
+/// Euclidean point and, with `du`, the partial derivatives of a rational patch's geometry.
+template<int Dim>
+glm::dvec3 pointOf(const iga::PatchView<const double, Dim>& patch, const double* u, glm::dvec3* du)
+{
+  std::vector<double> values(size_t(patch.channels)), derivatives(size_t(Dim * patch.channels));
+  iga::evaluateHomogeneous<double, Dim>(patch, u, values.data(), derivatives.data());
+  glm::dvec3 x;
+  for (int c = 0; c < 3; ++c)
+  {
+    glm::dvec3 gradient(0);
+    x[c] = iga::rationalValue<double, Dim>(
+      values.data(), derivatives.data(), patch.channels, c, iga::kWeightChannel, &gradient[0]);
+    for (int d = 0; du && d < Dim; ++d)
+      du[d][c] = gradient[d];
+  }
+  return x;
+}
+
+TEST(Boundary, OutwardFacesPointOutOfRightAndLeftHandedVolumes)
+{
+  const auto tube = iga::makeTube<double>(0.25, 0.7);
+  auto mirrored = tube.patches[3];
+  iga::reverseDirection(mirrored.view(), 1);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0.05, 0.95);
+  const iga::BezierVolume<double>* volumes[2] = { &tube.patches[3], &mirrored };
+  for (const auto* volume : volumes)
+  {
+    const bool leftHanded = iga::signedVolume(volume->view()) < 0;
+    EXPECT_EQ(leftHanded, (volume == &mirrored) != (iga::signedVolume(tube.patches[3].view()) < 0));
+    for (int direction = 0; direction < 3; ++direction)
+      for (int side = 0; side < 2; ++side)
+      {
+        const iga::PatchFace face{ 0, direction, side };
+        const auto surface = iga::outwardFaceSurface(*volume, face, leftHanded);
+        const bool reversed = iga::faceNormalPointsInward(face, leftHanded);
+        for (int sample = 0; sample < 10; ++sample)
+        {
+          const double st[2] = { unit(random), unit(random) };
+          glm::dvec3 dx[2];
+          const glm::dvec3 x = pointOf<2>(surface.view(), st, dx);
+          double u[3];
+          iga::faceParameterInVolume(face, reversed, st[0], st[1], u);
+          EXPECT_LT(glm::length(pointOf<3>(volume->view(), u, nullptr) - x), 1e-12);
+          u[direction] = side ? 0.9 : 0.1; // a point inside the volume near the face
+          const glm::dvec3 inward = pointOf<3>(volume->view(), u, nullptr) - x;
+          EXPECT_LT(glm::dot(glm::cross(dx[0], dx[1]), inward), 0)
+            << "face " << direction << side << (leftHanded ? " left-handed" : "");
+        }
+      }
   }
 }
 

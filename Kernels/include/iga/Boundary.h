@@ -5,6 +5,7 @@
 #pragma once
 
 #include "iga/BezierPatch.h"
+#include "iga/Orientation.h"
 
 #include <algorithm>
 #include <array>
@@ -57,6 +58,42 @@ BezierSurface<T> faceSurface(const BezierVolume<T>& volume, int direction, int s
     }
   }
   return surface;
+}
+
+/// Whether faceSurface's normal x_s x x_t points into the volume at this face: across
+/// direction d the volume lies on the side of increasing u_d at side 0, so (x_s, x_t, x_d) being
+/// right-handed or not, with the patch's handedness (signedVolume's sign), decides.
+inline bool faceNormalPointsInward(const PatchFace& face, bool leftHanded)
+{
+  // det(x_s, x_t, x_d) is +det J for d = 0 and 2 and -det J for d = 1 (faceDirections' order).
+  const bool rightHandedTriple = (face.direction == 1) == leftHanded;
+  return rightHandedTriple == (face.side == 0);
+}
+
+/// The face as faceSurface gives it, its t direction reversed where that is needed for x_s x x_t
+/// to point out of the volume: an oriented piece of the volumes' boundary, which a ray enters
+/// where that normal faces it.
+template<class T>
+BezierSurface<T> outwardFaceSurface(
+  const BezierVolume<T>& volume, const PatchFace& face, bool leftHanded)
+{
+  BezierSurface<T> surface = faceSurface(volume, face.direction, face.side);
+  if (faceNormalPointsInward(face, leftHanded))
+  {
+    reverseDirection(surface.view(), 1);
+  }
+  return surface;
+}
+
+/// The volume parameter of point (s, t) of outwardFaceSurface.
+inline void faceParameterInVolume(
+  const PatchFace& face, bool reversed, double s, double t, double* uvw)
+{
+  int ds, dt;
+  faceDirections(face.direction, ds, dt);
+  uvw[face.direction] = face.side ? 1.0 : 0.0;
+  uvw[ds] = s;
+  uvw[dt] = reversed ? 1.0 - t : t;
 }
 
 namespace detail

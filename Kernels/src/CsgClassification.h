@@ -1,0 +1,376 @@
+// The CSG classification stage: per pixel, the hits of every pass merged front to back and
+// walked along the ray, each operand's inside known after each hit, and a hit kept where the
+// expression's result changes there.
+#pragma once
+
+#include "ParallelFor.h"
+
+#include "iga/Boundary.h"
+#include "iga/Csg.h"
+#include "iga/sst/Engine.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace iga
+{
+namespace sst
+{
+
+/// One all-hits engine pass of a CSG frame and what its hits stand for.
+struct CsgPass
+{
+  enum class Kind
+  {
+    Boundary,  ///< an input's boundary faces, outward: where the ray enters or leaves its volumes
+    Attribute, ///< an attribute's isosurfaces in an input, one isovalue per operand naming it
+    Plane,     ///< a plane operand's section of an input's volumes
+  };
+  Kind kind = Kind::Boundary;
+  int input = 0;
+  int attribute = -1; ///< the attribute index (Attribute), 0 (Plane: its derived channel)
+  int operand = -1;   ///< Plane: the operand
+  std::vector<double> isovalues;
+  std::vector<int> operandOfIsovalue;          ///< Attribute: Hit::isovalue -> operand
+  std::vector<PatchFace> faces;                ///< Boundary: the faces, Hit::patch's order
+  std::vector<uint8_t> reversed;               ///< Boundary: outwardFaceSurface reversed t
+  std::vector<BezierSurface<double>> surfaces; ///< Boundary: the outward faces, every channel
+  std::vector<BezierVolume<double>> volumes;   ///< Plane: the volumes with the plane's field
+  GBuffer hits;
+};
+
+/// The passes of a frame and what classification needs besides.
+struct CsgPasses
+{
+  const csg::Expression* expression = nullptr;
+  int inputs = 0;
+  /// Per operand and input (operand * inputs + input): the attribute index of a Below/Above
+  /// operand in that input, -1 where the input lacks it (and for other operands).
+  std::vector<int> sources;
+  std::vector<CsgPass> list;     ///< the first `inputs` are the inputs' Boundary passes, in order
+  std::vector<int> patchOffsets; ///< per input, its first volume in the result's numbering
+  const View* view = nullptr;
+  const std::vector<std::array<double, 4>>* clip = nullptr;
+  bool firstHitOnly = true;
+};
+
+/// Below this |cos| between a hit's normal and the ray, the ray touches the surface rather
+/// than crossing it: the hit changes no operand's inside (a tangential touch must not flip it).
+constexpr double kTouchCosine = 1e-9;
+
+/// Classifies one pixel at a time, keeping its scratch between pixels.
+class PixelClassifier
+{
+public:
+  explicit PixelClassifier(const CsgPasses& passes)
+    : Passes(passes)
+    , Operands(passes.expression->operands)
+  {
+  }
+
+  /// Appends the result's surfaces at `pixel` (front to back; the nearest alone for
+  /// firstHitOnly) to `out`.
+  void classify(size_t pixel, std::vector<Hit>& out)
+  {
+    this->gather(pixel);
+    this->startStates();
+    const csg::Expression& expression = *this->Passes.expression;
+    for (int n = 0; n < int(this->Events.size()); ++n)
+    {
+      // Half-spaces change between hits too (outside the volumes): their sides are taken at
+      // each hit, before and after it.
+      this->setPlaneSides(n, true);
+      this->operandStates(n - 1, this->Before);
+      const bool wasInside = expression.contains(this->Before, this->Nodes);
+      this->apply(n);
+      this->setPlaneSides(n, false);
+      this->operandStates(n, this->After);
+      const bool inside = expression.contains(this->After, this->Nodes);
+      if (inside != wasInside && this->emit(n, inside, out) && this->Passes.firstHitOnly)
+      {
+        return;
+      }
+    }
+  }
+
+private:
+  struct Event
+  {
+    const Hit* hit;
+    int pass;
+    int operand; ///< the Attribute or Plane operand, -1 for a Boundary hit
+    bool touch;
+  };
+
+  const CsgPass& passOf(const Event& e) const { return this->Passes.list[size_t(e.pass)]; }
+  bool isBoundary(const Event& e) const { return e.operand < 0; }
+  int sourceOf(int k, int input) const
+  {
+    return this->Passes.sources[size_t(k) * size_t(this->Passes.inputs) + size_t(input)];
+  }
+
+  void gather(size_t pixel)
+  {
+    this->Events.clear();
+    const View& view = *this->Passes.view;
+    for (int p = 0; p < int(this->Passes.list.size()); ++p)
+    {
+      const CsgPass& pass = this->Passes.list[size_t(p)];
+      for (uint32_t h = pass.hits.offsets[pixel]; h < pass.hits.offsets[pixel + 1]; ++h)
+      {
+        const Hit& hit = pass.hits.hits[h];
+        const int operand = pass.kind == CsgPass::Kind::Attribute
+                              ? pass.operandOfIsovalue[size_t(hit.isovalue)]
+                              : pass.operand;
+        const glm::dvec3 ray =
+          view.parallel ? view.forward : glm::normalize(hit.position - view.eye);
+        const bool touch = std::abs(glm::dot(hit.normal, ray)) < kTouchCosine;
+        this->Events.push_back({ &hit, p, operand, touch });
+      }
+    }
+    std::stable_sort(this->Events.begin(), this->Events.end(),
+      [](const Event& a, const Event& b) { return a.hit->eyeDepth < b.hit->eyeDepth; });
+  }
+
+  /// The state before the ray's first hit: inside an input where its first boundary crossing
+  /// leaves it; every attribute's sign unknown until asked for.
+  void startStates()
+  {
+    this->Domain.assign(size_t(this->Passes.inputs), 2);
+    for (const Event& e : this->Events)
+    {
+      uint8_t& state = this->Domain[size_t(this->passOf(e).input)];
+      if (this->isBoundary(e) && !e.touch && state == 2)
+      {
+        state = e.hit->entersBelow ? 0 : 1;
+      }
+    }
+    for (uint8_t& state : this->Domain)
+    {
+      state = state == 1 ? 1 : 0;
+    }
+    this->Below.assign(this->Operands.size() * size_t(this->Passes.inputs), -1);
+    this->PlaneSide.assign(this->Operands.size(), 0);
+  }
+
+  /// Every plane operand's side just before or after event n (a touch of its own plane keeps
+  /// the side it had).
+  void setPlaneSides(int n, bool before)
+  {
+    const Event& e = this->Events[size_t(n)];
+    for (size_t k = 0; k < this->Operands.size(); ++k)
+    {
+      if (!(int(k) == e.operand && e.touch))
+      {
+        this->PlaneSide[k] = this->planeSideAt(int(k), e, before);
+      }
+    }
+  }
+
+  /// Plane operand k's inside just after (or, `before`, just before) event e.
+  uint8_t planeSideAt(int k, const Event& e, bool before) const
+  {
+    if (this->Operands[size_t(k)].kind != csg::Operand::Kind::Plane)
+    {
+      return 0;
+    }
+    if (e.operand == k && !e.touch)
+    {
+      return e.hit->entersBelow != before ? 1 : 0;
+    }
+    const auto& plane = this->Operands[size_t(k)].plane;
+    const glm::dvec3& x = e.hit->position;
+    return plane[0] * x[0] + plane[1] * x[1] + plane[2] * x[2] + plane[3] >= 0 ? 1 : 0;
+  }
+
+  /// Event n's change of the domains' and attributes' states.
+  void apply(int n)
+  {
+    const Event& e = this->Events[size_t(n)];
+    const int input = this->passOf(e).input;
+    if (!e.touch && this->isBoundary(e))
+    {
+      this->Domain[size_t(input)] = e.hit->entersBelow ? 1 : 0;
+      for (size_t k = 0; k < this->Operands.size(); ++k)
+      {
+        this->Below[k * size_t(this->Passes.inputs) + size_t(input)] = -1;
+      }
+    }
+    else if (!e.touch && this->passOf(e).kind == CsgPass::Kind::Attribute)
+    {
+      this->Below[size_t(e.operand) * size_t(this->Passes.inputs) + size_t(input)] =
+        e.hit->entersBelow ? 1 : 0;
+    }
+  }
+
+  /// Each operand's inside after event n (-1: before the first).
+  void operandStates(int n, std::vector<uint8_t>& states)
+  {
+    states.assign(this->Operands.size(), 0);
+    for (size_t k = 0; k < this->Operands.size(); ++k)
+    {
+      const csg::Operand& operand = this->Operands[k];
+      bool inside = false;
+      for (int i = 0; i < this->Passes.inputs && !inside; ++i)
+      {
+        switch (operand.kind)
+        {
+          case csg::Operand::Kind::Domain:
+            inside = this->Domain[size_t(i)] != 0;
+            break;
+          case csg::Operand::Kind::Plane:
+            inside = this->PlaneSide[k] != 0;
+            break;
+          case csg::Operand::Kind::Below:
+          case csg::Operand::Kind::Above:
+            if (this->Domain[size_t(i)] && this->sourceOf(int(k), i) >= 0)
+            {
+              const bool below = this->below(int(k), i, n);
+              inside = operand.kind == csg::Operand::Kind::Below ? below : !below;
+            }
+            break;
+        }
+      }
+      states[k] = inside ? 1 : 0;
+    }
+  }
+
+  /// Whether operand k's attribute is below its value in input i after event n, inside the
+  /// input: known from the last crossing, else from the next one before the ray leaves the
+  /// input (the sign holds until then), else from the attribute where the ray leaves or
+  /// entered it.
+  bool below(int k, int input, int n)
+  {
+    int8_t& state = this->Below[size_t(k) * size_t(this->Passes.inputs) + size_t(input)];
+    if (state >= 0)
+    {
+      return state != 0;
+    }
+    state = 0;
+    for (size_t m = size_t(n + 1); m < this->Events.size(); ++m)
+    {
+      const Event& e = this->Events[m];
+      if (e.touch || this->passOf(e).input != input)
+      {
+        continue;
+      }
+      if (e.operand == k)
+      {
+        state = e.hit->entersBelow ? 0 : 1;
+        return state != 0;
+      }
+      if (this->isBoundary(e) && !e.hit->entersBelow)
+      {
+        state = this->attributeAt(e, k) < this->Operands[size_t(k)].value ? 1 : 0;
+        return state != 0;
+      }
+    }
+    if (n >= 0 && this->isBoundary(this->Events[size_t(n)]) &&
+        this->passOf(this->Events[size_t(n)]).input == input)
+    {
+      state = this->attributeAt(this->Events[size_t(n)], k) < this->Operands[size_t(k)].value;
+    }
+    return state != 0;
+  }
+
+  /// Operand k's attribute at a boundary hit, from the face's net (every channel of the volume).
+  double attributeAt(const Event& e, int k) const
+  {
+    const CsgPass& pass = this->passOf(e);
+    const auto face = pass.surfaces[size_t(e.hit->patch)].view();
+    this->Values.resize(size_t(face.channels));
+    const double st[2] = { e.hit->uvw[0], e.hit->uvw[1] };
+    evaluateHomogeneous<double, 2>(face, st, this->Values.data(), nullptr);
+    const int channel = kFirstAttributeChannel + this->sourceOf(k, pass.input);
+    return this->Values[size_t(channel)] / this->Values[kWeightChannel];
+  }
+
+  /// Appends event n as a surface of the result (entering it where `entering`), unless a
+  /// clipping plane cuts it away; whether it was kept.
+  bool emit(int n, bool entering, std::vector<Hit>& out) const
+  {
+    const Event& e = this->Events[size_t(n)];
+    const CsgPass& pass = this->passOf(e);
+    Hit hit = *e.hit;
+    for (const auto& plane : *this->Passes.clip)
+    {
+      if (plane[0] * hit.position[0] + plane[1] * hit.position[1] + plane[2] * hit.position[2] +
+            plane[3] <
+          0)
+      {
+        return false;
+      }
+    }
+    hit.isovalue = e.operand;
+    for (size_t k = 0; k < this->Operands.size(); ++k)
+    {
+      if (this->Before[k] != this->After[k])
+      {
+        hit.isovalue = int(k);
+        break;
+      }
+    }
+    hit.entersBelow = entering;
+    int patch = hit.patch;
+    if (pass.kind == CsgPass::Kind::Boundary)
+    {
+      const PatchFace& face = pass.faces[size_t(hit.patch)];
+      const double s = hit.uvw[0], t = hit.uvw[1];
+      faceParameterInVolume(face, pass.reversed[size_t(hit.patch)] != 0, s, t, &hit.uvw[0]);
+      patch = face.patch;
+    }
+    hit.patch = this->Passes.patchOffsets[size_t(pass.input)] + patch;
+    out.push_back(hit);
+    return true;
+  }
+
+  const CsgPasses& Passes;
+  const std::vector<csg::Operand>& Operands;
+  std::vector<Event> Events;
+  std::vector<uint8_t> Domain;    ///< per input: inside its volumes
+  std::vector<int8_t> Below;      ///< per operand and input: 1 below, 0 above, -1 unknown
+  std::vector<uint8_t> PlaneSide; ///< per operand: inside the half-space (Plane operands)
+  std::vector<uint8_t> Before, After, Nodes;
+  mutable std::vector<double> Values;
+};
+
+/// Classifies every pixel of the passes (all of one size) into `out`, on `threads` threads.
+inline void classifyPixels(const CsgPasses& passes, int threads, GBuffer& out)
+{
+  const GBuffer& first = passes.list.front().hits;
+  out.width = first.width;
+  out.height = first.height;
+  const size_t pixels = size_t(out.width) * size_t(out.height);
+  const size_t parts = std::max<size_t>(1, std::min<size_t>(pixels, size_t(threads) * 8));
+  std::vector<std::vector<Hit>> partHits(parts);
+  std::vector<uint32_t> counts(pixels, 0);
+  parallelParts(pixels, parts, threads,
+    [&](size_t part, size_t begin, size_t end)
+    {
+      PixelClassifier classifier(passes);
+      for (size_t p = begin; p < end; ++p)
+      {
+        const size_t before = partHits[part].size();
+        classifier.classify(p, partHits[part]);
+        counts[p] = uint32_t(partHits[part].size() - before);
+      }
+    });
+  out.offsets.assign(pixels + 1, 0);
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    out.offsets[p + 1] = out.offsets[p] + counts[p];
+  }
+  out.hits.clear();
+  out.hits.reserve(out.offsets[pixels]);
+  for (const auto& hits : partHits)
+  {
+    out.hits.insert(out.hits.end(), hits.begin(), hits.end());
+  }
+}
+
+} // namespace sst
+} // namespace iga

@@ -1,0 +1,286 @@
+// CSG frames: one all-hits engine pass per kind of surface an operand has, then a
+// classification of every pixel's merged hits along its ray (CsgClassification.h).
+#include "iga/sst/Csg.h"
+
+#include "CsgClassification.h"
+#include "FramePlan.h"
+#include "ParallelFor.h"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+namespace iga
+{
+namespace sst
+{
+
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+int attributeIndex(const CsgInput& input, const std::string& name)
+{
+  for (size_t k = 0; k < input.attributes.size(); ++k)
+  {
+    if (input.attributes[k] == name)
+    {
+      return int(k);
+    }
+  }
+  return -1;
+}
+
+/// Input i's boundary as outward faces, with what maps their hits back to the volumes.
+void addBoundaryPass(const CsgInput& input, int i, CsgPasses& passes)
+{
+  CsgPass pass;
+  pass.kind = CsgPass::Kind::Boundary;
+  pass.input = i;
+  const auto& volumes = *input.volumes;
+  pass.faces = input.boundary ? *input.boundary : boundaryFaces(volumes);
+  for (const PatchFace& face : pass.faces)
+  {
+    const auto& volume = volumes[size_t(face.patch)];
+    const bool leftHanded = signedVolume(volume.view()) < 0;
+    pass.reversed.push_back(faceNormalPointsInward(face, leftHanded));
+    pass.surfaces.push_back(outwardFaceSurface(volume, face, leftHanded));
+  }
+  passes.list.push_back(std::move(pass));
+}
+
+/// The isosurfaces of one attribute in input i: one isovalue per operand naming it.
+void addAttributePass(const CsgScene& scene, int i, const std::string& name, CsgPasses& passes)
+{
+  const csg::Expression& e = scene.expression;
+  CsgPass pass;
+  pass.kind = CsgPass::Kind::Attribute;
+  pass.input = i;
+  pass.attribute = attributeIndex(scene.inputs[size_t(i)], name);
+  for (size_t k = 0; k < e.operands.size(); ++k)
+  {
+    const csg::Operand& operand = e.operands[k];
+    if (operand.kind != csg::Operand::Kind::Domain && operand.kind != csg::Operand::Kind::Plane &&
+        operand.attribute == name)
+    {
+      pass.isovalues.push_back(operand.value);
+      pass.operandOfIsovalue.push_back(int(k));
+    }
+  }
+  passes.list.push_back(std::move(pass));
+}
+
+/// The section of input i's volumes by plane operand k: the volumes with, as their one
+/// attribute, -(a x + b y + c z + d), exact as a rational function of the same weights (and the
+/// colour attribute after it), so that the half-space is the region below 0.
+void addPlanePass(const CsgScene& scene, int i, int k, int colour, CsgPasses& passes)
+{
+  const auto& plane = scene.expression.operands[size_t(k)].plane;
+  CsgPass pass;
+  pass.kind = CsgPass::Kind::Plane;
+  pass.input = i;
+  pass.operand = k;
+  pass.attribute = 0;
+  pass.isovalues = { 0.0 };
+  const int channels = kFirstAttributeChannel + (colour >= 0 ? 2 : 1);
+  for (const auto& volume : *scene.inputs[size_t(i)].volumes)
+  {
+    const auto from = volume.view();
+    BezierVolume<double> derived(from.degree, channels);
+    const auto to = derived.view();
+    for (int p = 0; p < from.pointCount(); ++p)
+    {
+      const double* a = from.point(p);
+      double* b = to.point(p);
+      std::copy(a, a + kFirstAttributeChannel, b);
+      b[kFirstAttributeChannel] =
+        -(plane[0] * a[0] + plane[1] * a[1] + plane[2] * a[2] + plane[3] * a[kWeightChannel]);
+      if (colour >= 0)
+      {
+        b[kFirstAttributeChannel + 1] = a[kFirstAttributeChannel + colour];
+      }
+    }
+    pass.volumes.push_back(std::move(derived));
+  }
+  passes.list.push_back(std::move(pass));
+}
+
+/// Every pass the scene needs, with the operands' sources. Throws csg::ExpressionError for an
+/// attribute that no input holds.
+CsgPasses planPasses(const CsgScene& scene)
+{
+  const csg::Expression& e = scene.expression;
+  CsgPasses passes;
+  passes.expression = &e;
+  passes.inputs = int(scene.inputs.size());
+  passes.sources.assign(e.operands.size() * scene.inputs.size(), -1);
+  std::map<std::string, bool> attributePassed;
+  for (int i = 0; i < passes.inputs; ++i)
+  {
+    addBoundaryPass(scene.inputs[size_t(i)], i, passes);
+  }
+  for (size_t k = 0; k < e.operands.size(); ++k)
+  {
+    const csg::Operand& operand = e.operands[k];
+    if (operand.kind == csg::Operand::Kind::Below || operand.kind == csg::Operand::Kind::Above)
+    {
+      bool held = false;
+      for (int i = 0; i < passes.inputs; ++i)
+      {
+        const int index = attributeIndex(scene.inputs[size_t(i)], operand.attribute);
+        passes.sources[k * size_t(passes.inputs) + size_t(i)] = index;
+        held = held || index >= 0;
+        if (index >= 0 && !attributePassed[operand.attribute + '\n' + std::to_string(i)])
+        {
+          attributePassed[operand.attribute + '\n' + std::to_string(i)] = true;
+          addAttributePass(scene, i, operand.attribute, passes);
+        }
+      }
+      if (!held)
+      {
+        throw csg::ExpressionError(
+          "no input has the attribute '" + operand.attribute + "'", operand.position);
+      }
+    }
+    else if (operand.kind == csg::Operand::Kind::Plane)
+    {
+      for (int i = 0; i < passes.inputs; ++i)
+      {
+        const int colour = attributeIndex(scene.inputs[size_t(i)], scene.colorAttribute);
+        addPlanePass(scene, i, int(k), scene.colorAttribute.empty() ? -1 : colour, passes);
+      }
+    }
+  }
+  return passes;
+}
+
+/// The pass's own settings: all hits, the pass's attribute and isovalues, no clipping (clipping
+/// planes cut the result, not the operands), the time left of the frame's deadline.
+Settings passSettings(
+  const CsgScene& scene, const CsgPass& pass, const Settings& settings, double msElapsed)
+{
+  Settings s = settings;
+  s.firstHitOnly = false;
+  s.clipPlanes.clear();
+  s.isovalues = pass.isovalues;
+  s.surfaceAttribute = pass.attribute < 0 ? 0 : pass.attribute;
+  const int colour = scene.colorAttribute.empty()
+                       ? -1
+                       : attributeIndex(scene.inputs[size_t(pass.input)], scene.colorAttribute);
+  s.colorAttribute = pass.kind == CsgPass::Kind::Plane ? (colour >= 0 ? 1 : -1) : colour;
+  if (settings.deadlineMs > 0)
+  {
+    s.deadlineMs = std::max(settings.deadlineMs - msElapsed, 1e-6);
+  }
+  s.dataVersion = 0;
+  return s;
+}
+
+void accumulate(FrameReport& total, const FrameReport& pass, bool first)
+{
+  if (first)
+  {
+    total.method = pass.method;
+    total.backend = pass.backend;
+    total.notice = pass.notice;
+    total.noticeSeverity = pass.noticeSeverity;
+    total.threads = pass.threads;
+  }
+  total.iterations += pass.iterations;
+  total.bands = std::max(total.bands, pass.bands);
+  total.unresolvedPixels += pass.unresolvedPixels;
+  total.unresolvedAtDepthCap += pass.unresolvedAtDepthCap;
+  total.unresolvedAtBudget += pass.unresolvedAtBudget;
+  total.unresolvedAtDeadline += pass.unresolvedAtDeadline;
+  total.droppedAtEyePlane += pass.droppedAtEyePlane;
+  total.constantAttributeRoots += pass.constantAttributeRoots;
+  total.newtonSolves += pass.newtonSolves;
+  total.subdividedPatches += pass.subdividedPatches;
+  total.maxTuples = std::max(total.maxTuples, pass.maxTuples);
+  total.maxPatches = std::max(total.maxPatches, pass.maxPatches);
+  total.peakBytes = std::max(total.peakBytes, pass.peakBytes);
+  total.peakBudgetedBytes = std::max(total.peakBudgetedBytes, pass.peakBudgetedBytes);
+  total.uploadedBytes += pass.uploadedBytes;
+  total.downloadedBytes += pass.downloadedBytes;
+  total.msInput += pass.msInput;
+  total.msSetup += pass.msSetup;
+  total.msSweepAndGroup += pass.msSweepAndGroup;
+  total.msOverlap += pass.msOverlap;
+  total.msSolution += pass.msSolution;
+  total.msSubdivision += pass.msSubdivision;
+  total.msCompaction += pass.msCompaction;
+  total.msGBuffer += pass.msGBuffer;
+}
+
+/// Where hits of input i's volumes start in the result's patch numbering.
+std::vector<int> patchOffsets(const CsgScene& scene)
+{
+  std::vector<int> offsets(scene.inputs.size() + 1, 0);
+  for (size_t i = 0; i < scene.inputs.size(); ++i)
+  {
+    offsets[i + 1] = offsets[i] + int(scene.inputs[i].volumes->size());
+  }
+  return offsets;
+}
+
+void checkInputs(const CsgScene& scene)
+{
+  if (scene.inputs.empty())
+  {
+    throw std::invalid_argument("a CSG scene needs at least one input");
+  }
+  for (size_t i = 0; i < scene.inputs.size(); ++i)
+  {
+    if (!scene.inputs[i].volumes)
+    {
+      throw std::invalid_argument("CSG input " + std::to_string(i) + " has no volumes");
+    }
+  }
+  if (scene.expression.root < 0)
+  {
+    throw std::invalid_argument("the CSG expression is empty");
+  }
+}
+
+} // namespace
+
+FrameReport renderCsg(
+  const CsgScene& scene, const View& view, const Settings& settings, Method method, GBuffer& out)
+{
+  const auto start = Clock::now();
+  checkInputs(scene);
+  CsgPasses passes = planPasses(scene);
+  FrameReport report;
+  const std::vector<BezierVolume<double>> noVolumes;
+  for (size_t p = 0; p < passes.list.size(); ++p)
+  {
+    CsgPass& pass = passes.list[p];
+    const auto& volumes = pass.kind == CsgPass::Kind::Attribute
+                            ? *scene.inputs[size_t(pass.input)].volumes
+                          : pass.kind == CsgPass::Kind::Plane ? pass.volumes
+                                                              : noVolumes;
+    const Scene passScene(volumes, pass.surfaces);
+    accumulate(report,
+      render(passScene, view, passSettings(scene, pass, settings, millisecondsSince(start)), method,
+        pass.hits),
+      p == 0);
+  }
+  const auto classifyStart = Clock::now();
+  passes.patchOffsets = patchOffsets(scene);
+  passes.view = &view;
+  passes.clip = &settings.clipPlanes;
+  passes.firstHitOnly = settings.firstHitOnly;
+  classifyPixels(passes, threadCount(settings), out);
+  report.msGBuffer += millisecondsSince(classifyStart);
+  report.msTotal = millisecondsSince(start);
+  return report;
+}
+
+} // namespace sst
+} // namespace iga

@@ -1,0 +1,725 @@
+// CSG: the expression grammar, and CSG frames against two independent references: exact
+// intervals of analytic solids along each ray, and dense sampling with bisection.
+#include "AnalyticTruth.h"
+
+#include "iga/Csg.h"
+#include "iga/Datasets.h"
+#include "iga/sst/Csg.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+using iga::csg::Expression;
+using iga::csg::ExpressionError;
+using iga::csg::Operand;
+using iga::csg::parseExpression;
+
+// ---- the grammar -----------------------------------------------------------------------------
+
+size_t errorPosition(const std::string& text)
+{
+  try
+  {
+    parseExpression(text);
+  }
+  catch (const ExpressionError& e)
+  {
+    return e.position();
+  }
+  ADD_FAILURE() << "no error for " << text;
+  return std::string::npos;
+}
+
+TEST(CsgExpression, IntersectionBindsTighterUnionAndDifferenceGoLeftToRight)
+{
+  EXPECT_EQ(parseExpression("a<0 | b<0 & c<0").text(), "(\"a\"<0 | (\"b\"<0 & \"c\"<0))");
+  EXPECT_EQ(parseExpression("a<0 - b<0 | c<0").text(), "((\"a\"<0 - \"b\"<0) | \"c\"<0)");
+  EXPECT_EQ(parseExpression("a<0 - (b<0 | c<0)").text(), "(\"a\"<0 - (\"b\"<0 | \"c\"<0))");
+  EXPECT_EQ(parseExpression("cube<0 - pips<0").text(), "(\"cube\"<0 - \"pips\"<0)");
+  EXPECT_EQ(parseExpression("domain&plane(1, 0,-2, +0.5)").text(), "(domain & plane(1,0,-2,0.5))");
+}
+
+TEST(CsgExpression, OperandsKeepTheirValuesNamesAndPositions)
+{
+  const Expression e = parseExpression("  \"Temperature (K)\">300 & s.x_1<-1.5e-3");
+  ASSERT_EQ(e.operands.size(), 2u);
+  EXPECT_EQ(e.operands[0].kind, Operand::Kind::Above);
+  EXPECT_EQ(e.operands[0].attribute, "Temperature (K)");
+  EXPECT_EQ(e.operands[0].value, 300);
+  EXPECT_EQ(e.operands[0].position, 2u);
+  EXPECT_EQ(e.operands[1].kind, Operand::Kind::Below);
+  EXPECT_EQ(e.operands[1].attribute, "s.x_1");
+  EXPECT_EQ(e.operands[1].value, -1.5e-3);
+  EXPECT_EQ(e.operands[1].position, 26u);
+  // An attribute may be called domain or plane: a comparison makes it one.
+  EXPECT_EQ(parseExpression("domain<1").operands[0].kind, Operand::Kind::Below);
+}
+
+TEST(CsgExpression, ContainsFollowsTheOperators)
+{
+  const Expression e = parseExpression("a<0 - b<0 | c<0 & d<0");
+  std::vector<uint8_t> scratch;
+  for (int bits = 0; bits < 16; ++bits)
+  {
+    const std::vector<uint8_t> in = { uint8_t(bits & 1), uint8_t((bits >> 1) & 1),
+      uint8_t((bits >> 2) & 1), uint8_t((bits >> 3) & 1) };
+    const bool expected = (in[0] && !in[1]) || (in[2] && in[3]);
+    EXPECT_EQ(e.contains(in, scratch), expected) << "states " << bits;
+  }
+}
+
+TEST(CsgExpression, ErrorsNameTheProblemAndItsPosition)
+{
+  EXPECT_EQ(errorPosition("a<"), 2u);
+  EXPECT_EQ(errorPosition("a<0 |"), 5u);
+  EXPECT_EQ(errorPosition("(a<0"), 4u);
+  EXPECT_EQ(errorPosition("a<0 b<0"), 4u);
+  EXPECT_EQ(errorPosition("a<0 & foo"), 9u);
+  EXPECT_EQ(errorPosition("plane(1,0,0)"), 11u);
+  EXPECT_EQ(errorPosition("domain | plane(0,0,0,1)"), 9u);
+  EXPECT_EQ(errorPosition("a<nan"), 2u);
+  EXPECT_EQ(errorPosition("a<1e999"), 2u);
+  EXPECT_EQ(errorPosition("\"a<0"), 0u);
+  EXPECT_EQ(errorPosition("a<0 & #"), 6u);
+  EXPECT_EQ(errorPosition(""), 0u);
+  EXPECT_EQ(errorPosition(std::string("a<0\0", 4)), 3u);
+  std::string many = "a<0";
+  for (int k = 1; k < iga::csg::kMaxOperands; ++k)
+    many += " | a<" + std::to_string(k);
+  EXPECT_NO_THROW(parseExpression(many));
+  EXPECT_EQ(errorPosition(many + " | b<0"), many.size() + 3);
+  const std::string deep =
+    std::string(iga::csg::kMaxNesting, '(') + "a<0" + std::string(iga::csg::kMaxNesting, ')');
+  EXPECT_NO_THROW(parseExpression(deep));
+  EXPECT_EQ(errorPosition("(" + deep + ")"), size_t(iga::csg::kMaxNesting));
+  try
+  {
+    parseExpression("a<0 | b");
+  }
+  catch (const ExpressionError& e)
+  {
+    EXPECT_EQ(std::string(e.what()),
+      "'b' needs '<' or '>' and a value (or is it domain or plane?) at position 7");
+  }
+}
+
+// ---- scenes ------------------------------------------------------------------------------------
+
+/// The box [-1, 1]^3 cut into cells^3 patches of degree 2 (identity geometry), attribute k the
+/// field of sphere k: its solid below 0 is the sphere's inside.
+iga::VolumeSet<double> boxWithSpheres(const std::vector<iga::Sphere>& spheres, int cells)
+{
+  iga::VolumeSet<double> set;
+  for (size_t k = 0; k < spheres.size(); ++k)
+    set.attributeNames.push_back("s" + std::to_string(k));
+  const int degree[3] = { 2, 2, 2 };
+  const int channels = iga::kFirstAttributeChannel + int(spheres.size());
+  for (int k = 0; k < cells; ++k)
+    for (int j = 0; j < cells; ++j)
+      for (int i = 0; i < cells; ++i)
+      {
+        const int cell[3] = { i, j, k };
+        double lo[3], hi[3];
+        for (int d = 0; d < 3; ++d)
+        {
+          lo[d] = -1 + 2.0 * cell[d] / cells;
+          hi[d] = -1 + 2.0 * (cell[d] + 1) / cells;
+        }
+        iga::BezierVolume<double> patch(degree, channels);
+        for (size_t s = 0; s < spheres.size(); ++s)
+        {
+          const auto field = iga::makePolynomialVolume(
+            iga::sphereField<double>(spheres[s].centre, spheres[s].radius), lo, hi, degree);
+          for (int p = 0; p < patch.view().pointCount(); ++p)
+          {
+            const double* from = field.view().point(p);
+            std::copy(from, from + iga::kFirstAttributeChannel, patch.view().point(p));
+            patch.view().point(p)[iga::kFirstAttributeChannel + s] =
+              from[iga::kFirstAttributeChannel];
+          }
+        }
+        set.patches.push_back(std::move(patch));
+      }
+  return set;
+}
+
+double sphereValue(const iga::Sphere& s, const glm::dvec3& x)
+{
+  const glm::dvec3 c(s.centre[0], s.centre[1], s.centre[2]);
+  return glm::dot(x - c, x - c) - s.radius * s.radius;
+}
+
+double planeValue(const Operand& o, const glm::dvec3& x)
+{
+  return o.plane[0] * x[0] + o.plane[1] * x[1] + o.plane[2] * x[2] + o.plane[3];
+}
+
+bool inBox(const glm::dvec3& x, double slack)
+{
+  return std::abs(x[0]) <= 1 + slack && std::abs(x[1]) <= 1 + slack && std::abs(x[2]) <= 1 + slack;
+}
+
+/// The scene's operands' solids at a point: attribute "sN" is sphere N (within the box).
+std::vector<uint8_t> operandsAt(
+  const Expression& e, const std::vector<iga::Sphere>& spheres, const glm::dvec3& x)
+{
+  std::vector<uint8_t> in(e.operands.size());
+  for (size_t k = 0; k < e.operands.size(); ++k)
+  {
+    const Operand& o = e.operands[k];
+    const bool box = inBox(x, 0);
+    switch (o.kind)
+    {
+      case Operand::Kind::Domain:
+        in[k] = box;
+        break;
+      case Operand::Kind::Plane:
+        in[k] = planeValue(o, x) >= 0;
+        break;
+      default:
+      {
+        const double f = sphereValue(spheres[size_t(std::stoi(o.attribute.substr(1)))], x);
+        in[k] = box && (o.kind == Operand::Kind::Below ? f - o.value < 0 : f - o.value > 0);
+      }
+    }
+  }
+  return in;
+}
+
+/// A reference first hit: ray parameter (inf for none), the surface it lies on (-1 the box,
+/// else the operand), its unit normal, and the side.
+struct ReferenceHit
+{
+  double t = INFINITY;
+  int surface = -2;
+  glm::dvec3 normal{ 0, 0, 0 };
+  bool entering = true; ///< whether the ray enters the result there
+};
+
+/// The surface through x among the box and the operands', by the smallest distance.
+ReferenceHit surfaceAt(
+  const Expression& e, const std::vector<iga::Sphere>& spheres, const glm::dvec3& x, double t)
+{
+  ReferenceHit hit;
+  hit.t = t;
+  double best = INFINITY;
+  for (int d = 0; d < 3; ++d)
+  {
+    const double distance = 1 - std::abs(x[d]);
+    if (distance < best)
+    {
+      best = distance;
+      hit.surface = -1;
+      hit.normal = glm::dvec3(0);
+      hit.normal[d] = 1;
+    }
+  }
+  for (size_t k = 0; k < e.operands.size(); ++k)
+  {
+    const Operand& o = e.operands[k];
+    double distance = INFINITY;
+    glm::dvec3 normal;
+    if (o.kind == Operand::Kind::Plane)
+    {
+      const glm::dvec3 n(o.plane[0], o.plane[1], o.plane[2]);
+      distance = std::abs(planeValue(o, x)) / glm::length(n);
+      normal = glm::normalize(n);
+    }
+    else if (o.kind != Operand::Kind::Domain)
+    {
+      const iga::Sphere& s = spheres[size_t(std::stoi(o.attribute.substr(1)))];
+      const glm::dvec3 c(s.centre[0], s.centre[1], s.centre[2]);
+      const double radius = std::sqrt(s.radius * s.radius + o.value);
+      distance = std::abs(glm::length(x - c) - radius);
+      normal = glm::normalize(x - c);
+    }
+    if (distance < best)
+    {
+      best = distance;
+      hit.surface = int(k);
+      hit.normal = normal;
+    }
+  }
+  return hit;
+}
+
+/// Intervals of a ray inside a solid, sorted and disjoint; +-kFar stands for unbounded.
+using Intervals = std::vector<std::array<double, 2>>;
+constexpr double kFar = 1e300;
+
+bool within(const Intervals& a, double t)
+{
+  for (const auto& interval : a)
+    if (interval[0] < t && t < interval[1])
+      return true;
+  return false;
+}
+
+Intervals combine(const Intervals& a, const Intervals& b, Expression::Op op)
+{
+  std::vector<double> ends = { -kFar, kFar };
+  for (const Intervals* list : { &a, &b })
+    for (const auto& interval : *list)
+      ends.insert(ends.end(), { interval[0], interval[1] });
+  std::sort(ends.begin(), ends.end());
+  Intervals result;
+  for (size_t k = 0; k + 1 < ends.size(); ++k)
+  {
+    const double middle = 0.5 * (ends[k] + ends[k + 1]);
+    const bool inA = within(a, middle), inB = within(b, middle);
+    const bool in = op == Expression::Op::Union          ? inA || inB
+                    : op == Expression::Op::Intersection ? inA && inB
+                                                         : inA && !inB;
+    if (!in || ends[k] == ends[k + 1])
+      continue;
+    if (!result.empty() && result.back()[1] == ends[k])
+      result.back()[1] = ends[k + 1];
+    else
+      result.push_back({ ends[k], ends[k + 1] });
+  }
+  return result;
+}
+
+Intervals boxIntervals(const glm::dvec3& o, const glm::dvec3& d)
+{
+  double lo = -kFar, hi = kFar;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0)
+    {
+      if (std::abs(o[a]) > 1)
+        return {};
+      continue;
+    }
+    double t0 = (-1 - o[a]) / d[a], t1 = (1 - o[a]) / d[a];
+    if (t0 > t1)
+      std::swap(t0, t1);
+    lo = std::max(lo, t0);
+    hi = std::min(hi, t1);
+  }
+  return lo < hi ? Intervals{ { lo, hi } } : Intervals{};
+}
+
+Intervals sphereIntervals(
+  const iga::Sphere& s, double value, const glm::dvec3& o, const glm::dvec3& d)
+{
+  const glm::dvec3 c(s.centre[0], s.centre[1], s.centre[2]);
+  const double a = glm::dot(d, d), b = 2 * glm::dot(o - c, d),
+               cc = glm::dot(o - c, o - c) - s.radius * s.radius - value;
+  const double disc = b * b - 4 * a * cc;
+  if (disc <= 0)
+    return {};
+  const double root = std::sqrt(disc);
+  return { { (-b - root) / (2 * a), (-b + root) / (2 * a) } };
+}
+
+/// The exact first drawn hit of the expression along a ray: the first end of the result's
+/// intervals lying in the box (surfaces are drawn within the volumes only).
+ReferenceHit exactFirstHit(const Expression& e, const std::vector<iga::Sphere>& spheres,
+  const glm::dvec3& o, const glm::dvec3& d)
+{
+  const Intervals box = boxIntervals(o, d);
+  std::vector<Intervals> at(e.nodes.size());
+  for (size_t n = 0; n < e.nodes.size(); ++n)
+  {
+    const Expression::Node& node = e.nodes[n];
+    if (node.op != Expression::Op::Leaf)
+    {
+      at[n] = combine(at[size_t(node.left)], at[size_t(node.right)], node.op);
+      continue;
+    }
+    const Operand& op = e.operands[size_t(node.operand)];
+    if (op.kind == Operand::Kind::Domain)
+      at[n] = box;
+    else if (op.kind == Operand::Kind::Plane)
+    {
+      const double along = op.plane[0] * d[0] + op.plane[1] * d[1] + op.plane[2] * d[2];
+      const double t = -planeValue(op, o) / along;
+      at[n] = along > 0 ? Intervals{ { t, kFar } } : Intervals{ { -kFar, t } };
+    }
+    else
+    {
+      const Intervals s =
+        sphereIntervals(spheres[size_t(std::stoi(op.attribute.substr(1)))], op.value, o, d);
+      at[n] = combine(box, s,
+        op.kind == Operand::Kind::Below ? Expression::Op::Intersection
+                                        : Expression::Op::Difference);
+    }
+  }
+  for (const auto& interval : at[size_t(e.root)])
+    for (int end = 0; end < 2; ++end)
+    {
+      const double t = interval[size_t(end)];
+      if (t > 0 && std::abs(t) < kFar && inBox(o + t * d, 1e-9))
+      {
+        ReferenceHit hit = surfaceAt(e, spheres, o + t * d, t);
+        hit.entering = end == 0;
+        return hit;
+      }
+    }
+  return {};
+}
+
+/// The first drawn hit by brute force: the result's inside sampled densely along the ray
+/// through the box (from just before it to just after it), its first change located by
+/// bisection.
+ReferenceHit sampledFirstHit(const Expression& e, const std::vector<iga::Sphere>& spheres,
+  const glm::dvec3& o, const glm::dvec3& d)
+{
+  const Intervals box = boxIntervals(o, d);
+  if (box.empty() || box[0][1] <= 0)
+    return {};
+  std::vector<uint8_t> scratch;
+  auto inside = [&](double t) { return e.contains(operandsAt(e, spheres, o + t * d), scratch); };
+  const double t0 = std::max(box[0][0], 0.0), t1 = box[0][1];
+  const double margin = 1e-9 * (t1 - t0);
+  const int samples = 2000;
+  double a = t0 - margin;
+  const bool state = inside(a);
+  for (int s = 0; s <= samples + 1; ++s)
+  {
+    double b = s <= samples ? t0 + (t1 - t0) * s / samples : t1 + margin;
+    if (inside(b) == state)
+    {
+      a = b;
+      continue;
+    }
+    for (int k = 0; k < 60; ++k)
+    {
+      const double m = 0.5 * (a + b);
+      (inside(m) == state ? a : b) = m;
+    }
+    ReferenceHit hit = surfaceAt(e, spheres, o + b * d, b);
+    hit.entering = !state;
+    return hit;
+  }
+  return {};
+}
+
+struct CsgComparison
+{
+  int compared = 0, ambiguous = 0, mismatched = 0, covered = 0;
+  double maxPositionError = 0, maxNormalError = 0;
+};
+
+/// A CSG frame's first hits against a reference, pixels next to a change of the reference's
+/// surface or coverage (creases, silhouettes) set aside.
+CsgComparison compareWithReference(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera,
+  const std::function<ReferenceHit(const glm::dvec3&, const glm::dvec3&)>& reference)
+{
+  const int w = gbuffer.width, h = gbuffer.height;
+  std::vector<ReferenceHit> truth(size_t(w) * h);
+  std::vector<glm::dvec3> origins(truth.size()), directions(truth.size());
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const size_t p = size_t(j) * w + i;
+      igatest::truth::pixelRay(camera, w, h, i, j, origins[p], directions[p]);
+      truth[p] = reference(origins[p], directions[p]);
+    }
+  CsgComparison result;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const size_t p = size_t(j) * w + i;
+      bool ambiguous = false;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di)
+        {
+          const int ni = std::clamp(i + di, 0, w - 1), nj = std::clamp(j + dj, 0, h - 1);
+          ambiguous = ambiguous || truth[size_t(nj) * w + ni].surface != truth[p].surface;
+        }
+      if (ambiguous)
+      {
+        ++result.ambiguous;
+        continue;
+      }
+      ++result.compared;
+      const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
+      if ((hit != nullptr) != std::isfinite(truth[p].t))
+      {
+        ++result.mismatched;
+        continue;
+      }
+      if (!hit)
+        continue;
+      ++result.covered;
+      const glm::dvec3 x = origins[p] + truth[p].t * directions[p];
+      result.maxPositionError = std::max(result.maxPositionError, glm::length(hit->position - x));
+      result.maxNormalError =
+        std::max(result.maxNormalError, 1 - std::abs(glm::dot(hit->normal, truth[p].normal)));
+      EXPECT_EQ(hit->entersBelow, truth[p].entering) << "the side of pixel " << i << "," << j;
+    }
+  return result;
+}
+
+struct CsgCase
+{
+  iga::VolumeSet<double> set;
+  std::vector<iga::Sphere> spheres;
+  iga::Camera camera;
+};
+
+CsgCase makeCase(const std::vector<iga::Sphere>& spheres, const glm::dvec3& eye)
+{
+  CsgCase c;
+  c.spheres = spheres;
+  c.set = boxWithSpheres(spheres, 2);
+  const double bounds[6] = { -1, 1, -1, 1, -1, 1 };
+  c.camera = igatest::truth::makeCamera(eye, { 0, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  return c;
+}
+
+iga::sst::GBuffer renderCase(const CsgCase& c, const std::string& text, int size,
+  bool firstHitOnly = true, iga::sst::Method method = iga::sst::Method::SharedSubdivisionTree)
+{
+  iga::sst::CsgScene scene;
+  scene.inputs.push_back({ &c.set.patches, c.set.attributeNames, nullptr });
+  scene.expression = parseExpression(text);
+  iga::sst::Settings settings;
+  settings.width = settings.height = size;
+  settings.firstHitOnly = firstHitOnly;
+  iga::sst::GBuffer out;
+  const auto report =
+    iga::sst::renderCsg(scene, iga::sst::makeView(c.camera, size, size), settings, method, out);
+  EXPECT_EQ(report.unresolvedPixels, 0u) << text;
+  return out;
+}
+
+void expectExact(const CsgCase& c, const std::string& text, int minimumCovered)
+{
+  const auto gbuffer = renderCase(c, text, 96);
+  const Expression e = parseExpression(text);
+  const auto result = compareWithReference(gbuffer, c.camera,
+    [&](const glm::dvec3& o, const glm::dvec3& d) { return exactFirstHit(e, c.spheres, o, d); });
+  EXPECT_EQ(result.mismatched, 0) << text;
+  EXPECT_GE(result.covered, minimumCovered) << text;
+  EXPECT_LT(result.maxPositionError, 1e-6) << text;
+  EXPECT_LT(result.maxNormalError, 1e-6) << text;
+}
+
+const glm::dvec3 kEye(3.2, -2.4, 2.6);
+
+TEST(CsgFrame, CubeMinusSphereAgainstExactIntervals)
+{
+  // The sphere reaches out of the box's top face: the dent is the sphere's inside, the box's
+  // faces around it are kept.
+  expectExact(makeCase({ { { 0.2, -0.1, 1.0 }, 0.6 } }, kEye), "domain - s0<0", 3500);
+}
+
+TEST(CsgFrame, UnionOfTwoOverlappingSpheres)
+{
+  expectExact(makeCase({ { { -0.3, 0.1, 0 }, 0.55 }, { { 0.3, -0.1, 0.1 }, 0.5 } }, kEye),
+    "s0<0 | s1<0", 600);
+}
+
+TEST(CsgFrame, SphereIntersectedWithASlabOfTwoPlanes)
+{
+  expectExact(makeCase({ { { 0, 0, 0 }, 0.8 } }, kEye),
+    "s0<0 & plane(0, 0, 1, 0.3) & plane(0, 0, -1, 0.3)", 1000);
+}
+
+TEST(CsgFrame, SolidReachingTheDomainBoundaryIsCappedByIt)
+{
+  // The sphere sticks out of the box on two sides: the box closes it with flat caps.
+  expectExact(makeCase({ { { 0.5, 0, 0.6 }, 0.75 } }, kEye), "s0<0", 1200);
+}
+
+TEST(CsgFrame, SolidCrossingTheDomainWithoutItsIsosurface)
+{
+  // Rays through the caps on two faces see no sphere between them: the attribute's sign there
+  // comes from its value on the boundary.
+  const CsgCase c = makeCase({ { { 0, 0, 0 }, 1.3 } }, kEye);
+  expectExact(c, "s0<0", 3000);
+  expectExact(c, "domain - s0<0", 1000);
+}
+
+TEST(CsgFrame, SphereTangentToAPlane)
+{
+  const CsgCase c = makeCase({ { { 0, 0, -0.2 }, 0.5 } }, kEye);
+  expectExact(c, "s0<0 | plane(0, 0, 1, -0.3)", 1300);
+  expectExact(c, "s0<0 - plane(0, 0, 1, -0.3)", 400);
+  expectExact(c, "domain - plane(0, 0, 1, -0.3) - s0<0", 2000);
+}
+
+TEST(CsgFrame, AboveAndTwoValuesOfOneAttribute)
+{
+  const CsgCase c = makeCase({ { { 0.1, 0, 0 }, 0.5 } }, kEye);
+  expectExact(c, "s0<0.5 & s0>0", 1500); // a shell between the radii 0.5 and sqrt(0.5)
+  expectExact(c, "s0>0.2", 3000);
+}
+
+TEST(CsgFrame, AllLayersAlternateBetweenEnteringAndLeaving)
+{
+  const CsgCase c = makeCase({ { { 0.2, -0.1, 1.0 }, 0.6 }, { { -0.4, 0.3, -0.2 }, 0.4 } }, kEye);
+  const auto all = renderCase(c, "domain - s0<0 - s1<0", 64, false);
+  const auto first = renderCase(c, "domain - s0<0 - s1<0", 64, true);
+  int layered = 0;
+  for (int j = 0; j < all.height; ++j)
+    for (int i = 0; i < all.width; ++i)
+    {
+      const int count = all.hitCount(i, j);
+      ASSERT_EQ(count > 0, first.hitCount(i, j) > 0);
+      layered += count >= 4 ? 1 : 0;
+      const iga::sst::Hit* hits = all.firstHit(i, j);
+      for (int k = 0; k < count; ++k)
+      {
+        EXPECT_EQ(hits[k].entersBelow, k % 2 == 0) << "pixel " << i << "," << j;
+        if (k > 0)
+        {
+          EXPECT_LE(hits[k - 1].eyeDepth, hits[k].eyeDepth);
+        }
+      }
+      if (count > 0)
+      {
+        EXPECT_EQ(hits[0].eyeDepth, first.firstHit(i, j)->eyeDepth);
+      }
+    }
+  EXPECT_GT(layered, 100) << "rays through the cavity cross it";
+}
+
+TEST(CsgFrame, HitsNameTheOperandAndTheVolumeParameter)
+{
+  const CsgCase c = makeCase({ { { 0.2, -0.1, 1.0 }, 0.6 } }, kEye);
+  const auto gbuffer = renderCase(c, "domain - s0<0", 64);
+  int onSphere = 0, onBox = 0;
+  for (const auto& hit : gbuffer.hits)
+  {
+    ASSERT_GE(hit.patch, 0);
+    ASSERT_LT(hit.patch, int(c.set.patches.size()));
+    double values[iga::kFirstAttributeChannel + 1];
+    iga::evaluateHomogeneous<double, 3>(
+      c.set.patches[size_t(hit.patch)].view(), &hit.uvw[0], values, nullptr);
+    for (int d = 0; d < 3; ++d)
+      EXPECT_NEAR(values[d] / values[iga::kWeightChannel], hit.position[d], 1e-9);
+    (hit.isovalue == 1 ? onSphere : onBox) += 1;
+    EXPECT_TRUE(hit.isovalue == 0 || hit.isovalue == 1);
+  }
+  EXPECT_GT(onSphere, 100);
+  EXPECT_GT(onBox, 100);
+}
+
+TEST(CsgFrame, RandomTreesAgainstDenseSampling)
+{
+  std::mt19937 random(20261202);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int trees = 0;
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    std::vector<iga::Sphere> spheres(3);
+    for (auto& s : spheres)
+    {
+      for (double& x : s.centre)
+        x = 0.7 * unit(random);
+      s.radius = 0.45 + 0.25 * unit(random);
+    }
+    // 3 to 8 operands joined by random operators, parenthesised at random.
+    const int count = 3 + trial % 6;
+    std::string text;
+    for (int k = 0; k < count; ++k)
+    {
+      const int kind = int(random() % 5);
+      std::string operand =
+        kind == 0   ? "domain"
+        : kind == 1 ? "plane(" + std::to_string(unit(random)) + "," + std::to_string(unit(random)) +
+                        ",1," + std::to_string(0.5 * unit(random)) + ")"
+                    : "s" + std::to_string(random() % 3) + (kind == 4 ? ">" : "<") +
+                        std::to_string(0.1 * unit(random));
+      if (k > 0)
+        text += std::string(" ") + "|&-"[random() % 3] + " ";
+      const bool group = k + 1 < count && random() % 3 == 0;
+      text += group ? "(" + operand : operand;
+      if (group)
+      {
+        text +=
+          std::string(" ") + "|&-"[random() % 3] + " s" + std::to_string(random() % 3) + "<0)";
+        ++k;
+      }
+    }
+    const Expression e = parseExpression(text);
+    const glm::dvec3 eye(3.2 * unit(random), 3.2 * unit(random), 2.5 + unit(random));
+    CsgCase c = makeCase(spheres, eye);
+    const auto gbuffer = renderCase(c, text, 64);
+    const auto result = compareWithReference(gbuffer, c.camera,
+      [&](const glm::dvec3& o, const glm::dvec3& d) { return sampledFirstHit(e, spheres, o, d); });
+    EXPECT_EQ(result.mismatched, 0) << text;
+    EXPECT_LT(result.maxPositionError, 1e-6) << text;
+    trees += result.covered > 100 ? 1 : 0;
+  }
+  EXPECT_GE(trees, 6) << "most random trees show something";
+}
+
+TEST(CsgFrame, TwoInputsMeetingAtAFace)
+{
+  // The box's halves x < 0 and x > 0 as two inputs: rays cross from one to the other where
+  // each has a boundary face; the result is that of the whole box.
+  const CsgCase c = makeCase({ { { 0.2, -0.1, 1.0 }, 0.6 }, { { -0.1, 0.2, 0 }, 0.9 } }, kEye);
+  std::vector<iga::BezierVolume<double>> halves[2];
+  for (size_t p = 0; p < c.set.patches.size(); ++p)
+    halves[p % 2].push_back(c.set.patches[p]); // patch i + 2 (j + 2 k): x cell i
+  iga::sst::CsgScene scene;
+  scene.inputs.push_back({ &halves[0], c.set.attributeNames, nullptr });
+  scene.inputs.push_back({ &halves[1], { "s1", "s0" }, nullptr }); // names in another order
+  for (auto& patch : halves[1])
+    for (int p = 0; p < patch.view().pointCount(); ++p)
+      std::swap(patch.view().point(p)[iga::kFirstAttributeChannel],
+        patch.view().point(p)[iga::kFirstAttributeChannel + 1]);
+  for (const std::string text : { "domain - s0<0", "s1<0 - s0<0", "s1<0 & plane(1, 0, 0.3, 0.1)" })
+  {
+    scene.expression = parseExpression(text);
+    iga::sst::Settings settings;
+    settings.width = settings.height = 96;
+    iga::sst::GBuffer out;
+    iga::sst::renderCsg(scene, iga::sst::makeView(c.camera, 96, 96), settings,
+      iga::sst::Method::SharedSubdivisionTree, out);
+    const auto result = compareWithReference(out, c.camera,
+      [&](const glm::dvec3& o, const glm::dvec3& d)
+      { return exactFirstHit(scene.expression, c.spheres, o, d); });
+    EXPECT_EQ(result.mismatched, 0) << text;
+    EXPECT_GT(result.covered, 1000) << text;
+    EXPECT_LT(result.maxPositionError, 1e-6) << text;
+    for (const auto& hit : out.hits)
+      EXPECT_LE((hit.patch < 4 ? 1 : -1) * hit.position[0], 1e-9)
+        << "input 0's patches (x < 0) come first, then input 1's";
+  }
+}
+
+TEST(CsgFrame, BasicSchemeAgrees)
+{
+  const CsgCase c = makeCase({ { { 0.2, -0.1, 1.0 }, 0.6 } }, kEye);
+  const auto sst = renderCase(c, "domain - s0<0 & plane(1, 1, 0, 0.2)", 48, false);
+  const auto basic =
+    renderCase(c, "domain - s0<0 & plane(1, 1, 0, 0.2)", 48, false, iga::sst::Method::BasicScheme);
+  ASSERT_EQ(sst.offsets, basic.offsets);
+  for (size_t h = 0; h < sst.hits.size(); ++h)
+  {
+    EXPECT_EQ(sst.hits[h].isovalue, basic.hits[h].isovalue);
+    EXPECT_LT(glm::length(sst.hits[h].position - basic.hits[h].position), 1e-7);
+  }
+}
+
+TEST(CsgFrame, MissingAttributeNamesItsPosition)
+{
+  const CsgCase c = makeCase({ { { 0, 0, 0 }, 0.5 } }, kEye);
+  try
+  {
+    renderCase(c, "domain - temperature<0", 16);
+    FAIL() << "no error";
+  }
+  catch (const ExpressionError& e)
+  {
+    EXPECT_EQ(e.position(), 9u);
+    EXPECT_EQ(std::string(e.what()), "no input has the attribute 'temperature' at position 9");
+  }
+}
+
+} // namespace
