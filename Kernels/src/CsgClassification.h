@@ -29,11 +29,12 @@ struct CsgPass
     Boundary,  ///< an input's boundary faces, outward: where the ray enters or leaves its volumes
     Attribute, ///< an attribute's isosurfaces in an input, one isovalue per operand naming it
     Plane,     ///< a plane operand's section of an input's volumes
+    Slice,     ///< a slice's section of an input's volumes: drawn, not classified
   };
   Kind kind = Kind::Boundary;
   int input = 0;
   int attribute = -1; ///< the attribute index (Attribute), 0 (Plane: its derived channel)
-  int operand = -1;   ///< Plane: the operand
+  int operand = -1;   ///< Plane: the operand; Slice: the number of operands plus the slice
   std::vector<double> isovalues;
   std::vector<int> operandOfIsovalue;          ///< Attribute: Hit::isovalue -> operand
   std::vector<PatchFace> faces;                ///< Boundary: the faces, Hit::patch's order
@@ -51,7 +52,7 @@ struct CsgPasses
   /// Per operand and input (operand * inputs + input): the attribute index of a Below/Above
   /// operand in that input, -1 where the input lacks it (and for other operands).
   std::vector<int> sources;
-  std::vector<CsgPass> list;     ///< the first `inputs` are the inputs' Boundary passes, in order
+  std::vector<CsgPass> list;
   std::vector<int> patchOffsets; ///< per input, its first volume in the result's numbering
   const View* view = nullptr;
   const std::vector<std::array<double, 4>>* clip = nullptr;
@@ -72,9 +73,26 @@ public:
   {
   }
 
-  /// Appends the result's surfaces at `pixel` (front to back; the nearest alone for
-  /// firstHitOnly) to `out`.
+  /// Appends the result's surfaces and the slices at `pixel`, front to back (the nearest alone
+  /// for firstHitOnly), to `out`.
   void classify(size_t pixel, std::vector<Hit>& out)
+  {
+    const size_t first = out.size();
+    if (this->Passes.expression->root >= 0)
+    {
+      this->classifyResult(pixel, out);
+    }
+    this->addSlices(pixel, out);
+    std::sort(out.begin() + long(first), out.end(),
+      [](const Hit& a, const Hit& b) { return a.eyeDepth < b.eyeDepth; });
+    if (this->Passes.firstHitOnly && out.size() > first + 1)
+    {
+      out.resize(first + 1);
+    }
+  }
+
+private:
+  void classifyResult(size_t pixel, std::vector<Hit>& out)
   {
     this->gather(pixel);
     this->startStates();
@@ -97,7 +115,42 @@ public:
     }
   }
 
-private:
+  void addSlices(size_t pixel, std::vector<Hit>& out) const
+  {
+    for (const CsgPass& pass : this->Passes.list)
+    {
+      if (pass.kind != CsgPass::Kind::Slice)
+      {
+        continue;
+      }
+      for (uint32_t h = pass.hits.offsets[pixel]; h < pass.hits.offsets[pixel + 1]; ++h)
+      {
+        Hit hit = pass.hits.hits[h];
+        if (this->clipped(hit))
+        {
+          continue;
+        }
+        hit.isovalue = pass.operand; // entersBelow: below -(a x + b y + c z + d), the + side
+        hit.patch += this->Passes.patchOffsets[size_t(pass.input)];
+        out.push_back(hit);
+      }
+    }
+  }
+
+  bool clipped(const Hit& hit) const
+  {
+    for (const auto& plane : *this->Passes.clip)
+    {
+      if (plane[0] * hit.position[0] + plane[1] * hit.position[1] + plane[2] * hit.position[2] +
+            plane[3] <
+          0)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
   struct Event
   {
     const Hit* hit;
@@ -120,6 +173,10 @@ private:
     for (int p = 0; p < int(this->Passes.list.size()); ++p)
     {
       const CsgPass& pass = this->Passes.list[size_t(p)];
+      if (pass.kind == CsgPass::Kind::Slice)
+      {
+        continue;
+      }
       for (uint32_t h = pass.hits.offsets[pixel]; h < pass.hits.offsets[pixel + 1]; ++h)
       {
         const Hit& hit = pass.hits.hits[h];
@@ -296,14 +353,9 @@ private:
     const Event& e = this->Events[size_t(n)];
     const CsgPass& pass = this->passOf(e);
     Hit hit = *e.hit;
-    for (const auto& plane : *this->Passes.clip)
+    if (this->clipped(hit))
     {
-      if (plane[0] * hit.position[0] + plane[1] * hit.position[1] + plane[2] * hit.position[2] +
-            plane[3] <
-          0)
-      {
-        return false;
-      }
+      return false;
     }
     hit.isovalue = e.operand;
     for (size_t k = 0; k < this->Operands.size(); ++k)

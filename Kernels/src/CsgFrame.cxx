@@ -37,6 +37,12 @@ int attributeIndex(const CsgInput& input, const std::string& name)
   return -1;
 }
 
+/// The colour attribute's index in the input, -1 for none.
+int colourIndex(const CsgScene& scene, const CsgInput& input)
+{
+  return scene.colorAttribute.empty() ? -1 : attributeIndex(input, scene.colorAttribute);
+}
+
 /// Input i's boundary as outward faces, with what maps their hits back to the volumes.
 void addBoundaryPass(const CsgInput& input, int i, CsgPasses& passes)
 {
@@ -76,16 +82,17 @@ void addAttributePass(const CsgScene& scene, int i, const std::string& name, Csg
   passes.list.push_back(std::move(pass));
 }
 
-/// The section of input i's volumes by plane operand k: the volumes with, as their one
-/// attribute, -(a x + b y + c z + d), exact as a rational function of the same weights (and the
-/// colour attribute after it), so that the half-space is the region below 0.
-void addPlanePass(const CsgScene& scene, int i, int k, int colour, CsgPasses& passes)
+/// The section of input i's volumes by a plane (a Plane operand's or a Slice's, `label` its
+/// CsgPass::operand): the volumes with, as their one attribute, -(a x + b y + c z + d), exact as
+/// a rational function of the same weights (and the colour attribute after it), so that the
+/// half-space a x + b y + c z + d >= 0 is the region below 0.
+void addPlanePass(const CsgScene& scene, int i, const std::array<double, 4>& plane,
+  CsgPass::Kind kind, int label, int colour, CsgPasses& passes)
 {
-  const auto& plane = scene.expression.operands[size_t(k)].plane;
   CsgPass pass;
-  pass.kind = CsgPass::Kind::Plane;
+  pass.kind = kind;
   pass.input = i;
-  pass.operand = k;
+  pass.operand = label;
   pass.attribute = 0;
   pass.isovalues = { 0.0 };
   const int channels = kFirstAttributeChannel + (colour >= 0 ? 2 : 1);
@@ -121,7 +128,7 @@ CsgPasses planPasses(const CsgScene& scene)
   passes.inputs = int(scene.inputs.size());
   passes.sources.assign(e.operands.size() * scene.inputs.size(), -1);
   std::map<std::string, bool> attributePassed;
-  for (int i = 0; i < passes.inputs; ++i)
+  for (int i = 0; i < passes.inputs && e.root >= 0; ++i)
   {
     addBoundaryPass(scene.inputs[size_t(i)], i, passes);
   }
@@ -152,9 +159,17 @@ CsgPasses planPasses(const CsgScene& scene)
     {
       for (int i = 0; i < passes.inputs; ++i)
       {
-        const int colour = attributeIndex(scene.inputs[size_t(i)], scene.colorAttribute);
-        addPlanePass(scene, i, int(k), scene.colorAttribute.empty() ? -1 : colour, passes);
+        addPlanePass(scene, i, operand.plane, CsgPass::Kind::Plane, int(k),
+          colourIndex(scene, scene.inputs[size_t(i)]), passes);
       }
+    }
+  }
+  for (size_t s = 0; s < scene.slices.size(); ++s)
+  {
+    for (int i = 0; i < passes.inputs; ++i)
+    {
+      addPlanePass(scene, i, scene.slices[s], CsgPass::Kind::Slice, int(e.operands.size() + s),
+        colourIndex(scene, scene.inputs[size_t(i)]), passes);
     }
   }
   return passes;
@@ -170,10 +185,9 @@ Settings passSettings(
   s.clipPlanes.clear();
   s.isovalues = pass.isovalues;
   s.surfaceAttribute = pass.attribute < 0 ? 0 : pass.attribute;
-  const int colour = scene.colorAttribute.empty()
-                       ? -1
-                       : attributeIndex(scene.inputs[size_t(pass.input)], scene.colorAttribute);
-  s.colorAttribute = pass.kind == CsgPass::Kind::Plane ? (colour >= 0 ? 1 : -1) : colour;
+  const int colour = colourIndex(scene, scene.inputs[size_t(pass.input)]);
+  const bool derived = pass.kind == CsgPass::Kind::Plane || pass.kind == CsgPass::Kind::Slice;
+  s.colorAttribute = derived ? (colour >= 0 ? 1 : -1) : colour;
   if (settings.deadlineMs > 0)
   {
     s.deadlineMs = std::max(settings.deadlineMs - msElapsed, 1e-6);
@@ -242,9 +256,19 @@ void checkInputs(const CsgScene& scene)
       throw std::invalid_argument("CSG input " + std::to_string(i) + " has no volumes");
     }
   }
-  if (scene.expression.root < 0)
+  if (scene.expression.root < 0 && scene.slices.empty())
   {
-    throw std::invalid_argument("the CSG expression is empty");
+    throw std::invalid_argument("a CSG scene needs an expression or a slice");
+  }
+  for (size_t s = 0; s < scene.slices.size(); ++s)
+  {
+    const auto& plane = scene.slices[s];
+    if (!(std::isfinite(plane[0]) && std::isfinite(plane[1]) && std::isfinite(plane[2]) &&
+          std::isfinite(plane[3])) ||
+        (plane[0] == 0 && plane[1] == 0 && plane[2] == 0))
+    {
+      throw std::invalid_argument("slice " + std::to_string(s) + " is not a finite plane");
+    }
   }
 }
 
@@ -263,8 +287,8 @@ FrameReport renderCsg(
     CsgPass& pass = passes.list[p];
     const auto& volumes = pass.kind == CsgPass::Kind::Attribute
                             ? *scene.inputs[size_t(pass.input)].volumes
-                          : pass.kind == CsgPass::Kind::Plane ? pass.volumes
-                                                              : noVolumes;
+                          : pass.kind == CsgPass::Kind::Boundary ? noVolumes
+                                                                 : pass.volumes;
     const Scene passScene(volumes, pass.surfaces);
     accumulate(report,
       render(passScene, view, passSettings(scene, pass, settings, millisecondsSince(start)), method,

@@ -707,6 +707,130 @@ TEST(CsgFrame, BasicSchemeAgrees)
   }
 }
 
+// ---- slices ------------------------------------------------------------------------------------
+
+iga::sst::GBuffer renderSlices(const iga::VolumeSet<double>& set, const std::string& colour,
+  const std::vector<std::array<double, 4>>& slices, const iga::Camera& camera, int size,
+  const std::string& expression = "", const std::vector<std::array<double, 4>>& clip = {})
+{
+  iga::sst::CsgScene scene;
+  scene.inputs.push_back({ &set.patches, set.attributeNames, nullptr });
+  scene.slices = slices;
+  scene.colorAttribute = colour;
+  if (!expression.empty())
+    scene.expression = parseExpression(expression);
+  iga::sst::Settings settings;
+  settings.width = settings.height = size;
+  settings.firstHitOnly = false;
+  settings.clipPlanes = clip;
+  iga::sst::GBuffer out;
+  iga::sst::renderCsg(scene, iga::sst::makeView(camera, size, size), settings,
+    iga::sst::Method::SharedSubdivisionTree, out);
+  return out;
+}
+
+/// Every hit's position and colour against the math core's evaluation of its patch at its
+/// parameter; the largest differences.
+std::array<double, 2> evaluationErrors(
+  const iga::VolumeSet<double>& set, int colour, const iga::sst::GBuffer& gbuffer)
+{
+  std::array<double, 2> errors = { 0, 0 };
+  for (const auto& hit : gbuffer.hits)
+  {
+    const auto view = set.patches[size_t(hit.patch)].view();
+    std::vector<double> values(size_t(view.channels));
+    iga::evaluateHomogeneous<double, 3>(view, &hit.uvw[0], values.data(), nullptr);
+    const double w = values[iga::kWeightChannel];
+    for (int d = 0; d < 3; ++d)
+      errors[0] = std::max(errors[0], std::abs(values[size_t(d)] / w - hit.position[d]));
+    errors[1] = std::max(
+      errors[1], std::abs(values[size_t(iga::kFirstAttributeChannel + colour)] / w - hit.color));
+  }
+  return errors;
+}
+
+TEST(CsgSlices, MarsdenSphereSlicesLieOnTheirPlanesColouredByTheField)
+{
+  const auto set = iga::makeMarsdenSphere<double>(3);
+  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
+  const auto camera =
+    igatest::truth::makeCamera({ 4, -3, 3.5 }, { 0, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  const std::vector<std::array<double, 4>> slices = { { 0, 0, 1, -0.2 }, { 1, 1, 0, 0.3 } };
+  const auto gbuffer = renderSlices(set, "sphere", slices, camera, 96);
+  int onSlice[2] = { 0, 0 }, twoLayers = 0;
+  for (const auto& hit : gbuffer.hits)
+  {
+    ASSERT_TRUE(hit.isovalue == 0 || hit.isovalue == 1) << "slices follow the (no) operands";
+    const auto& plane = slices[size_t(hit.isovalue)];
+    const glm::dvec3 n(plane[0], plane[1], plane[2]);
+    EXPECT_LT(std::abs(glm::dot(n, hit.position) + plane[3]) / glm::length(n), 1e-9);
+    EXPECT_NEAR(hit.color, glm::dot(hit.position, hit.position) - 1, 1e-9);
+    ++onSlice[hit.isovalue];
+  }
+  for (int j = 0; j < gbuffer.height; ++j)
+    for (int i = 0; i < gbuffer.width; ++i)
+      twoLayers += gbuffer.hitCount(i, j) == 2 ? 1 : 0;
+  EXPECT_GT(onSlice[0], 1500);
+  EXPECT_GT(onSlice[1], 700);
+  EXPECT_GT(twoLayers, 500) << "where the slices overlap on screen, both are kept";
+  const auto errors = evaluationErrors(set, 0, gbuffer);
+  EXPECT_LT(errors[0], 1e-9);
+  EXPECT_LT(errors[1], 1e-9);
+}
+
+TEST(CsgSlices, DeformedTubeSlicesAndCappedClip)
+{
+  const auto tube = iga::makeTube<double>(0.5, 0.8);
+  double lo[3], hi[3];
+  iga::controlPointBounds(tube, lo, hi);
+  const double bounds[6] = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
+  const glm::dvec3 centre(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]));
+  const auto camera =
+    igatest::truth::makeCamera(centre + glm::dvec3(4, -3, 2.5), centre, { 0, 0, 1 }, 40, bounds);
+  const std::vector<std::array<double, 4>> slice = { { 0.2, 1, 0.1, -centre[1] } };
+  const auto sliced = renderSlices(tube, "temperature", slice, camera, 96);
+  EXPECT_GT(sliced.hits.size(), 300u);
+  for (const auto& hit : sliced.hits)
+    EXPECT_LT(
+      std::abs(0.2 * hit.position[0] + hit.position[1] + 0.1 * hit.position[2] - centre[1]), 1e-9);
+  auto errors = evaluationErrors(tube, 0, sliced);
+  EXPECT_LT(errors[0], 1e-9);
+  EXPECT_LT(errors[1], 1e-9);
+  // The tube cut by the half-space y >= centre: the cut face is the slice's section, capped.
+  const auto capped = renderSlices(tube, "temperature", {}, camera, 96,
+    "domain & plane(0.2, 1, 0.1, " + std::to_string(-centre[1]) + ")");
+  int caps = 0;
+  for (const auto& hit : capped.hits)
+  {
+    EXPECT_GE(0.2 * hit.position[0] + hit.position[1] + 0.1 * hit.position[2] - centre[1], -1e-9);
+    caps += hit.isovalue == 1 ? 1 : 0;
+  }
+  EXPECT_EQ(caps, int(sliced.hits.size())) << "the cap is the slice";
+  errors = evaluationErrors(tube, 0, capped);
+  EXPECT_LT(errors[0], 1e-9);
+  EXPECT_LT(errors[1], 1e-9);
+  // Clipping planes cut slices as they cut everything drawn.
+  const auto clipped = renderSlices(tube, "", slice, camera, 96, "", { { 0, 0, 1, -centre[2] } });
+  EXPECT_GT(clipped.hits.size(), 150u);
+  EXPECT_LT(clipped.hits.size(), sliced.hits.size());
+  for (const auto& hit : clipped.hits)
+  {
+    EXPECT_GE(hit.position[2], centre[2]);
+    EXPECT_TRUE(std::isnan(hit.color)) << "no colour attribute";
+  }
+}
+
+TEST(CsgSlices, BadSlicesAreRefused)
+{
+  const auto set = iga::makeMarsdenSphere<double>(2);
+  const double bounds[6] = { -1.5, 1.5, -1.5, 1.5, -1.5, 1.5 };
+  const auto camera =
+    igatest::truth::makeCamera({ 4, -3, 3.5 }, { 0, 0, 0 }, { 0, 0, 1 }, 40, bounds);
+  EXPECT_THROW(renderSlices(set, "", { { 0, 0, 0, 1 } }, camera, 8), std::invalid_argument);
+  EXPECT_THROW(renderSlices(set, "", { { NAN, 0, 1, 1 } }, camera, 8), std::invalid_argument);
+  EXPECT_THROW(renderSlices(set, "", {}, camera, 8), std::invalid_argument);
+}
+
 TEST(CsgFrame, MissingAttributeNamesItsPosition)
 {
   const CsgCase c = makeCase({ { { 0, 0, 0 }, 0.5 } }, kEye);

@@ -9,6 +9,7 @@
 #include "iga/Csg.h"
 #include "iga/sst/Engine.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -30,24 +31,31 @@ struct CsgInput
   const std::vector<PatchFace>* boundary = nullptr;
 };
 
-/// What a CSG frame draws.
+/// What a CSG frame draws: the expression's result (none for an empty expression, root -1) and
+/// slices.
 struct CsgScene
 {
   std::vector<CsgInput> inputs;
   csg::Expression expression;
+  /// Planes (a, b, c, d): each drawn where a x + b y + c z + d = 0 in the volumes, with the
+  /// result, whatever the expression.
+  std::vector<std::array<double, 4>> slices;
   /// The attribute sampled at each hit (Hit::color), by name; empty for none. An input
   /// without it gives NaN.
   std::string colorAttribute;
 };
 
-/// Draws the scene's result. `settings` as for render, except that its isovalues, surface and
-/// colour attributes are the scene's; firstHitOnly keeps the result's nearest surface per
-/// pixel, else all of them, front to back. The G-buffer's hits are the result's surfaces:
-/// Hit::patch numbers the inputs' volumes in one sequence (input 0's first), Hit::uvw is the
-/// parameter in that volume (on its face for a boundary hit), Hit::isovalue is the operand whose
-/// solid the result enters or leaves there, Hit::entersBelow whether the ray enters the result.
-/// Throws std::invalid_argument for bad input: an attribute no input holds (csg::ExpressionError
-/// at the operand's position), and what render throws for the frames' patches.
+/// Draws the scene's result and slices. `settings` as for render, except that its isovalues,
+/// surface and colour attributes are the scene's; firstHitOnly keeps the nearest surface per
+/// pixel, else all of them, front to back. Clipping planes cut what is drawn, not the operands.
+/// The G-buffer's hits: Hit::patch numbers the inputs' volumes in one sequence (input 0's
+/// first), Hit::uvw is the parameter in that volume (on its face for a boundary hit);
+/// Hit::isovalue is, on the result's surfaces, the operand whose solid the result enters or
+/// leaves there, and Hit::entersBelow whether the ray enters the result; on slice s it is the
+/// number of operands plus s, and entersBelow whether the ray passes to the plane's positive
+/// side. Throws std::invalid_argument for bad input: an attribute no input holds
+/// (csg::ExpressionError at the operand's position), a plane that is not finite or has no
+/// normal, and what render throws for the passes' patches.
 FrameReport renderCsg(
   const CsgScene& scene, const View& view, const Settings& settings, Method method, GBuffer& out);
 
