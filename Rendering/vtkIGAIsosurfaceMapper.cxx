@@ -34,7 +34,9 @@
 #include "vtk_glew.h"
 
 #include "iga/Boundary.h"
+#include "iga/Csg.h"
 #include "iga/NurbsSet.h"
+#include "iga/sst/Csg.h"
 #include "iga/sst/ElementEdges.h"
 #include "iga/sst/Engine.h"
 
@@ -166,6 +168,9 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
     os << " " << v;
   }
   os << "\n" << indent << "SurfaceArrayName: " << this->SurfaceArrayName << "\n";
+  os << indent << "DrawMode: " << this->DrawMode << "\n";
+  os << indent << "CsgExpression: " << this->CsgExpression << "\n";
+  os << indent << "Slices: " << this->Slices.size() / 4 << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "Backend: " << this->Backend << "\n";
   os << indent << "MaximumSubdivisionDepth: " << this->MaximumSubdivisionDepth << "\n";
@@ -214,6 +219,45 @@ void vtkIGAIsosurfaceMapper::SetIsovalue(int index, double value)
 double vtkIGAIsosurfaceMapper::GetIsovalue(int index) const
 {
   return index >= 0 && size_t(index) < this->Isovalues.size() ? this->Isovalues[index] : 0.0;
+}
+
+void vtkIGAIsosurfaceMapper::SetCsgExpression(const char* expression)
+{
+  const std::string text = expression ? expression : "";
+  if (text == this->CsgExpression)
+  {
+    return;
+  }
+  if (text.find_first_not_of(" \t\n") != std::string::npos)
+  {
+    try
+    {
+      iga::csg::parseExpression(text);
+    }
+    catch (const iga::csg::ExpressionError& e)
+    {
+      vtkErrorMacro(<< "CSG expression \"" << text << "\" refused: " << e.what()
+                    << "; the previous one is kept");
+      return;
+    }
+  }
+  this->CsgExpression = text;
+  this->Modified();
+}
+
+void vtkIGAIsosurfaceMapper::AddSlice(double a, double b, double c, double d)
+{
+  this->Slices.insert(this->Slices.end(), { a, b, c, d });
+  this->Modified();
+}
+
+void vtkIGAIsosurfaceMapper::RemoveAllSlices()
+{
+  if (!this->Slices.empty())
+  {
+    this->Slices.clear();
+    this->Modified();
+  }
 }
 
 void vtkIGAIsosurfaceMapper::SetSurfaceArrayName(const char* name)
@@ -285,6 +329,15 @@ void vtkIGAIsosurfaceMapper::ReportEmptyFrame(const iga::sst::FrameReport& repor
   if (in.GBuffer.coveredPixels() > 0 || report.constantAttributeRoots > 0 ||
       report.unresolvedPixels > 0)
   {
+    return;
+  }
+  if (this->DrawMode == DRAW_CSG)
+  {
+    this->ReportOnce("empty solid",
+      "nothing drawn: the CSG solid and the slices lie outside the view, the clipping planes cut "
+      "them away, or the solid is empty; not reported again until the settings or the input "
+      "change",
+      false);
     return;
   }
   if (!in.DrewVolumes)
@@ -604,8 +657,10 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
     return false;
   }
   this->UpdateSurfaces();
-  frame.Volumes =
-    this->DrawMode == DRAW_ISOSURFACES && !this->Isovalues.empty() && !in.Set.patches.empty();
+  const bool csg =
+    this->DrawMode == DRAW_CSG && (!this->CsgExpression.empty() || !this->Slices.empty());
+  frame.Volumes = !in.Set.patches.empty() &&
+                  ((this->DrawMode == DRAW_ISOSURFACES && !this->Isovalues.empty()) || csg);
   if (!frame.Volumes && in.Surfaces.empty())
   {
     return false;
@@ -630,21 +685,31 @@ void vtkIGAIsosurfaceMapper::UpdateSurfaces()
   }
   in.SurfacesTime = in.SetTime;
   in.SurfacesMode = this->DrawMode;
-  in.Surfaces = in.Quads;
-  if (this->DrawMode != DRAW_SURFACES)
+  in.Surfaces = this->DrawMode == DRAW_CSG ? std::vector<iga::BezierSurface<double>>() : in.Quads;
+  if (this->DrawMode == DRAW_ISOSURFACES)
   {
     return;
   }
-  // Which faces are outer depends on the topology alone: found again only when it changes.
-  if (in.FacesTopology != in.Topology || in.Faces.empty())
+  this->UpdateBoundaryFaces();
+  if (this->DrawMode == DRAW_CSG)
   {
-    in.Faces = iga::boundaryFaces(in.Set.patches);
-    in.FacesTopology = in.Topology;
+    return;
   }
   for (const iga::PatchFace& face : in.Faces)
   {
     in.Surfaces.push_back(
       iga::faceSurface(in.Set.patches[size_t(face.patch)], face.direction, face.side));
+  }
+}
+
+void vtkIGAIsosurfaceMapper::UpdateBoundaryFaces()
+{
+  // Which faces are outer depends on the topology alone: found again only when it changes.
+  Internals& in = *this->Internal;
+  if (in.FacesTopology != in.Topology || in.Faces.empty())
+  {
+    in.Faces = iga::boundaryFaces(in.Set.patches);
+    in.FacesTopology = in.Topology;
   }
 }
 
@@ -687,7 +752,8 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   auto indexOf = [&](const std::string& name)
   { return int(std::find(names.begin(), names.end(), name) - names.begin()); };
   const int surfaceAttribute = this->SurfaceArrayName.empty() ? 0 : indexOf(this->SurfaceArrayName);
-  if (frame.Volumes && (names.empty() || surfaceAttribute >= int(names.size())))
+  if (frame.Volumes && this->DrawMode == DRAW_ISOSURFACES &&
+      (names.empty() || surfaceAttribute >= int(names.size())))
   {
     this->ReportOnce("surface array",
       "no point array named '" + this->SurfaceArrayName + "' to draw isosurfaces of", true);
@@ -900,17 +966,18 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
     // The engine says which form it runs best on: NURBS nets (elements extracted on a GPU),
     // checked once per input, or the cells the mapper already has.
     const bool nurbs =
-      frame.Volumes && in.Surfaces.empty() &&
+      frame.Volumes && in.Surfaces.empty() && this->DrawMode == DRAW_ISOSURFACES &&
       iga::sst::preferredInput(frame.Settings.backend) == iga::sst::InputForm::NurbsVolumes &&
       this->UpdateNurbs(matrix);
     in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
     in.LastExtractionVersion = nurbs ? in.Nurbs.ExtractionVersion : 0;
     const auto method = iga::sst::Method::SharedSubdivisionTree;
     const auto report =
-      nurbs ? iga::sst::render(in.Nurbs.Volumes(matrix->IsIdentity() ? nullptr : &in.NurbsWorld),
-                frame.View, frame.Settings, method, in.GBuffer)
-            : iga::sst::render(this->EngineScene(matrix->IsIdentity() != 0), frame.View,
-                frame.Settings, method, in.GBuffer);
+      this->DrawMode == DRAW_CSG ? this->ComputeCsgFrame(matrix->IsIdentity() != 0, frame)
+      : nurbs ? iga::sst::render(in.Nurbs.Volumes(matrix->IsIdentity() ? nullptr : &in.NurbsWorld),
+                  frame.View, frame.Settings, method, in.GBuffer)
+              : iga::sst::render(this->EngineScene(matrix->IsIdentity() != 0), frame.View,
+                  frame.Settings, method, in.GBuffer);
     this->UpdateProgress(1.0);
     this->ReportEngine(report);
   }
@@ -922,6 +989,28 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
     return false;
   }
   return true;
+}
+
+iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, const Frame& frame)
+{
+  Internals& in = *this->Internal;
+  iga::sst::CsgScene scene;
+  scene.inputs.push_back(
+    { identity ? &in.Set.patches : &in.World, in.Set.attributeNames, &in.Faces });
+  if (!this->CsgExpression.empty())
+  {
+    scene.expression = iga::csg::parseExpression(this->CsgExpression);
+  }
+  for (size_t k = 0; k + 3 < this->Slices.size(); k += 4)
+  {
+    scene.slices.push_back(
+      { this->Slices[k], this->Slices[k + 1], this->Slices[k + 2], this->Slices[k + 3] });
+  }
+  scene.colorAttribute = frame.ByScalars ? this->ArrayName : "";
+  iga::sst::Settings settings = frame.Settings;
+  settings.firstHitOnly = true;
+  return iga::sst::renderCsg(
+    scene, frame.View, settings, iga::sst::Method::SharedSubdivisionTree, in.GBuffer);
 }
 
 bool vtkIGAIsosurfaceMapper::UpdateNurbs(vtkMatrix4x4* matrix)
@@ -968,13 +1057,14 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
   if (report.constantAttributeRoots > 0)
   {
     char value[64] = " at an isovalue";
-    if (this->Isovalues.size() == 1)
+    const bool csg = this->DrawMode == DRAW_CSG;
+    if (this->Isovalues.size() == 1 && !csg)
     {
       std::snprintf(value, sizeof value, " (= %g)", this->Isovalues[0]);
     }
     this->ReportOnce("constant",
-      "attribute '" + this->SurfaceArrayName + "' is constant" + value + " on " +
-        std::to_string(report.constantAttributeRoots) + " of " +
+      (csg ? std::string("an operand's attribute") : "attribute '" + this->SurfaceArrayName + "'") +
+        " is constant" + value + " on " + std::to_string(report.constantAttributeRoots) + " of " +
         std::to_string(in.Set.patches.size()) +
         " patches: a constant field has no isosurface there, so they are not drawn; not "
         "reported again until the settings or the input change",

@@ -128,14 +128,38 @@ public:
   {
     DRAW_ISOSURFACES = 0, ///< the hexahedra's isosurfaces (and quadrilaterals as surfaces)
     DRAW_SURFACES = 1,    ///< the hexahedra's boundary faces and the quadrilaterals
+    DRAW_CSG = 2,         ///< the CsgExpression's solid and the slices, of the hexahedra
   };
 
   ///@{
   /// What is drawn (DrawModeType); default the isosurfaces. Surfaces need no isovalue.
-  vtkSetClampMacro(DrawMode, int, DRAW_ISOSURFACES, DRAW_SURFACES);
+  vtkSetClampMacro(DrawMode, int, DRAW_ISOSURFACES, DRAW_CSG);
   vtkGetMacro(DrawMode, int);
   void SetDrawModeToIsosurfaces() { this->SetDrawMode(DRAW_ISOSURFACES); }
   void SetDrawModeToSurfaces() { this->SetDrawMode(DRAW_SURFACES); }
+  void SetDrawModeToCsg() { this->SetDrawMode(DRAW_CSG); }
+  ///@}
+
+  ///@{
+  /// The solid DRAW_CSG draws (iga/Csg.h's grammar): point arrays' solids `NAME<VALUE` and
+  /// `NAME>VALUE`, the hexahedra's whole `domain` and half-spaces `plane(a,b,c,d)` (a x + b y +
+  /// c z + d >= 0), joined by `|` (union), `&` (intersection, binding tighter) and `-`
+  /// (difference), grouped by parentheses; e.g. "cube<0 - pips<0". Every solid lies within the
+  /// hexahedra, whose boundary closes it (the caps are drawn, coloured like the rest). Empty
+  /// (the default): only the slices. An expression that does not parse is refused with an
+  /// error naming the position, and the previous one kept; a point array no grid has is said
+  /// when drawing. Hits name their operand (iga::sst::Hit::isovalue in GetLastGBuffer).
+  /// Quadrilateral cells are not drawn in DRAW_CSG.
+  void SetCsgExpression(const char* expression);
+  const char* GetCsgExpression() const { return this->CsgExpression.c_str(); }
+  ///@}
+
+  ///@{
+  /// Slices DRAW_CSG draws with the solid: the sections a x + b y + c z + d = 0 of the
+  /// hexahedra, exact, coloured like the rest (by the colour array through the lookup table).
+  void AddSlice(double a, double b, double c, double d);
+  void RemoveAllSlices();
+  int GetNumberOfSlices() const { return static_cast<int>(this->Slices.size()); }
   ///@}
 
   ///@{
@@ -262,6 +286,10 @@ private:
   bool CollectInput(Frame& frame);
   /// The surfaces drawn: the quadrilaterals, and in DRAW_SURFACES the volumes' boundary faces.
   void UpdateSurfaces();
+  /// The volumes' boundary faces, found again when the topology changed.
+  void UpdateBoundaryFaces();
+  /// The engine's frame of the CSG solid and the slices.
+  iga::sst::FrameReport ComputeCsgFrame(bool identity, const Frame& frame);
   /// The scene the engine draws, in world space.
   iga::sst::Scene EngineScene(bool identity) const;
   /// The cell and composite block a hit's patch (the engine's numbering) came from.
@@ -302,6 +330,8 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Internal;
   std::vector<double> Isovalues;
+  std::string CsgExpression;
+  std::vector<double> Slices; ///< a, b, c, d per slice
   std::string SurfaceArrayName;
   int DrawMode = DRAW_ISOSURFACES;
   int NumberOfThreads = 0;

@@ -33,9 +33,11 @@
 #include "vtkWindowToImageFilter.h"
 
 #include "iga/Bounds.h"
+#include "iga/Csg.h"
 #include "iga/sst/Engine.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -67,6 +69,15 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --surface              draw the surfaces (volumes' boundaries, surface patches), not
                          isosurfaces; the default for geometry files and for input without volumes
   --edges                draw the element edges (every knot line of NURBS input) over the surface
+  --csg EXPR             draw the solid EXPR of the volumes: NAME<VALUE, NAME>VALUE (an
+                         attribute's solid), domain (the volumes), plane(a,b,c,d) (the half-space
+                         a x + b y + c z + d >= 0), joined by | (union), & (intersection, binds
+                         tighter), - (difference), grouped by ( ); e.g. "cube<0 - pips<0". Where
+                         the solid meets the volumes' boundary, the boundary closes it
+  --slice a,b,c,d        draw the section a x + b y + c z + d = 0 of the volumes (repeatable),
+                         alone or with --csg
+  --clip a,b,c,d         keep the part a x + b y + c z + d >= 0, its cut face drawn (repeatable):
+                         the volumes, or the --csg solid, intersected with the half-space
   --iso V                isovalue (repeatable; default: the middle of the attribute's range)
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour)
@@ -95,6 +106,8 @@ struct Options
 {
   bool view = false; ///< `igaview view`
   bool surface = false, edges = false;
+  std::string csg; ///< --csg as typed
+  std::vector<std::array<double, 4>> slices, clips;
   std::vector<std::string> keys;
   bool hasOutput = false;
   std::string input;
@@ -133,23 +146,52 @@ double parseNumber(const std::string& text, const std::string& option)
   fail(option + " expects a number, got '" + text + "'");
 }
 
-void parseTriple(const std::string& text, const std::string& option, double* out)
+/// `count` comma-separated numbers (`names` says which, for the message) into `out`.
+void parseNumbers(
+  const std::string& text, const std::string& option, int count, const char* names, double* out)
 {
+  const std::string expected = option + " expects " + std::to_string(count) +
+                               " comma-separated numbers " + names + ", got '" + text + "'";
   std::stringstream stream(text);
   std::string part;
   int n = 0;
   while (std::getline(stream, part, ','))
   {
-    if (n == 3)
+    if (n == count)
     {
-      fail(option + " expects three comma-separated numbers x,y,z, got '" + text + "'");
+      fail(expected);
     }
     out[n++] = parseNumber(part, option);
   }
-  if (n != 3)
+  if (n != count)
   {
-    fail(option + " expects three comma-separated numbers x,y,z, got '" + text + "'");
+    fail(expected);
   }
+}
+
+void parseTriple(const std::string& text, const std::string& option, double* out)
+{
+  parseNumbers(text, option, 3, "x,y,z", out);
+}
+
+/// A plane a,b,c,d with a normal (a, b, c).
+std::array<double, 4> parsePlane(const std::string& text, const std::string& option)
+{
+  std::array<double, 4> plane;
+  parseNumbers(text, option, 4, "a,b,c,d", plane.data());
+  if (plane[0] == 0 && plane[1] == 0 && plane[2] == 0)
+  {
+    fail(option + " " + text + ": the normal (a, b, c) is zero");
+  }
+  return plane;
+}
+
+/// Fails with the expression's error, the expression marked at its position by ">>>".
+[[noreturn]] void failExpression(const std::string& text, const iga::csg::ExpressionError& error)
+{
+  const size_t at = std::min(error.position(), text.size());
+  fail("--csg: " + std::string(error.what()) + ": \"" + text.substr(0, at) + " >>> " +
+       text.substr(at) + "\"");
 }
 
 /// A whole number in lo..hi, else fail naming the option and the text as typed.
@@ -214,6 +256,22 @@ Options parseArguments(int argc, char** argv)
       options.surface = true;
     else if (arg == "--edges")
       options.edges = true;
+    else if (arg == "--csg")
+    {
+      options.csg = value();
+      try
+      {
+        iga::csg::parseExpression(options.csg);
+      }
+      catch (const iga::csg::ExpressionError& e)
+      {
+        failExpression(options.csg, e);
+      }
+    }
+    else if (arg == "--slice")
+      options.slices.push_back(parsePlane(value(), arg));
+    else if (arg == "--clip")
+      options.clips.push_back(parsePlane(value(), arg));
     else if (arg == "--surface-by")
       options.surfaceBy = value();
     else if (arg == "--color-by")
@@ -587,6 +645,8 @@ void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
 struct Drawing
 {
   bool surfaces = false;
+  bool csg = false;       ///< --csg, --slice or --clip: the mapper's DRAW_CSG
+  std::string expression; ///< the solid drawn: --csg intersected with the --clip half-spaces
   int surface = 0;
   std::vector<double> isovalues;
   double surfaceRange[2] = { 0, 1 };
@@ -596,20 +656,64 @@ struct Drawing
 
 /// Isosurfaces when asked for (--iso, --surface-by) or when the input holds volumes of a field;
 /// the surfaces when asked for (--surface), for geometry files and for input without volumes.
+/// The solid of --csg and --clip, its attributes checked against the input's.
+std::string csgExpression(const Options& options, const Input& input)
+{
+  std::string expression = options.csg;
+  if (!options.clips.empty())
+  {
+    expression = options.csg.empty() ? "domain" : "(" + options.csg + ")";
+    for (const auto& plane : options.clips)
+    {
+      char text[160];
+      std::snprintf(text, sizeof text, " & plane(%.17g,%.17g,%.17g,%.17g)", plane[0], plane[1],
+        plane[2], plane[3]);
+      expression += text;
+    }
+  }
+  if (!options.csg.empty())
+  {
+    for (const auto& operand : iga::csg::parseExpression(options.csg).operands)
+    {
+      const auto& names = input.patches.volumes.attributeNames;
+      if (!operand.attribute.empty() &&
+          std::find(names.begin(), names.end(), operand.attribute) == names.end())
+      {
+        std::string known;
+        for (const auto& n : names)
+          known += (known.empty() ? "" : ", ") + n;
+        failExpression(
+          options.csg, iga::csg::ExpressionError(
+                         "no attribute named '" + operand.attribute + "' (have: " + known + ")",
+                         operand.position));
+      }
+    }
+  }
+  return expression;
+}
+
 Drawing chooseDrawing(const Options& options, const Input& input)
 {
   Drawing drawing;
   const auto& names = input.patches.volumes.attributeNames;
+  drawing.csg = !options.csg.empty() || !options.slices.empty() || !options.clips.empty();
+  if (drawing.csg && (options.surface || !options.isovalues.empty() || !options.surfaceBy.empty()))
+    fail("--csg, --slice and --clip draw solids and sections: they take no --surface, --iso or "
+         "--surface-by");
+  if (drawing.csg && input.patches.volumes.patches.empty())
+    fail("'" + options.input + "' holds no volumes to draw --csg, --slice or --clip of");
   const bool isosurfaces = !options.isovalues.empty() || !options.surfaceBy.empty();
   drawing.surfaces =
     options.surface || (!isosurfaces && (input.geometry || input.patches.volumes.patches.empty()));
-  if (!drawing.surfaces && input.patches.volumes.patches.empty())
+  if (drawing.csg)
+    drawing.expression = csgExpression(options, input);
+  if (!drawing.surfaces && !drawing.csg && input.patches.volumes.patches.empty())
     fail("'" + options.input + "' holds no volumes to take an isosurface of: --surface draws it");
-  if (!drawing.surfaces && names.empty())
+  if (!drawing.surfaces && !drawing.csg && names.empty())
     fail("'" + options.input +
          "': no scalar point attribute to take an isosurface of: --surface "
          "draws its shape");
-  if (!drawing.surfaces)
+  if (!drawing.surfaces && !drawing.csg)
   {
     drawing.surface =
       options.surfaceBy.empty() ? 0 : attributeIndex(input, options.surfaceBy, "--surface-by");
@@ -635,10 +739,14 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
 {
   const auto& names = input.patches.volumes.attributeNames;
   mapper->SetInputConnection(input.producer->GetOutputPort());
-  mapper->SetDrawMode(drawing.surfaces ? vtkIGAIsosurfaceMapper::DRAW_SURFACES
-                                       : vtkIGAIsosurfaceMapper::DRAW_ISOSURFACES);
-  if (!drawing.surfaces)
+  mapper->SetDrawMode(drawing.csg        ? vtkIGAIsosurfaceMapper::DRAW_CSG
+                      : drawing.surfaces ? vtkIGAIsosurfaceMapper::DRAW_SURFACES
+                                         : vtkIGAIsosurfaceMapper::DRAW_ISOSURFACES);
+  if (!drawing.surfaces && !drawing.csg)
     mapper->SetSurfaceArrayName(names[drawing.surface].c_str());
+  mapper->SetCsgExpression(drawing.expression.c_str());
+  for (const auto& plane : options.slices)
+    mapper->AddSlice(plane[0], plane[1], plane[2], plane[3]);
   mapper->SetNumberOfThreads(options.threads);
   mapper->SetMemoryBudgetMB(options.memoryBudgetMB);
   // An interactive window answers within two seconds unless told otherwise.
@@ -692,6 +800,14 @@ void configureRenderer(const iga::Camera& view, vtkRenderer* renderer)
 void describe(const Options& options, const Input& input, const Drawing& drawing)
 {
   const auto& names = input.patches.volumes.attributeNames;
+  if (drawing.csg)
+  {
+    std::printf("igaview: %zu patches, %s%s%zu slices, %dx%d pixels\n",
+      input.patches.volumes.patches.size(), drawing.expression.empty() ? "" : "solid ",
+      drawing.expression.empty() ? "" : (drawing.expression + " and ").c_str(),
+      options.slices.size(), options.size[0], options.size[1]);
+    return;
+  }
   if (drawing.surfaces)
   {
     std::printf("igaview: surfaces of %zu volumes (their boundary) and %zu surface patches, "
@@ -770,7 +886,7 @@ int main(int argc, char** argv)
     vtkNew<vtkTextActor> readout;
     const auto& names = input.patches.volumes.attributeNames;
     Viewer viewer{ input.producer, mapper, renderer, readout,
-      drawing.surfaces ? std::string() : names[drawing.surface], drawing.isovalues,
+      drawing.surfaces || drawing.csg ? std::string() : names[drawing.surface], drawing.isovalues,
       0.02 * (drawing.surfaceRange[1] - drawing.surfaceRange[0]), {}, 0 };
     runViewer(options, viewer, window);
     if (options.keys.empty() || !options.hasOutput)
