@@ -1,0 +1,164 @@
+// vtkIGAIsosurfaceMapper drawing CSG solids and slices (DRAW_CSG): the dice's hits lie on the
+// cube outside the pips or on a pip inside the cube while the dice twists; a capped clip and a
+// slice of the tube; bad expressions; regression images.
+#include "RenderingTestUtilities.h"
+#include "vtkIGABezierHexahedra.h"
+#include "vtkIGAIsosurfaceMapper.h"
+#include "vtkIGASyntheticDeformation.h"
+
+#include "vtkActor.h"
+#include "vtkCommand.h"
+#include "vtkNew.h"
+#include "vtkRenderWindow.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "iga/Datasets.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+
+namespace
+{
+
+struct CsgScene : igatest::MapperScene
+{
+  CsgScene()
+    : MapperScene(240, 200)
+  {
+    mapper->SetDrawModeToCsg();
+  }
+
+  iga::sst::GBuffer draw(vtkDataObject* input)
+  {
+    mapper->SetInputData(input);
+    window->Render();
+    return mapper->GetLastGBuffer();
+  }
+};
+
+/// Attributes `a` and `b` of the set at a hit's patch and parameter (the material's: a
+/// deformation moves the points, not the attributes).
+std::array<double, 2> attributesAt(const iga::VolumeSet<double>& set, const iga::sst::Hit& hit)
+{
+  const auto view = set.patches[size_t(hit.patch)].view();
+  std::vector<double> values(size_t(view.channels));
+  iga::evaluateHomogeneous<double, 3>(view, &hit.uvw[0], values.data(), nullptr);
+  const double w = values[iga::kWeightChannel];
+  return { values[iga::kFirstAttributeChannel] / w, values[iga::kFirstAttributeChannel + 1] / w };
+}
+
+TEST(CsgMapper, TwistingDiceShowsItsCubeAndPipsAndNothingElse)
+{
+  CsgScene scene;
+  scene.look(3.2, -4.4, 3.6, 0, 0, 0);
+  scene.mapper->SetCsgExpression("cube<0 - pips<0");
+  const auto dice = iga::makeDice<double>();
+  vtkNew<vtkIGASyntheticDeformation> deformation;
+  deformation->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(dice));
+  deformation->SetAxis(2);
+  deformation->SetAmount(1.2);
+  for (double time : { 0.0, 0.5, 1.0 })
+  {
+    deformation->SetTime(time);
+    deformation->Update();
+    auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    grid->ShallowCopy(deformation->GetOutput());
+    const iga::sst::GBuffer gbuffer = scene.draw(grid);
+    int onCube = 0, onPip = 0;
+    for (int j = 0; j < gbuffer.height; ++j)
+      for (int i = 0; i < gbuffer.width; ++i)
+      {
+        const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
+        if (!hit)
+          continue;
+        ASSERT_TRUE(hit->entersBelow);
+        const auto [cube, pips] = attributesAt(dice, *hit);
+        // On the cube's surface outside every pip (operand 0), or on a pip inside the cube
+        // (operand 1): a pip never leaks out of the cube, the cube never covers a pip.
+        if (hit->isovalue == 0)
+        {
+          EXPECT_LT(std::abs(cube), 1e-5) << "pixel " << i << "," << j;
+          EXPECT_GT(pips, -1e-5) << "pixel " << i << "," << j;
+          ++onCube;
+        }
+        else
+        {
+          ASSERT_EQ(hit->isovalue, 1);
+          EXPECT_LT(std::abs(pips), 1e-5) << "pixel " << i << "," << j;
+          EXPECT_LT(cube, 1e-5) << "pixel " << i << "," << j;
+          ++onPip;
+        }
+      }
+    EXPECT_GT(onCube, 8000) << "time " << time;
+    EXPECT_GT(onPip, 800) << "time " << time;
+  }
+  igatest::compareWithBaseline(scene.window, "MapperTwistedDiceCsg");
+}
+
+TEST(CsgMapper, TubeCutOpenWithASliceColouredByTemperature)
+{
+  CsgScene scene;
+  scene.look(2.6, -3.4, 3.0, 0, 0, 1);
+  scene.mapper->SetCsgExpression("domain & plane(0, 1, 0, -0.1)");
+  scene.mapper->AddSlice(1, 0, 0, 0.2);
+  scene.mapper->SetScalarModeToUsePointFieldData();
+  scene.mapper->SelectColorArray("temperature");
+  scene.mapper->SetScalarRange(-1.2, 1.2);
+  scene.mapper->ScalarVisibilityOn();
+  // The patches as the mapper reads them (the grid holds them right-handed).
+  const auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5));
+  vtkIGABezierHexahedra::Patches read;
+  std::string error;
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(vtkIGABezierHexahedra::FromUnstructuredGrid(grid, read, error, warnings)) << error;
+  const auto& tube = read.volumes;
+  const iga::sst::GBuffer gbuffer = scene.draw(grid);
+  int caps = 0, slices = 0;
+  for (const auto& hit : gbuffer.hits)
+  {
+    if (hit.isovalue < 2)
+      EXPECT_GE(hit.position[1], 0.1 - 1e-9) << "the half-space y >= 0.1 is kept";
+    EXPECT_NEAR(hit.color, attributesAt(tube, hit)[0], 1e-9) << "coloured by temperature";
+    caps += hit.isovalue == 1 ? 1 : 0;
+    slices += hit.isovalue == 2 ? 1 : 0; // after the expression's two operands
+  }
+  EXPECT_GT(caps, 300) << "the cut face";
+  EXPECT_GT(slices, 300);
+  igatest::compareWithBaseline(scene.window, "MapperTubeCutOpenWithSlice");
+}
+
+TEST(CsgMapper, BadExpressionsAreSaidOnceAndTheLastGoodOneKept)
+{
+  CsgScene scene;
+  scene.look(2.6, -3.4, 3.0, 0, 0, 1);
+  scene.mapper->SetCsgExpression("radius<0.8");
+  vtkNew<vtkTest::ErrorObserver> errors;
+  scene.mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+  const auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5));
+  const iga::sst::GBuffer before = scene.draw(grid);
+  ASSERT_GT(before.coveredPixels(), 3000u);
+  scene.mapper->SetCsgExpression("radius<0.8 & (");
+  ASSERT_TRUE(errors->GetError());
+  EXPECT_NE(errors->GetErrorMessage().find("expression ends where an operand or '(' is expected "
+                                           "at position 14; the previous one is kept"),
+    std::string::npos)
+    << errors->GetErrorMessage();
+  EXPECT_STREQ(scene.mapper->GetCsgExpression(), "radius<0.8");
+  errors->Clear();
+  scene.window->Render();
+  EXPECT_EQ(scene.mapper->GetLastGBuffer().hits.size(), before.hits.size()) << "the same image";
+  // An attribute the data lack is said when drawing, once.
+  scene.mapper->SetCsgExpression("domain - heat>0");
+  scene.window->Render();
+  EXPECT_NE(errors->GetErrorMessage().find("no input has the attribute 'heat' at position 9"),
+    std::string::npos)
+    << errors->GetErrorMessage();
+  errors->Clear();
+  scene.window->Render();
+  EXPECT_FALSE(errors->GetError()) << "said once";
+}
+
+} // namespace
