@@ -245,17 +245,35 @@ void vtkIGAIsosurfaceMapper::SetCsgExpression(const char* expression)
   this->Modified();
 }
 
-void vtkIGAIsosurfaceMapper::AddSlice(double a, double b, double c, double d)
+void vtkIGAIsosurfaceMapper::SetNumberOfSlices(int count)
 {
-  this->Slices.insert(this->Slices.end(), { a, b, c, d });
+  if (count < 0 || count == this->GetNumberOfSlices())
+  {
+    return;
+  }
+  const size_t from = this->Slices.size() / 4;
+  this->Slices.resize(4 * size_t(count));
+  for (size_t k = from; k < size_t(count); ++k)
+  {
+    this->Slices[4 * k] = 1;
+  }
   this->Modified();
 }
 
-void vtkIGAIsosurfaceMapper::RemoveAllSlices()
+void vtkIGAIsosurfaceMapper::SetSlice(int index, double a, double b, double c, double d)
 {
-  if (!this->Slices.empty())
+  if (index < 0)
   {
-    this->Slices.clear();
+    return;
+  }
+  if (index >= this->GetNumberOfSlices())
+  {
+    this->SetNumberOfSlices(index + 1);
+  }
+  const double plane[4] = { a, b, c, d };
+  if (!std::equal(plane, plane + 4, this->Slices.begin() + 4 * index))
+  {
+    std::copy(plane, plane + 4, this->Slices.begin() + 4 * index);
     this->Modified();
   }
 }

@@ -157,9 +157,10 @@ public:
   ///@{
   /// Slices DRAW_CSG draws with the solid: the sections a x + b y + c z + d = 0 of the
   /// hexahedra, exact, coloured like the rest (by the colour array through the lookup table).
-  void AddSlice(double a, double b, double c, double d);
-  void RemoveAllSlices();
-  int GetNumberOfSlices() const { return static_cast<int>(this->Slices.size()); }
+  /// Setting slice `index` adds slices up to it as needed (the new ones x = 0).
+  void SetNumberOfSlices(int count);
+  int GetNumberOfSlices() const { return static_cast<int>(this->Slices.size() / 4); }
+  void SetSlice(int index, double a, double b, double c, double d);
   ///@}
 
   ///@{

@@ -129,7 +129,17 @@ private:
       }
       ++this->At;
       const int inner = this->expression(depth + 1);
-      this->expect(')', "')' closing the '(' at position " + std::to_string(start));
+      const char next = this->peek();
+      if (next == '\0')
+      {
+        throw ExpressionError("'(' is never closed", start);
+      }
+      if (next != ')')
+      {
+        throw ExpressionError(
+          std::string("unexpected '") + next + "' where an operator or ')' is expected", this->At);
+      }
+      ++this->At;
       return inner;
     }
     if (c == '\0')

@@ -3,6 +3,7 @@
 #include "iga/sst/Csg.h"
 
 #include "CsgClassification.h"
+#include "CsgFrame.h"
 #include "FramePlan.h"
 #include "ParallelFor.h"
 
@@ -277,6 +278,16 @@ void checkInputs(const CsgScene& scene)
 FrameReport renderCsg(
   const CsgScene& scene, const View& view, const Settings& settings, Method method, GBuffer& out)
 {
+  return renderCsg(
+    scene, view, settings,
+    [&](const Scene& passScene, const Settings& passSettings, GBuffer& passOut)
+    { return render(passScene, view, passSettings, method, passOut); },
+    out);
+}
+
+FrameReport renderCsg(const CsgScene& scene, const View& view, const Settings& settings,
+  const CsgPassRenderer& renderPass, GBuffer& out)
+{
   const auto start = Clock::now();
   checkInputs(scene);
   CsgPasses passes = planPasses(scene);
@@ -291,8 +302,8 @@ FrameReport renderCsg(
                                                                  : pass.volumes;
     const Scene passScene(volumes, pass.surfaces);
     accumulate(report,
-      render(passScene, view, passSettings(scene, pass, settings, millisecondsSince(start)), method,
-        pass.hits),
+      renderPass(
+        passScene, passSettings(scene, pass, settings, millisecondsSince(start)), pass.hits),
       p == 0);
   }
   const auto classifyStart = Clock::now();

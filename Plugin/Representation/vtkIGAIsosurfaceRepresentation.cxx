@@ -243,16 +243,33 @@ void vtkIGAIsosurfaceRepresentation::SetInputArrayToProcess(
   this->Mapper->SelectColorArray(byPoints ? name : nullptr);
 }
 
+void vtkIGAIsosurfaceRepresentation::SetCsgExpression(const char* expression)
+{
+  this->Mapper->SetCsgExpression(expression);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetNumberOfSlices(int count)
+{
+  this->Mapper->SetNumberOfSlices(count);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetSlice(int index, double a, double b, double c, double d)
+{
+  this->Mapper->SetSlice(index, a, b, c, d);
+}
+
 void vtkIGAIsosurfaceRepresentation::SetRepresentation(const char* name)
 {
   const std::string type = name ? name : "";
-  if (type != "IGA Isosurface" && type != "IGA Surface" && type != "IGA Surface With Edges")
+  if (type != "IGA Isosurface" && type != "IGA Surface" && type != "IGA Surface With Edges" &&
+      type != "IGA CSG")
   {
     vtkErrorMacro(<< "unknown representation '" << type
-                  << "' (IGA Isosurface, IGA Surface, IGA Surface With Edges)");
+                  << "' (IGA Isosurface, IGA Surface, IGA Surface With Edges, IGA CSG)");
     return;
   }
   this->Mapper->SetDrawMode(type == "IGA Isosurface" ? vtkIGAIsosurfaceMapper::DRAW_ISOSURFACES
+                            : type == "IGA CSG"      ? vtkIGAIsosurfaceMapper::DRAW_CSG
                                                      : vtkIGAIsosurfaceMapper::DRAW_SURFACES);
   this->Property->SetEdgeVisibility(type == "IGA Surface With Edges");
   this->SetProgressText(type.c_str());

@@ -1,12 +1,13 @@
 /**
  * @class   vtkIGAIsosurfaceRepresentation
- * @brief   ParaView representations "IGA Isosurface", "IGA Surface" and "IGA Surface With
- *          Edges": draw the pixel-exact isosurfaces of an unstructured grid of Bézier
- *          hexahedra, or its surfaces (the hexahedra's boundary and its Bézier
- *          quadrilaterals), with vtkIGAIsosurfaceMapper, without tessellating
- *          (vtkGeometryRepresentation would extract a surface first).
+ * @brief   ParaView representations "IGA Isosurface", "IGA Surface", "IGA Surface With
+ *          Edges" and "IGA CSG": draw the pixel-exact isosurfaces of an unstructured grid of
+ *          Bézier hexahedra, its surfaces (the hexahedra's boundary and its Bézier
+ *          quadrilaterals), or a CSG solid of its attributes with slices, with
+ *          vtkIGAIsosurfaceMapper, without tessellating (vtkGeometryRepresentation would
+ *          extract a surface first).
  *
- * Which of the three is drawn comes from ParaView's representation type through
+ * Which of the four is drawn comes from ParaView's representation type through
  * SetRepresentation (the XML's RepresentationType subtype), as for vtkGeometryRepresentation's
  * "Surface With Edges"; the edges take the shared EdgeColor and LineWidth.
  *
@@ -79,8 +80,14 @@ public:
   void SetFrameDeadline(double seconds);
   ///@}
 
-  /// "IGA Isosurface", "IGA Surface" or "IGA Surface With Edges" (any other name is an error).
+  /// "IGA Isosurface", "IGA Surface", "IGA Surface With Edges" or "IGA CSG" (any other name is
+  /// an error).
   void SetRepresentation(const char* name);
+
+  /// "IGA CSG": the solid (vtkIGAIsosurfaceMapper::SetCsgExpression) and the slices.
+  void SetCsgExpression(const char* expression);
+  void SetNumberOfSlices(int count);
+  void SetSlice(int index, double a, double b, double c, double d);
 
   ///@{
   /// The element edges of "IGA Surface With Edges", forwarded to the property.

@@ -745,8 +745,11 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
   if (!drawing.surfaces && !drawing.csg)
     mapper->SetSurfaceArrayName(names[drawing.surface].c_str());
   mapper->SetCsgExpression(drawing.expression.c_str());
-  for (const auto& plane : options.slices)
-    mapper->AddSlice(plane[0], plane[1], plane[2], plane[3]);
+  for (size_t k = 0; k < options.slices.size(); ++k)
+  {
+    const auto& plane = options.slices[k];
+    mapper->SetSlice(int(k), plane[0], plane[1], plane[2], plane[3]);
+  }
   mapper->SetNumberOfThreads(options.threads);
   mapper->SetMemoryBudgetMB(options.memoryBudgetMB);
   // An interactive window answers within two seconds unless told otherwise.

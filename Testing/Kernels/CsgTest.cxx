@@ -81,7 +81,8 @@ TEST(CsgExpression, ErrorsNameTheProblemAndItsPosition)
 {
   EXPECT_EQ(errorPosition("a<"), 2u);
   EXPECT_EQ(errorPosition("a<0 |"), 5u);
-  EXPECT_EQ(errorPosition("(a<0"), 4u);
+  EXPECT_EQ(errorPosition("x<1 & (a<0"), 6u);
+  EXPECT_EQ(errorPosition("(a<0 b<0)"), 5u);
   EXPECT_EQ(errorPosition("a<0 b<0"), 4u);
   EXPECT_EQ(errorPosition("a<0 & foo"), 9u);
   EXPECT_EQ(errorPosition("plane(1,0,0)"), 11u);

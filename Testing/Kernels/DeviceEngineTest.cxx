@@ -14,6 +14,9 @@
 //   may differ.
 #include "EngineScenes.h"
 
+#include "CsgFrame.h"
+#include "iga/sst/Csg.h"
+
 #ifdef IGAVIEW_DEVICE_LOGIC
 #include "DeviceDriver.h"
 #else
@@ -911,6 +914,49 @@ TEST(DeviceEngineCaps, BadInputIsRejected)
   s.settings.dataVersion = 5;
   ASSERT_TRUE(deviceRender(s, out, report, why));
   expectMatchesTheCpuDriver(s, out, report);
+}
+
+/// A CSG frame, the cheese cut open with a slice, its passes drawn on the device: the same
+/// result as on CPU threads (the classification runs on the host for both).
+TEST(DeviceEngineCsg, CheeseCutOpenWithASliceMatchesTheCpuDriver)
+{
+  const auto cheese = iga::makeCheese<double>();
+  iga::sst::CsgScene csg;
+  csg.inputs.push_back({ &cheese.patches, cheese.attributeNames, nullptr });
+  csg.expression = iga::csg::parseExpression("(cheese<0 - holes<0) & plane(0, 1, 0, -0.45)");
+  csg.slices = { { 1, 0, 0, -1.3 } };
+  csg.colorAttribute = "cheese";
+  const iga::Camera camera = lookAt(cheese, { 3.5, -3.0, 2.5 }, { 1, 0.6, 0.5 }, 35);
+  Settings settings;
+  settings.width = settings.height = 64;
+  settings.firstHitOnly = false;
+  const iga::sst::View view = iga::sst::makeView(camera, 64, 64);
+  GBuffer cpu, device;
+  iga::sst::renderCsg(csg, view, settings, iga::sst::Method::SharedSubdivisionTree, cpu);
+  ASSERT_GT(cpu.coveredPixels(), 800u);
+#ifdef IGAVIEW_DEVICE_LOGIC
+  iga::sst::renderCsg(
+    csg, view, settings,
+    [&](const iga::sst::Scene& pass, const Settings& passSettings, GBuffer& out)
+    {
+      FrameReport report;
+      logicDriver().render(pass, view, passSettings, out, report);
+      return report;
+    },
+    device);
+  EXPECT_TRUE(igatest::identicalGBuffers(cpu, device));
+#else
+  std::string why;
+  if (!iga::sst::cuda::usable(why))
+  {
+    GTEST_SKIP() << why;
+  }
+  settings.backend = iga::sst::Backend::Cuda;
+  const auto report =
+    iga::sst::renderCsg(csg, view, settings, iga::sst::Method::SharedSubdivisionTree, device);
+  EXPECT_EQ(report.backend, "cuda") << report.notice;
+  igatest::expectSameFirstHits(cpu, device, 8, kPositionTolerance);
+#endif
 }
 
 } // namespace

@@ -103,7 +103,7 @@ TEST(CsgMapper, TubeCutOpenWithASliceColouredByTemperature)
   CsgScene scene;
   scene.look(2.6, -3.4, 3.0, 0, 0, 1);
   scene.mapper->SetCsgExpression("domain & plane(0, 1, 0, -0.1)");
-  scene.mapper->AddSlice(1, 0, 0, 0.2);
+  scene.mapper->SetSlice(0, 1, 0, 0, 0.2);
   scene.mapper->SetScalarModeToUsePointFieldData();
   scene.mapper->SelectColorArray("temperature");
   scene.mapper->SetScalarRange(-1.2, 1.2);
@@ -120,7 +120,9 @@ TEST(CsgMapper, TubeCutOpenWithASliceColouredByTemperature)
   for (const auto& hit : gbuffer.hits)
   {
     if (hit.isovalue < 2)
+    {
       EXPECT_GE(hit.position[1], 0.1 - 1e-9) << "the half-space y >= 0.1 is kept";
+    }
     EXPECT_NEAR(hit.color, attributesAt(tube, hit)[0], 1e-9) << "coloured by temperature";
     caps += hit.isovalue == 1 ? 1 : 0;
     slices += hit.isovalue == 2 ? 1 : 0; // after the expression's two operands
