@@ -2,6 +2,7 @@
 // machines without VTK. Prints a table on stderr and one JSON document on stdout (or --json FILE).
 //
 //   igaBenchmark [--quick] [--json FILE]
+//   igaBenchmark --csg [--quick] [--json FILE]
 //   igaBenchmark --gpu [--quick] [--only NAME] [--json FILE]
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
@@ -9,7 +10,9 @@
 // sphere frame; the default dataset; the deforming 10k-patch blade at 1080p; surfaces (the
 // paper's surface study): the teapot's 32 bicubic patches and the deforming blade's boundary
 // (over 10 000 biquadratic faces) at 512^2 and 1080p, SST against the basic scheme and per-pixel
-// Bézier clipping. Ratios compare runs of the same process.
+// Bézier clipping; CSG: the dice (cube<0 - pips<0, 125 patches of degree 4) at 512^2 and 1080p
+// against the cube's isosurface alone in first-hit mode (--csg: this study alone). Ratios
+// compare runs of the same process.
 //
 // --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
@@ -18,7 +21,9 @@
 // usable device it says why and measures nothing. --only NAME keeps the datasets whose names
 // contain NAME (a profiler's run: one dataset, not the whole study).
 #include "iga/Boundary.h"
+#include "iga/Csg.h"
 #include "iga/Datasets.h"
+#include "iga/sst/Csg.h"
 #include "iga/sst/Engine.h"
 
 #include <algorithm>
@@ -189,6 +194,39 @@ void surfaceStudy(bool quick, int threads, int reps, std::vector<Measurement>& a
   }
 }
 
+/// The CSG study: the dice's solid against the cube's isosurface alone (first hit), per size.
+void csgStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  using iga::sst::Method;
+  const auto dice = iga::makeDice<double>();
+  const auto faces = iga::boundaryFaces(dice.patches);
+  iga::sst::CsgScene scene;
+  scene.inputs.push_back({ &dice.patches, dice.attributeNames, &faces });
+  scene.expression = iga::csg::parseExpression("cube<0 - pips<0");
+  const iga::Camera camera = frame(dice.patches);
+  const int sizes[2][2] = { { quick ? 256 : 512, quick ? 256 : 512 }, { 1920, 1080 } };
+  for (const auto& size : sizes)
+  {
+    const std::string tag = std::to_string(size[0]) + "x" + std::to_string(size[1]);
+    const auto csg = measureFrames("csg", "dice-cube-minus-pips", 0, 4, size[0], size[1], threads,
+      Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, false,
+      [&](int, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+      {
+        return iga::sst::renderCsg(
+          scene, iga::sst::makeView(camera, settings.width, settings.height), settings, m, out);
+      });
+    const auto cube = measure("csg", "dice-cube-isosurface", dice, 0.0, 4, size[0], size[1],
+      threads, Method::SharedSubdivisionTree, reps);
+    all.insert(all.end(), { csg, cube });
+    ratios.emplace_back("csgOverIsosurface_dice_" + tag, csg.ms / cube.ms);
+    if (quick)
+    {
+      break;
+    }
+  }
+}
+
 std::string json(
   const std::vector<Measurement>& all, const std::vector<std::pair<std::string, double>>& ratios)
 {
@@ -354,12 +392,14 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
 
 int main(int argc, char** argv)
 {
-  bool quick = false, gpu = false;
+  bool quick = false, gpu = false, csgOnly = false;
   std::string jsonFile, only;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--quick"))
       quick = true;
+    else if (!std::strcmp(argv[i], "--csg"))
+      csgOnly = true;
     else if (!std::strcmp(argv[i], "--gpu"))
       gpu = true;
     else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
@@ -368,7 +408,8 @@ int main(int argc, char** argv)
       only = argv[++i];
     else
     {
-      std::fprintf(stderr, "usage: igaBenchmark [--gpu [--only NAME]] [--quick] [--json FILE]\n");
+      std::fprintf(
+        stderr, "usage: igaBenchmark [--gpu [--only NAME] | --csg] [--quick] [--json FILE]\n");
       return 1;
     }
   }
@@ -412,6 +453,11 @@ int main(int argc, char** argv)
   // A warm-up frame: thread start-up, page faults and caches are not what the studies measure.
   measure("warm-up", "marsden-sphere", iga::makeMarsdenSphere<double>(2), 0.0, 2, 256, 256, threads,
     Method::SharedSubdivisionTree, 1);
+  if (csgOnly)
+  {
+    csgStudy(quick, threads, reps, all, ratios);
+    return emit(json(all, ratios));
+  }
 
   // Fig. 13: SST against one tree per pixel over the sphere's degree.
   const int degreeResolution = quick ? 128 : 256;
@@ -473,6 +519,7 @@ int main(int argc, char** argv)
     1080, threads, Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, flapping));
 
   surfaceStudy(quick, threads, reps, all, ratios);
+  csgStudy(quick, threads, reps, all, ratios);
 
   return emit(json(all, ratios));
 }

@@ -223,8 +223,8 @@ struct Sphere
 ///  - names[1]: in each patch the sphereField of the sphere inside it, or where there is none, of
 ///    the nearest sphere. Every sphere must lie strictly inside one patch and no patch may hold
 ///    two, so the zero set of names[1] is exactly the union of the spheres (negative inside).
-/// Boolean combinations (max/min) of the fields are not polynomial; render the two isosurfaces
-/// together, or one coloured by the other.
+/// Their Boolean combinations are drawn exactly by CSG frames (iga/sst/Csg.h), e.g.
+/// "cube<0 - pips<0".
 template<class T>
 VolumeSet<T> makeSpheresInBox(const std::vector<double> (&breaks)[3], const Polynomial3<T>& box,
   const std::vector<Sphere>& spheres, const std::string (&names)[2])
