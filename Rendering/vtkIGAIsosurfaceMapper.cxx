@@ -86,6 +86,19 @@ void moveControlPoints(vtkMatrix4x4* matrix, double* points, size_t count, int c
 
 } // namespace
 
+/// One layer of a frame's image: the k-th hit of every pixel shaded, as drawn.
+struct LayerImage
+{
+  std::vector<float> Colour; // RGBA, premultiplied, row 0 at the bottom
+  std::vector<float> Depth;  // window depth in [0, 1]
+  vtkNew<vtkTextureObject> ColourTexture;
+  vtkNew<vtkTextureObject> DepthTexture;
+};
+
+/// Most layers of a translucent surface drawn (the nearest ones): each takes a full image and a
+/// full-screen pass.
+constexpr int kMaxLayers = 8;
+
 struct vtkIGAIsosurfaceMapper::Internals
 {
   // Data, converted when the input changes: the hexahedra (Set) and the quadrilaterals (Quads);
@@ -108,15 +121,14 @@ struct vtkIGAIsosurfaceMapper::Internals
   int SurfacesMode = -1;
   std::vector<iga::PatchFace> Faces;
   std::vector<uint64_t> FacesTopology;
-  // The last frame: what it depended on, and its colour and window depth.
+  // The last frame: what it depended on, and its layers (the first hits; behind them, for a
+  // translucent surface, the further hits), LayerCount of them in use.
   std::vector<double> FrameKey;
   int Size[2] = { 0, 0 };
   iga::sst::GBuffer GBuffer;
-  std::vector<float> Colour; // RGBA, premultiplied, row 0 at the bottom
-  std::vector<float> Depth;  // window depth in [0, 1]
+  std::vector<std::unique_ptr<LayerImage>> Layers;
+  int LayerCount = 0;
   // OpenGL.
-  vtkNew<vtkTextureObject> ColourTexture;
-  vtkNew<vtkTextureObject> DepthTexture;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   std::vector<vtkOpenGLRenderPass*> ShaderPasses; ///< the render passes Quad's shader has
   vtkMTimeType ShaderTime = 0;
@@ -295,7 +307,8 @@ const iga::sst::GBuffer& vtkIGAIsosurfaceMapper::GetLastGBuffer() const
 
 const std::vector<float>& vtkIGAIsosurfaceMapper::GetLastColours() const
 {
-  return this->Internal->Colour;
+  static const std::vector<float> none;
+  return this->Internal->Layers.empty() ? none : this->Internal->Layers[0]->Colour;
 }
 
 const char* vtkIGAIsosurfaceMapper::GetLastBackend() const
@@ -439,8 +452,11 @@ double* vtkIGAIsosurfaceMapper::GetBounds()
 
 void vtkIGAIsosurfaceMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Internal->ColourTexture->ReleaseGraphicsResources(window);
-  this->Internal->DepthTexture->ReleaseGraphicsResources(window);
+  for (const auto& layer : this->Internal->Layers)
+  {
+    layer->ColourTexture->ReleaseGraphicsResources(window);
+    layer->DepthTexture->ReleaseGraphicsResources(window);
+  }
   if (this->Internal->Quad)
   {
     this->Internal->Quad->ReleaseGraphicsResources(window);
@@ -819,6 +835,8 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   settings.height = frame.Height;
   settings.threads = this->NumberOfThreads;
   settings.isovalues = frame.Volumes ? this->Isovalues : std::vector<double>();
+  // A translucent surface shows every layer (AllocateLayers), an opaque one its first.
+  settings.firstHitOnly = !(actor->GetProperty()->GetOpacity() < 1.0);
   // Clipping planes (world coordinates, as vtkOpenGLPolyDataMapper takes them).
   settings.clipPlanes.resize(size_t(this->GetNumberOfClippingPlanes()));
   vtkNew<vtkMatrix4x4> identity;
@@ -1025,10 +1043,8 @@ iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, con
       { this->Slices[k], this->Slices[k + 1], this->Slices[k + 2], this->Slices[k + 3] });
   }
   scene.colorAttribute = frame.ByScalars ? this->ArrayName : "";
-  iga::sst::Settings settings = frame.Settings;
-  settings.firstHitOnly = true;
   return iga::sst::renderCsg(
-    scene, frame.View, settings, iga::sst::Method::SharedSubdivisionTree, in.GBuffer);
+    scene, frame.View, frame.Settings, iga::sst::Method::SharedSubdivisionTree, in.GBuffer);
 }
 
 bool vtkIGAIsosurfaceMapper::UpdateNurbs(vtkMatrix4x4* matrix)
@@ -1149,31 +1165,32 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
   const int width = frame.Width, height = frame.Height;
   in.Size[0] = width;
   in.Size[1] = height;
-  in.Colour.assign(size_t(width) * height * 4, 0.0f);
-  in.Depth.assign(size_t(width) * height, 1.0f);
+  this->AllocateLayers(frame);
   for (int j = 0; j < height; ++j)
   {
     for (int i = 0; i < width; ++i)
     {
-      const iga::sst::Hit* hit = in.GBuffer.firstHit(i, j);
-      if (!hit)
-      {
-        continue;
-      }
       const size_t p = size_t(j) * width + i;
-      double base[3] = { baseColour[0], baseColour[1], baseColour[2] };
-      if (frame.ByScalars)
+      const iga::sst::Hit* hits = in.GBuffer.firstHit(i, j);
+      const int count = std::min(in.GBuffer.hitCount(i, j), in.LayerCount);
+      for (int k = 0; k < count; ++k)
       {
-        const unsigned char* mapped = lut->MapValue(hit->color);
-        for (int c = 0; c < 3; ++c)
+        const iga::sst::Hit& hit = hits[k];
+        double base[3] = { baseColour[0], baseColour[1], baseColour[2] };
+        if (frame.ByScalars)
         {
-          base[c] = mapped[c] / 255.0;
+          const unsigned char* mapped = lut->MapValue(hit.color);
+          for (int c = 0; c < 3; ++c)
+          {
+            base[c] = mapped[c] / 255.0;
+          }
         }
+        const glm::dvec3 toEye =
+          iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit.position);
+        LayerImage& layer = *in.Layers[size_t(k)];
+        shadeHit(hit, base, property, frame.Lights, toEye, &layer.Colour[4 * p]);
+        layer.Depth[p] = float(0.5 * (hit.ndcDepth + 1.0));
       }
-      const glm::dvec3 toEye =
-        iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit->position);
-      shadeHit(*hit, base, property, frame.Lights, toEye, &in.Colour[4 * p]);
-      in.Depth[p] = float(0.5 * (hit->ndcDepth + 1.0));
     }
   }
   if (property->GetEdgeVisibility())
@@ -1181,6 +1198,36 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
     this->DrawEdges(property);
   }
   in.FrameTime.Modified();
+}
+
+void vtkIGAIsosurfaceMapper::AllocateLayers(const Frame& frame)
+{
+  // One layer for an opaque surface; for a translucent one, as many as a pixel has hits (up to
+  // kMaxLayers, the nearest; said once when a pixel has more).
+  Internals& in = *this->Internal;
+  int most = 1;
+  for (size_t p = 0; !frame.Settings.firstHitOnly && p + 1 < in.GBuffer.offsets.size(); ++p)
+  {
+    most = std::max(most, int(in.GBuffer.offsets[p + 1] - in.GBuffer.offsets[p]));
+  }
+  if (most > kMaxLayers)
+  {
+    this->ReportOnce("layers",
+      "the translucent surface has up to " + std::to_string(most) + " layers a pixel; the " +
+        std::to_string(kMaxLayers) + " nearest are drawn",
+      false);
+  }
+  in.LayerCount = std::min(most, kMaxLayers);
+  while (in.Layers.size() < size_t(in.LayerCount))
+  {
+    in.Layers.push_back(std::make_unique<LayerImage>());
+  }
+  const size_t pixels = size_t(frame.Width) * size_t(frame.Height);
+  for (int k = 0; k < in.LayerCount; ++k)
+  {
+    in.Layers[size_t(k)]->Colour.assign(4 * pixels, 0.0f);
+    in.Layers[size_t(k)]->Depth.assign(pixels, 1.0f);
+  }
 }
 
 void vtkIGAIsosurfaceMapper::DrawEdges(vtkProperty* property)
@@ -1193,7 +1240,7 @@ void vtkIGAIsosurfaceMapper::DrawEdges(vtkProperty* property)
   property->GetEdgeColor(edge);
   for (size_t p = 0; p < coverage.size(); ++p)
   {
-    float* rgba = &in.Colour[4 * p];
+    float* rgba = &in.Layers[0]->Colour[4 * p];
     for (int c = 0; c < 3; ++c)
     {
       rgba[c] = (1 - coverage[p]) * rgba[c] + coverage[p] * float(edge[c]) * rgba[3];
@@ -1217,7 +1264,7 @@ void vtkIGAIsosurfaceMapper::SelectionIds(
       selector->UpdateMaximumCellId(*std::max_element(cells->begin(), cells->end()));
     }
   }
-  ids.assign(in.Colour.size(), 0.0f);
+  ids.assign(in.Layers[0]->Colour.size(), 0.0f);
   for (int j = 0; j < in.Size[1]; ++j)
   {
     for (int i = 0; i < in.Size[0]; ++i)
@@ -1268,7 +1315,7 @@ void vtkIGAIsosurfaceMapper::DrawFrame(vtkRenderer* renderer, vtkActor* actor, v
   if (window)
   {
     this->UploadTextures(window, selector ? &ids : nullptr);
-    this->DrawQuad(window, actor);
+    this->DrawQuad(window, actor, selector != nullptr);
   }
   if (selector)
   {
@@ -1278,21 +1325,25 @@ void vtkIGAIsosurfaceMapper::DrawFrame(vtkRenderer* renderer, vtkActor* actor, v
 
 void vtkIGAIsosurfaceMapper::UploadTextures(vtkOpenGLRenderWindow* window, std::vector<float>* ids)
 {
-  // When the frame changed, or ids were drawn instead of its colours.
+  // When the frame changed, or ids were drawn instead of the first layer's colours.
   Internals& in = *this->Internal;
-  if (!ids && in.UploadTime >= in.FrameTime && in.ColourTexture->GetContext() == window)
+  if (!ids && in.UploadTime >= in.FrameTime && in.Layers[0]->ColourTexture->GetContext() == window)
   {
     return;
   }
-  in.ColourTexture->SetContext(window);
-  in.DepthTexture->SetContext(window);
-  in.ColourTexture->Create2DFromRaw(
-    in.Size[0], in.Size[1], 4, VTK_FLOAT, ids ? ids->data() : in.Colour.data());
-  in.DepthTexture->Create2DFromRaw(in.Size[0], in.Size[1], 1, VTK_FLOAT, in.Depth.data());
-  for (vtkTextureObject* texture : { in.ColourTexture.Get(), in.DepthTexture.Get() })
+  for (int k = 0; k < in.LayerCount; ++k)
   {
-    texture->SetMinificationFilter(vtkTextureObject::Nearest);
-    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    LayerImage& layer = *in.Layers[size_t(k)];
+    layer.ColourTexture->SetContext(window);
+    layer.DepthTexture->SetContext(window);
+    layer.ColourTexture->Create2DFromRaw(
+      in.Size[0], in.Size[1], 4, VTK_FLOAT, ids && k == 0 ? ids->data() : layer.Colour.data());
+    layer.DepthTexture->Create2DFromRaw(in.Size[0], in.Size[1], 1, VTK_FLOAT, layer.Depth.data());
+    for (vtkTextureObject* texture : { layer.ColourTexture.Get(), layer.DepthTexture.Get() })
+    {
+      texture->SetMinificationFilter(vtkTextureObject::Nearest);
+      texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    }
   }
   in.UploadTime.Modified();
   if (ids)
@@ -1376,7 +1427,8 @@ bool vtkIGAIsosurfaceMapper::UpdateShader(
   return in.Quad->Program != nullptr;
 }
 
-void vtkIGAIsosurfaceMapper::DrawQuad(vtkOpenGLRenderWindow* window, vtkActor* actor)
+void vtkIGAIsosurfaceMapper::DrawQuad(
+  vtkOpenGLRenderWindow* window, vtkActor* actor, bool selecting)
 {
   // A full-screen pass with gl_FragDepth.
   Internals& in = *this->Internal;
@@ -1394,15 +1446,22 @@ void vtkIGAIsosurfaceMapper::DrawQuad(vtkOpenGLRenderWindow* window, vtkActor* a
     state->vtkglEnable(GL_DEPTH_TEST);
     state->vtkglDepthFunc(GL_LEQUAL);
   }
-  in.ColourTexture->Activate();
-  in.DepthTexture->Activate();
-  in.Quad->Program->SetUniformi("colourTexture", in.ColourTexture->GetTextureUnit());
-  in.Quad->Program->SetUniformi("depthTexture", in.DepthTexture->GetTextureUnit());
-  for (vtkOpenGLRenderPass* pass : passes)
+  // A pass a layer: blending and depth peeling take each layer as a fragment of its own. A
+  // hardware selector sees the first hits only.
+  const int layers = selecting ? 1 : in.LayerCount;
+  for (int k = 0; k < layers; ++k)
   {
-    pass->SetShaderParameters(in.Quad->Program, this, actor, in.Quad->VAO);
+    LayerImage& layer = *in.Layers[size_t(k)];
+    layer.ColourTexture->Activate();
+    layer.DepthTexture->Activate();
+    in.Quad->Program->SetUniformi("colourTexture", layer.ColourTexture->GetTextureUnit());
+    in.Quad->Program->SetUniformi("depthTexture", layer.DepthTexture->GetTextureUnit());
+    for (vtkOpenGLRenderPass* pass : passes)
+    {
+      pass->SetShaderParameters(in.Quad->Program, this, actor, in.Quad->VAO);
+    }
+    in.Quad->Render();
+    layer.ColourTexture->Deactivate();
+    layer.DepthTexture->Deactivate();
   }
-  in.Quad->Render();
-  in.ColourTexture->Deactivate();
-  in.DepthTexture->Deactivate();
 }

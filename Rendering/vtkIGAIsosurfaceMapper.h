@@ -29,13 +29,15 @@
  * selection (vtkHardwareSelector, vtkPropPicker) draws VTK's ids: the prop, the composite block,
  * the process and the cell (the patch the hit lies in); point ids are not drawn.
  *
- * A property opacity below 1 blends the first hit over what lies behind it. VTK's translucency
- * techniques hook into this mapper's shader like into vtkOpenGLPolyDataMapper's (render passes'
- * DepthPeeling markers) and it draws at every peel: the default translucent pass
- * (order-independent: an alpha-weighted average of the layers), dual depth peeling
- * (vtkRenderer::UseDepthPeeling on OpenGL >= 3.2, ParaView's default for translucent geometry)
- * and the classic vtkDepthPeelingPass; under depth peeling the surface blends in exact depth
- * order with other translucent props. The surface's own further layers are not drawn. Depth
+ * A property opacity below 1 draws every layer of the surface (every hit along a pixel's ray,
+ * the 8 nearest where a pixel has more), each blended over what lies behind it. VTK's
+ * translucency techniques hook into this mapper's shader like into vtkOpenGLPolyDataMapper's
+ * (render passes' DepthPeeling markers), the layers are drawn as fragments of their own at
+ * every peel: the default translucent pass (order-independent: an alpha-weighted average of
+ * the layers), dual depth peeling (vtkRenderer::UseDepthPeeling on OpenGL >= 3.2, ParaView's
+ * default for translucent geometry) and the classic vtkDepthPeelingPass; under depth peeling
+ * each layer blends in exact depth order with the others and with other translucent props
+ * (given enough peels: vtkRenderer::SetMaximumNumberOfPeels). Depth
  * peeling needs a render window without multisampling (SetMultiSamples(0), as vtkRenderer
  * documents and ParaView does): with VTK 9.2 on a multisampled window the peeling passes' copy
  * of the opaque depth fails on strict drivers (Mesa) and no translucent prop at all is drawn;
@@ -248,8 +250,9 @@ public:
   vtkIdType GetLastUnresolvedPixels() const { return this->LastUnresolvedPixels; }
 
 #ifndef __VTK_WRAP__
-  /// The last frame's G-buffer (all first hits) and its shaded colours (RGBA, premultiplied,
-  /// row 0 at the bottom), e.g. for an OpenEXR export of what was drawn.
+  /// The last frame's G-buffer (its first hits; every hit of a translucent surface) and the
+  /// first hits' shaded colours (RGBA, premultiplied, row 0 at the bottom), e.g. for an OpenEXR
+  /// export of what was drawn.
   const iga::sst::GBuffer& GetLastGBuffer() const;
   const std::vector<float>& GetLastColours() const;
 #endif
@@ -316,6 +319,8 @@ private:
   void ReportDeadline(const iga::sst::FrameReport& report);
   /// Colour and window depth of every pixel from the G-buffer, with VTK's lights.
   void ShadeFrame(vtkActor* actor, const Frame& frame);
+  /// The frame's layer images, cleared: one, or a translucent surface's layers.
+  void AllocateLayers(const Frame& frame);
   /// The element edges over the shaded colours (the property's EdgeVisibility).
   void DrawEdges(vtkProperty* property);
   /// Colours, or a hardware selector's ids, drawn as a full-screen pass with gl_FragDepth.
@@ -325,7 +330,7 @@ private:
   std::vector<vtkOpenGLRenderPass*> RenderPasses(vtkOpenGLRenderWindow* window, vtkActor* actor);
   bool UpdateShader(vtkOpenGLRenderWindow* window, vtkActor* actor,
     const std::vector<vtkOpenGLRenderPass*>& passes);
-  void DrawQuad(vtkOpenGLRenderWindow* window, vtkActor* actor);
+  void DrawQuad(vtkOpenGLRenderWindow* window, vtkActor* actor, bool selecting);
 #endif
 
   struct Internals;

@@ -209,17 +209,26 @@ void csgStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
   for (const auto& size : sizes)
   {
     const std::string tag = std::to_string(size[0]) + "x" + std::to_string(size[1]);
-    const auto csg = measureFrames("csg", "dice-cube-minus-pips", 0, 4, size[0], size[1], threads,
-      Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, false,
-      [&](int, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
-      {
-        return iga::sst::renderCsg(
-          scene, iga::sst::makeView(camera, settings.width, settings.height), settings, m, out);
-      });
+    // The solid's nearest surface, then all its layers (as a translucent actor draws them).
+    auto solid = [&](const std::string& dataset, bool allLayers)
+    {
+      return measureFrames("csg", dataset, 0, 4, size[0], size[1], threads,
+        Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, false,
+        [&](int, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+        {
+          iga::sst::Settings s = settings;
+          s.firstHitOnly = !allLayers;
+          return iga::sst::renderCsg(
+            scene, iga::sst::makeView(camera, s.width, s.height), s, m, out);
+        });
+    };
+    const auto csg = solid("dice-cube-minus-pips", false);
+    const auto layers = solid("dice-cube-minus-pips-all-layers", true);
     const auto cube = measure("csg", "dice-cube-isosurface", dice, 0.0, 4, size[0], size[1],
       threads, Method::SharedSubdivisionTree, reps);
-    all.insert(all.end(), { csg, cube });
+    all.insert(all.end(), { csg, layers, cube });
     ratios.emplace_back("csgOverIsosurface_dice_" + tag, csg.ms / cube.ms);
+    ratios.emplace_back("allLayersOverFirst_diceCsg_" + tag, layers.ms / csg.ms);
     if (quick)
     {
       break;

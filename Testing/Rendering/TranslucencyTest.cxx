@@ -63,7 +63,8 @@ struct Scene
   vtkNew<vtkRenderer> renderer;
   vtkSmartPointer<vtkImageData> image;
 
-  explicit Scene(Technique technique)
+  /// Depth peeling takes up to `peels` peels.
+  explicit Scene(Technique technique, int peels = 4)
   {
     window->SetOffScreenRendering(1);
     window->SetSize(200, 160);
@@ -75,7 +76,7 @@ struct Scene
     if (technique == Technique::DualDepthPeeling)
     {
       renderer->SetUseDepthPeeling(1);
-      renderer->SetMaximumNumberOfPeels(4);
+      renderer->SetMaximumNumberOfPeels(peels);
       renderer->SetOcclusionRatio(0);
     }
     else if (technique == Technique::DepthPeeling)
@@ -83,7 +84,7 @@ struct Scene
       vtkNew<vtkTranslucentPass> translucent;
       vtkNew<vtkDepthPeelingPass> peeling;
       peeling->SetTranslucentPass(translucent);
-      peeling->SetMaximumNumberOfPeels(4);
+      peeling->SetMaximumNumberOfPeels(peels);
       peeling->SetOcclusionRatio(0);
       vtkNew<vtkRenderStepsPass> steps;
       steps->SetTranslucentPass(peeling);
@@ -173,7 +174,8 @@ class TranslucencyInDepthOrder : public Translucency
 {
 };
 
-/// A half-opaque red isosurface over an opaque green sphere inside it and over the background.
+/// A half-opaque red isosurface over an opaque green sphere inside it (its near side only: the
+/// far side is behind the green), and over the background (both sides: 1/2 + 1/4 red).
 TEST_P(Translucency, SurfaceBlendsOverWhatIsBehind)
 {
   Scene scene(GetParam());
@@ -181,27 +183,30 @@ TEST_P(Translucency, SurfaceBlendsOverWhatIsBehind)
   scene.addIsosurface(1, 0, 0, 0.5);
   scene.render();
   EXPECT_RGB(scene.pixelAt(0.55, -0.3, 0.2), 128, 128, 0, "half red over the green sphere");
-  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 128, 0, 0, "half red over the black background");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 191, 0, 0, "both sides over the black background");
   EXPECT_RGB(scene.pixelAt(1.2, 0, 1.2), 0, 0, 0, "nothing drawn outside the surface");
   // Again, with the same frame (nothing changed: the mapper reuses it, every peel still draws).
   scene.render();
   EXPECT_RGB(scene.pixelAt(0.55, -0.3, 0.2), 128, 128, 0, "second render");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 191, 0, 0, "second render, both sides");
 }
 
-/// A half-opaque blue square in front of the isosurface, then behind the surface's near side:
-/// each layer blends over the one behind it (front colour 1/2, back colour 1/4).
+/// A half-opaque blue square in front of the isosurface, then between its near and far sides:
+/// each layer blends over the ones behind it (the k-th layer's colour weighs 1/2^k).
 TEST_P(TranslucencyInDepthOrder, SurfaceAndPolygonBlendInDepthOrder)
 {
   Scene scene(GetParam());
   scene.addIsosurface(1, 0, 0, 0.5);
   vtkActor* square = scene.addSquare(-1.5, 0, 0, 1, 0.5);
   scene.render();
-  EXPECT_RGB(scene.pixelAt(0, -1, 0), 64, 0, 128, "blue square in front of the red surface");
+  // Blue 1/2, red's near side 1/4, its far side 1/8.
+  EXPECT_RGB(scene.pixelAt(0, -1, 0), 96, 0, 128, "blue square in front of the red surface");
   EXPECT_RGB(scene.pixelAt(1.2, 0, 1.2), 0, 0, 128, "the square alone");
-  square->SetPosition(0, 2, 0); // y = 0.5: behind the surface's near side
+  square->SetPosition(0, 2, 0); // y = 0.5: between the surface's near and far sides
   scene.render();
-  EXPECT_RGB(scene.pixelAt(0, -1, 0), 128, 0, 64, "red surface in front of the blue square");
-  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 128, 0, 64, "elsewhere on the surface");
+  // Red 1/2, blue 1/4, red 1/8.
+  EXPECT_RGB(scene.pixelAt(0, -1, 0), 159, 0, 64, "the square inside the red surface");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 159, 0, 64, "elsewhere on the surface");
   EXPECT_RGB(scene.pixelAt(1.2, 0, 1.2), 0, 0, 128, "the square alone");
 }
 
@@ -214,14 +219,39 @@ TEST_P(TranslucencyInDepthOrder, TwoSurfacesBlendInDepthOrder)
   vtkActor* blue = scene.addIsosurface(0, 0, 1, 0.5);
   blue->SetPosition(0.8, 2, 0);
   scene.render();
-  // On the red sphere's near side, in front of the blue sphere.
-  EXPECT_RGB(scene.pixelAt(0.5, -0.85, 0), 128, 0, 64, "red in front of blue");
-  EXPECT_RGB(scene.pixelAt(-0.5, -0.85, 0), 128, 0, 0, "red alone");
+  // On the red sphere's near side, in front of the blue sphere: red's two sides 1/2 + 1/4, then
+  // blue's 1/8 + 1/16.
+  EXPECT_RGB(scene.pixelAt(0.5, -0.85, 0), 191, 0, 48, "red in front of blue");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.85, 0), 191, 0, 0, "red alone");
   red->SetPosition(0.8, 2, 0);
   blue->SetPosition(0, 0, 0);
   scene.render();
-  EXPECT_RGB(scene.pixelAt(0.5, -0.85, 0), 64, 0, 128, "blue in front of red");
-  EXPECT_RGB(scene.pixelAt(-0.5, -0.85, 0), 0, 0, 128, "blue alone");
+  EXPECT_RGB(scene.pixelAt(0.5, -0.85, 0), 48, 0, 191, "blue in front of red");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.85, 0), 0, 0, 191, "blue alone");
+}
+
+/// Two nested isosurfaces of one actor (the Marsden sphere's field at -0.5 and 0: radii
+/// sqrt(1/2) and 1) and a VTK polygonal sphere of radius 0.85 between them, all half opaque:
+/// six layers through the centre, interleaved, each weighing 1/2^k in depth order.
+TEST_P(TranslucencyInDepthOrder, NestedSurfacesAndAPolygonalSphereInterleave)
+{
+  Scene scene(GetParam(), 8);
+  vtkActor* nested = scene.addIsosurface(1, 0, 0, 0.5);
+  static_cast<vtkIGAIsosurfaceMapper*>(nested->GetMapper())->SetIsovalue(1, -0.5);
+  vtkNew<vtkSphereSource> ball;
+  ball->SetRadius(0.85);
+  ball->SetThetaResolution(96);
+  ball->SetPhiResolution(96);
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ball->GetOutputPort());
+  scene.add(ballMapper, 0, 1, 0, 0.5);
+  scene.render();
+  // Along the view axis: red (outer), green, red (inner), red (inner), green, red (outer).
+  const double red = 1.0 / 2 + 1.0 / 8 + 1.0 / 16 + 1.0 / 64, green = 1.0 / 4 + 1.0 / 32;
+  EXPECT_RGB(scene.pixelAt(0, -1, 0), 255 * red, 255 * green, 0, "six layers");
+  // Past the inner sphere (|x| > 0.71) but inside the ball: four layers, red green green red.
+  const double redOut = 1.0 / 2 + 1.0 / 16, greenOut = 1.0 / 4 + 1.0 / 8;
+  EXPECT_RGB(scene.pixelAt(0.78, -0.2, 0), 255 * redOut, 255 * greenOut, 0, "four layers");
 }
 
 /// In a viewport away from the window's corner (the peeling passes draw into their own
@@ -234,20 +264,21 @@ TEST_P(Translucency, SurfaceInAnOffsetViewport)
   scene.addIsosurface(1, 0, 0, 0.5);
   scene.render();
   EXPECT_RGB(scene.pixelAt(0.55, -0.3, 0.2), 128, 128, 0, "half red over the green sphere");
-  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 128, 0, 0, "half red over the black background");
+  EXPECT_RGB(scene.pixelAt(-0.5, -0.8, -0.2), 191, 0, 0, "both sides over the black background");
 }
 
-/// Dual depth peeling with one peel: the front and back layers are peeled, the surface between
-/// them is blended in the final alpha-blending stage.
+/// Dual depth peeling with one peel: the front and back layers are peeled, the surface's two
+/// sides between them are blended in the final alpha-blending stage.
 TEST(TranslucencyPeeling, SurfaceLeftToTheLastStageOfDualDepthPeeling)
 {
   Scene scene(Technique::DualDepthPeeling);
   scene.renderer->SetMaximumNumberOfPeels(1);
   scene.addSquare(-1.5, 0, 0, 1, 0.5);
   scene.addIsosurface(1, 0, 0, 0.5);
-  scene.addSquare(0.5, 0, 1, 0, 0.5);
+  scene.addSquare(1.5, 0, 1, 0, 0.5);
   scene.render();
-  EXPECT_RGB(scene.pixelAt(0, -1, 0), 64, 32, 128, "blue over red over green");
+  // Blue 1/2, red 1/4 + 1/8, green 1/16.
+  EXPECT_RGB(scene.pixelAt(0, -1, 0), 96, 16, 128, "blue over both red sides over green");
 }
 
 /// Depth peeling on a multisampled window draws no translucent geometry with VTK 9.2 (Mesa):
