@@ -11,7 +11,7 @@ flags="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-omit-
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DBUILD_TESTING=OFF -DIGAVIEW_FUZZ=ON -DIGAVIEW_ENABLE_CUDA=OFF \
   "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_C_FLAGS=$flags" >/dev/null
-targets=(igaFuzzVTU igaFuzzGismo igaFuzzGeoPDEs igaFuzzEngine)
+targets=(igaFuzzVTU igaFuzzGismo igaFuzzGeoPDEs igaFuzzEngine igaFuzzCsg)
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 
 shared="$root/../shared/data"
@@ -27,6 +27,7 @@ seed "$build/corpus/vtu" "$root"/Data/*.vtu "$root"/Testing/Fuzz/regressions/*.v
 seed "$build/corpus/gismo" "$root"/Data/gismo_*.xml "$shared"/gismo/*.xml
 seed "$build/corpus/geopdes" "$root"/Data/geopdes_*.txt "$shared"/geopdes/*.txt
 seed "$build/corpus/engine"
+seed "$build/corpus/csg" "$root"/Testing/Fuzz/csg/*.txt
 
 # UBSan findings are errors; leaks of VTK's singletons at exit are not ours to judge.
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
@@ -53,3 +54,4 @@ run igaFuzzVTU "$build/corpus/vtu" "$root/Testing/Fuzz/xml.dict"
 run igaFuzzGismo "$build/corpus/gismo" "$root/Testing/Fuzz/xml.dict"
 run igaFuzzGeoPDEs "$build/corpus/geopdes" "$root/Testing/Fuzz/geopdes.dict"
 run igaFuzzEngine "$build/corpus/engine"
+run igaFuzzCsg "$build/corpus/csg" "$root/Testing/Fuzz/csg.dict"
