@@ -8,7 +8,7 @@
 #include <limits>
 
 vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(
-  const iga::sst::GBuffer& gbuffer, const float* rgba, const std::string& colorName)
+  const iga::sst::GBuffer& gbuffer, const float* rgba, const std::string& colorName, bool operands)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(gbuffer.width, gbuffer.height, 1);
@@ -34,10 +34,16 @@ vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(
   auto u = makeArray("u", 1), v = makeArray("v", 1), w = makeArray("w", 1);
   vtkSmartPointer<vtkFloatArray> attribute =
     colorName.empty() ? nullptr : makeArray(colorName.c_str(), 1);
-  auto patch = vtkSmartPointer<vtkIntArray>::New();
-  patch->SetName("patch");
-  patch->SetNumberOfTuples(pixels);
-  image->GetPointData()->AddArray(patch);
+  auto makeIndices = [&](const char* name)
+  {
+    auto array = vtkSmartPointer<vtkIntArray>::New();
+    array->SetName(name);
+    array->SetNumberOfTuples(pixels);
+    image->GetPointData()->AddArray(array);
+    return array;
+  };
+  auto patch = makeIndices("patch");
+  vtkSmartPointer<vtkIntArray> operand = operands ? makeIndices("operand") : nullptr;
 
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (int j = 0; j < gbuffer.height; ++j)
@@ -60,6 +66,10 @@ vtkSmartPointer<vtkImageData> vtkIGAGBufferImage::Convert(
       v->SetValue(p, hit ? float(hit->uvw[1]) : nan);
       w->SetValue(p, hit ? float(hit->uvw[2]) : nan);
       patch->SetValue(p, hit ? hit->patch : -1);
+      if (operand)
+      {
+        operand->SetValue(p, hit ? hit->isovalue : -1);
+      }
       if (attribute)
       {
         attribute->SetValue(p, hit ? float(hit->color) : nan);

@@ -181,6 +181,7 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << "\n" << indent << "SurfaceArrayName: " << this->SurfaceArrayName << "\n";
   os << indent << "DrawMode: " << this->DrawMode << "\n";
+  os << indent << "AllLayers: " << this->AllLayers << "\n";
   os << indent << "CsgExpression: " << this->CsgExpression << "\n";
   os << indent << "Slices: " << this->Slices.size() / 4 << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
@@ -631,6 +632,7 @@ struct vtkIGAIsosurfaceMapper::Frame
   iga::sst::View View;
   iga::sst::Settings Settings;
   bool ByScalars = false;
+  bool Translucent = false;           ///< the actor's opacity is below 1: every layer is drawn
   bool Volumes = false;               ///< the hexahedra's isosurfaces are drawn
   double MostPairs = 0, Progress = 0; ///< of the progress reported during the frame
 };
@@ -836,7 +838,8 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   settings.threads = this->NumberOfThreads;
   settings.isovalues = frame.Volumes ? this->Isovalues : std::vector<double>();
   // A translucent surface shows every layer (AllocateLayers), an opaque one its first.
-  settings.firstHitOnly = !(actor->GetProperty()->GetOpacity() < 1.0);
+  frame.Translucent = actor->GetProperty()->GetOpacity() < 1.0;
+  settings.firstHitOnly = !(frame.Translucent || this->AllLayers);
   // Clipping planes (world coordinates, as vtkOpenGLPolyDataMapper takes them).
   settings.clipPlanes.resize(size_t(this->GetNumberOfClippingPlanes()));
   vtkNew<vtkMatrix4x4> identity;
@@ -1206,7 +1209,7 @@ void vtkIGAIsosurfaceMapper::AllocateLayers(const Frame& frame)
   // kMaxLayers, the nearest; said once when a pixel has more).
   Internals& in = *this->Internal;
   int most = 1;
-  for (size_t p = 0; !frame.Settings.firstHitOnly && p + 1 < in.GBuffer.offsets.size(); ++p)
+  for (size_t p = 0; frame.Translucent && p + 1 < in.GBuffer.offsets.size(); ++p)
   {
     most = std::max(most, int(in.GBuffer.offsets[p + 1] - in.GBuffer.offsets[p]));
   }

@@ -172,6 +172,15 @@ public:
   ///@}
 
   ///@{
+  /// Find every layer of the surface even when it is opaque, so that GetLastGBuffer holds every
+  /// hit of every pixel (a deep G-buffer); off by default (a translucent surface finds them all
+  /// anyway). What is drawn does not change.
+  vtkSetMacro(AllLayers, bool);
+  vtkGetMacro(AllLayers, bool);
+  vtkBooleanMacro(AllLayers, bool);
+  ///@}
+
+  ///@{
   /// CPU threads for the engine; 0 (default) uses all.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
@@ -340,6 +349,7 @@ private:
   std::vector<double> Slices; ///< a, b, c, d per slice
   std::string SurfaceArrayName;
   int DrawMode = DRAW_ISOSURFACES;
+  bool AllLayers = false;
   int NumberOfThreads = 0;
   int Backend = BACKEND_AUTOMATIC;
   int MaximumSubdivisionDepth = 22;

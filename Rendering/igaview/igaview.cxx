@@ -5,6 +5,7 @@
 // window (trackball camera, keys for the isovalue and time, frame-time readout).
 #include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierHexahedra.h"
+#include "vtkIGADeepEXR.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAEXRWriter.h"
 #include "vtkIGAGBufferImage.h"
@@ -96,7 +97,11 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
                          present; the environment variable IGAVIEW_BACKEND sets auto's choice)
   -o FILE                output PNG (default igaview.png)
   --exr FILE             also write the G-buffer as OpenEXR: R G B A, Z (eye depth), P.X P.Y P.Z,
-                         N.X N.Y N.Z, u v w, patch, and the colour attribute by name (render)
+                         N.X N.Y N.Z, u v w, patch, and the colour attribute by name (render);
+                         with --csg, --slice or --clip also operand (the surface's operand, the
+                         slices numbered after the operands)
+  --deep-exr FILE        also write every layer (every hit of every pixel, front to back) as a
+                         deep OpenEXR image: Z, P, N, u v w, patch, operand, entering (render)
   --keys K1,K2,...       view: press these keys (Up, Down, Left, Right, r), print the state after
                          each, write -o if given, and exit without opening a window (scripts, tests)
   -h, --help             this text
@@ -112,7 +117,7 @@ struct Options
   bool hasOutput = false;
   std::string input;
   std::vector<double> isovalues;
-  std::string surfaceBy, colorBy, output = "igaview.png", exr;
+  std::string surfaceBy, colorBy, output = "igaview.png", exr, deepExr;
   int size[2] = { 800, 600 };
   int threads = 0;
   int memoryBudgetMB = 4096;
@@ -293,6 +298,8 @@ Options parseArguments(int argc, char** argv)
     }
     else if (arg == "--exr")
       options.exr = value();
+    else if (arg == "--deep-exr")
+      options.deepExr = value();
     else if (arg == "--threads")
       options.threads = parseWholeNumber(value(), arg, 1, 1024);
     else if (arg == "--memory-budget")
@@ -745,6 +752,7 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
   if (!drawing.surfaces && !drawing.csg)
     mapper->SetSurfaceArrayName(names[drawing.surface].c_str());
   mapper->SetCsgExpression(drawing.expression.c_str());
+  mapper->SetAllLayers(!options.deepExr.empty());
   for (size_t k = 0; k < options.slices.size(); ++k)
   {
     const auto& plane = options.slices[k];
@@ -853,13 +861,20 @@ void writeOutputs(const Options& options, const Input& input, const Drawing& dra
   {
     const auto& names = input.patches.volumes.attributeNames;
     vtkNew<vtkIGAEXRWriter> writer;
-    writer->SetInputData(vtkIGAGBufferImage::Convert(
-      gbuffer, mapper->GetLastColours().data(), drawing.colour >= 0 ? names[drawing.colour] : ""));
+    writer->SetInputData(vtkIGAGBufferImage::Convert(gbuffer, mapper->GetLastColours().data(),
+      drawing.colour >= 0 ? names[drawing.colour] : "", drawing.csg));
     writer->SetFileName(options.exr.c_str());
     writer->Write();
     if (writer->GetErrorCode() != 0)
       fail(writer->GetLastError());
     std::printf("igaview: wrote %s\n", options.exr.c_str());
+  }
+  if (!options.deepExr.empty())
+  {
+    std::string error;
+    if (!vtkIGADeepEXR::Write(gbuffer, options.deepExr, error))
+      fail(error);
+    std::printf("igaview: wrote %s (%zu samples)\n", options.deepExr.c_str(), gbuffer.hits.size());
   }
 }
 

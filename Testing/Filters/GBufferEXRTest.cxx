@@ -1,5 +1,6 @@
 // The engine's G-buffer written as OpenEXR and read back with OpenEXR: channel names, row order,
 // values and the no-hit conventions.
+#include "vtkIGADeepEXR.h"
 #include "vtkIGAEXRWriter.h"
 #include "vtkIGAGBufferImage.h"
 
@@ -10,6 +11,8 @@
 #include "iga/sst/Engine.h"
 
 #include <ImfChannelList.h>
+#include <ImfDeepFrameBuffer.h>
+#include <ImfDeepScanLineInputFile.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
@@ -126,6 +129,86 @@ TEST(GBufferEXR, WriterReportsProblemsWithTheFileName)
   EXPECT_NE(
     std::string(writer->GetLastError()).find("/nonexistent/dir/out.exr: cannot write OpenEXR"),
     std::string::npos);
+}
+
+/// Every layer of an all-hits G-buffer (the tube's two isosurfaces, both sides) written as a
+/// deep EXR and read back with OpenEXR: per pixel the same samples in the same order.
+TEST(GBufferEXR, DeepImageHoldsEveryLayer)
+{
+  const auto set = iga::makeTube<double>(0.5, 0.0);
+  double bounds[6];
+  iga::sst::patchBounds(set.patches, bounds);
+  iga::Camera camera = iga::frameBounds(bounds, { -0.5, 0.7, -0.4 }, { 0, 0, 1 }, 30);
+  iga::sst::Settings settings;
+  settings.width = 40;
+  settings.height = 30;
+  settings.isovalues = { 0.6, 0.85 };
+  settings.surfaceAttribute = 1;
+  settings.firstHitOnly = false;
+  iga::sst::GBuffer gbuffer;
+  iga::sst::render(set.patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+  const std::string file = testing::TempDir() + "deep.exr";
+  std::string error;
+  ASSERT_TRUE(vtkIGADeepEXR::Write(gbuffer, file, error)) << error;
+
+  Imf::DeepScanLineInputFile in(file.c_str());
+  const int width = settings.width, height = settings.height;
+  std::vector<unsigned int> counts(size_t(width) * height);
+  // The slices first (their pointer tables filled once the counts are known), then the counts,
+  // then the samples.
+  const char* names[4] = { "Z", "P.X", "operand", "entering" };
+  std::vector<std::vector<float>> samples(4);
+  std::vector<std::vector<char*>> starts(4, std::vector<char*>(counts.size()));
+  Imf::DeepFrameBuffer frame;
+  frame.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()),
+    sizeof(unsigned int), sizeof(unsigned int) * width));
+  for (int c = 0; c < 4; ++c)
+  {
+    frame.insert(
+      names[c], Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(starts[size_t(c)].data()),
+                  sizeof(char*), sizeof(char*) * width, sizeof(float)));
+  }
+  in.setFrameBuffer(frame);
+  in.readPixelSampleCounts(0, height - 1);
+  size_t total = 0;
+  for (unsigned int count : counts)
+    total += count;
+  ASSERT_EQ(total, gbuffer.hits.size());
+  for (int c = 0; c < 4; ++c)
+  {
+    samples[size_t(c)].resize(total);
+    size_t at = 0;
+    for (size_t p = 0; p < counts.size(); ++p)
+    {
+      starts[size_t(c)][p] = reinterpret_cast<char*>(samples[size_t(c)].data() + at);
+      at += counts[p];
+    }
+  }
+  in.readPixels(0, height - 1);
+  int layered = 0;
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i)
+    {
+      const size_t row = size_t(height - 1 - j) * width + i; // EXR rows run top to bottom
+      ASSERT_EQ(int(counts[row]), gbuffer.hitCount(i, j));
+      layered += gbuffer.hitCount(i, j) >= 3 ? 1 : 0;
+      for (int k = 0; k < gbuffer.hitCount(i, j); ++k)
+      {
+        const iga::sst::Hit& hit = gbuffer.firstHit(i, j)[k];
+        const float* z = reinterpret_cast<const float*>(starts[0][row]);
+        const float* x = reinterpret_cast<const float*>(starts[1][row]);
+        const float* operand = reinterpret_cast<const float*>(starts[2][row]);
+        const float* entering = reinterpret_cast<const float*>(starts[3][row]);
+        EXPECT_EQ(z[k], float(hit.eyeDepth));
+        EXPECT_EQ(x[k], float(hit.position[0]));
+        EXPECT_EQ(operand[k], float(hit.isovalue));
+        EXPECT_EQ(entering[k], hit.entersBelow ? 1.0f : 0.0f);
+      }
+    }
+  EXPECT_GT(layered, 100) << "rays through both isosurfaces";
+  EXPECT_FALSE(vtkIGADeepEXR::Write(gbuffer, "/nonexistent/dir/deep.exr", error));
+  EXPECT_NE(error.find("/nonexistent/dir/deep.exr': cannot write deep OpenEXR"), std::string::npos)
+    << error;
 }
 
 } // namespace

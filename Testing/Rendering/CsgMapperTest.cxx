@@ -132,6 +132,28 @@ TEST(CsgMapper, TubeCutOpenWithASliceColouredByTemperature)
   igatest::compareWithBaseline(scene.window, "MapperTubeCutOpenWithSlice");
 }
 
+TEST(CsgMapper, AllLayersFillTheGBufferAndDrawTheSameImage)
+{
+  CsgScene scene;
+  scene.look(2.6, -3.4, 3.0, 0, 0, 1);
+  scene.mapper->SetCsgExpression("domain - radius<0.8");
+  const auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5));
+  const iga::sst::GBuffer first = scene.draw(grid);
+  const std::vector<float> colours = scene.mapper->GetLastColours();
+  scene.mapper->AllLayersOn();
+  scene.window->Render();
+  const iga::sst::GBuffer& all = scene.mapper->GetLastGBuffer();
+  EXPECT_EQ(all.coveredPixels(), first.coveredPixels());
+  EXPECT_GT(all.hits.size(), 2 * first.hits.size()) << "the tube's walls, each entered and left";
+  for (int j = 0; j < all.height; ++j)
+    for (int i = 0; i < all.width; ++i)
+      if (first.firstHit(i, j))
+      {
+        ASSERT_EQ(all.firstHit(i, j)->eyeDepth, first.firstHit(i, j)->eyeDepth);
+      }
+  EXPECT_EQ(scene.mapper->GetLastColours(), colours) << "an opaque surface shows its first layer";
+}
+
 TEST(CsgMapper, BadExpressionsAreSaidOnceAndTheLastGoodOneKept)
 {
   CsgScene scene;
