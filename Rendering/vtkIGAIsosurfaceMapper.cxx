@@ -121,6 +121,10 @@ struct vtkIGAIsosurfaceMapper::Internals
   int SurfacesMode = -1;
   std::vector<iga::PatchFace> Faces;
   std::vector<uint64_t> FacesTopology;
+  // DRAW_CSG: each block of the input is an input of its own (overlapping blocks are solids of
+  // their own), with its boundary faces, for the topology BlockFacesTopology.
+  std::vector<std::vector<iga::PatchFace>> BlockFaces;
+  std::vector<uint64_t> BlockFacesTopology;
   // The last frame: what it depended on, and its layers (the first hits; behind them, for a
   // translucent surface, the further hits), LayerCount of them in use.
   std::vector<double> FrameKey;
@@ -726,10 +730,16 @@ void vtkIGAIsosurfaceMapper::UpdateSurfaces()
   {
     return;
   }
-  this->UpdateBoundaryFaces();
   if (this->DrawMode == DRAW_CSG)
   {
+    this->UpdateBlockFaces();
     return;
+  }
+  // Which faces are outer depends on the topology alone: found again only when it changes.
+  if (in.FacesTopology != in.Topology || in.Faces.empty())
+  {
+    in.Faces = iga::boundaryFaces(in.Set.patches);
+    in.FacesTopology = in.Topology;
   }
   for (const iga::PatchFace& face : in.Faces)
   {
@@ -738,15 +748,46 @@ void vtkIGAIsosurfaceMapper::UpdateSurfaces()
   }
 }
 
-void vtkIGAIsosurfaceMapper::UpdateBoundaryFaces()
+namespace
 {
-  // Which faces are outer depends on the topology alone: found again only when it changes.
-  Internals& in = *this->Internal;
-  if (in.FacesTopology != in.Topology || in.Faces.empty())
+/// The blocks of the hexahedra as ranges [first, end) of their patches (a composite input's
+/// blocks are collected one after the other).
+std::vector<std::pair<size_t, size_t>> blockRanges(const std::vector<unsigned int>& blocks)
+{
+  std::vector<std::pair<size_t, size_t>> ranges;
+  for (size_t p = 0; p < blocks.size(); ++p)
   {
-    in.Faces = iga::boundaryFaces(in.Set.patches);
-    in.FacesTopology = in.Topology;
+    if (ranges.empty() || blocks[p] != blocks[ranges.back().first])
+    {
+      ranges.emplace_back(p, p);
+    }
+    ranges.back().second = p + 1;
   }
+  return ranges;
+}
+
+/// Patches [first, end) of `patches`.
+std::vector<iga::BezierVolume<double>> patchRange(
+  const std::vector<iga::BezierVolume<double>>& patches, const std::pair<size_t, size_t>& range)
+{
+  return std::vector<iga::BezierVolume<double>>(
+    patches.begin() + long(range.first), patches.begin() + long(range.second));
+}
+} // namespace
+
+void vtkIGAIsosurfaceMapper::UpdateBlockFaces()
+{
+  Internals& in = *this->Internal;
+  if (in.BlockFacesTopology == in.Topology && !in.BlockFaces.empty())
+  {
+    return;
+  }
+  in.BlockFaces.clear();
+  for (const auto& range : blockRanges(in.PatchBlock))
+  {
+    in.BlockFaces.push_back(iga::boundaryFaces(patchRange(in.Set.patches, range)));
+  }
+  in.BlockFacesTopology = in.Topology;
 }
 
 iga::sst::Scene vtkIGAIsosurfaceMapper::EngineScene(bool identity) const
@@ -1034,8 +1075,18 @@ iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, con
 {
   Internals& in = *this->Internal;
   iga::sst::CsgScene scene;
-  scene.inputs.push_back(
-    { identity ? &in.Set.patches : &in.World, in.Set.attributeNames, &in.Faces });
+  const auto& volumes = identity ? in.Set.patches : in.World;
+  const auto ranges = blockRanges(in.PatchBlock);
+  std::vector<std::vector<iga::BezierVolume<double>>> blocks(ranges.size() > 1 ? ranges.size() : 0);
+  for (size_t b = 0; b < ranges.size(); ++b)
+  {
+    if (ranges.size() > 1)
+    {
+      blocks[b] = patchRange(volumes, ranges[b]);
+    }
+    scene.inputs.push_back(
+      { ranges.size() > 1 ? &blocks[b] : &volumes, in.Set.attributeNames, &in.BlockFaces[b] });
+  }
   if (!this->CsgExpression.empty())
   {
     scene.expression = iga::csg::parseExpression(this->CsgExpression);

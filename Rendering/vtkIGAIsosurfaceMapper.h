@@ -147,7 +147,8 @@ public:
   /// `NAME>VALUE`, the hexahedra's whole `domain` and half-spaces `plane(a,b,c,d)` (a x + b y +
   /// c z + d >= 0), joined by `|` (union), `&` (intersection, binding tighter) and `-`
   /// (difference), grouped by parentheses; e.g. "cube<0 - pips<0". Every solid lies within the
-  /// hexahedra, whose boundary closes it (the caps are drawn, coloured like the rest). Empty
+  /// hexahedra, whose boundary closes it (the caps are drawn, coloured like the rest); each
+  /// block of a composite input is closed by its own boundary, so blocks may overlap. Empty
   /// (the default): only the slices. An expression that does not parse is refused with an
   /// error naming the position, and the previous one kept; a point array no grid has is said
   /// when drawing. Hits name their operand (iga::sst::Hit::isovalue in GetLastGBuffer).
@@ -299,8 +300,9 @@ private:
   bool CollectInput(Frame& frame);
   /// The surfaces drawn: the quadrilaterals, and in DRAW_SURFACES the volumes' boundary faces.
   void UpdateSurfaces();
-  /// The volumes' boundary faces, found again when the topology changed.
-  void UpdateBoundaryFaces();
+  /// Per block of the hexahedra, its boundary faces (DRAW_CSG), found again when the topology
+  /// changed.
+  void UpdateBlockFaces();
   /// The engine's frame of the CSG solid and the slices.
   iga::sst::FrameReport ComputeCsgFrame(bool identity, const Frame& frame);
   /// The scene the engine draws, in world space.

@@ -8,6 +8,7 @@
 
 #include "vtkActor.h"
 #include "vtkCommand.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkRenderWindow.h"
 #include "vtkTestErrorObserver.h"
@@ -17,6 +18,9 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -130,6 +134,54 @@ TEST(CsgMapper, TubeCutOpenWithASliceColouredByTemperature)
   EXPECT_GT(caps, 300) << "the cut face";
   EXPECT_GT(slices, 300);
   igatest::compareWithBaseline(scene.window, "MapperTubeCutOpenWithSlice");
+}
+
+TEST(CsgMapper, OverlappingBlocksAreSolidsOfTheirOwn)
+{
+  // Two Marsden spheres (boxes [-1.5, 1.5]^3 holding the unit ball's field), the second moved by
+  // 1.2 in x: the boxes and the balls overlap. Each block is closed by its own boundary, so the
+  // union of the balls has only their outer surfaces, and the union of the boxes only theirs.
+  auto moved = iga::makeMarsdenSphere<double>(2);
+  for (auto& patch : moved.patches)
+    for (int p = 0; p < patch.view().pointCount(); ++p)
+      patch.view().point(p)[0] += 1.2 * patch.view().point(p)[iga::kWeightChannel];
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetBlock(0, vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeMarsdenSphere<double>(2)));
+  blocks->SetBlock(1, vtkIGABezierHexahedra::ToUnstructuredGrid(moved));
+  CsgScene scene;
+  scene.look(2.0, -7.0, 3.0, 0.6, 0, 0);
+  scene.mapper->SetCsgExpression("sphere<0");
+  scene.mapper->AllLayersOn(); // every layer checked, not only the nearest
+  scene.mapper->SetInputData(blocks);
+  scene.window->Render();
+  const glm::dvec3 centres[2] = { { 0, 0, 0 }, { 1.2, 0, 0 } };
+  int balls[2] = { 0, 0 };
+  for (const auto& hit : scene.mapper->GetLastGBuffer().hits)
+  {
+    const double r0 = glm::length(hit.position - centres[0]),
+                 r1 = glm::length(hit.position - centres[1]);
+    const int on = std::abs(r0 - 1) < std::abs(r1 - 1) ? 0 : 1;
+    EXPECT_NEAR(on == 0 ? r0 : r1, 1, 1e-6) << "on a ball";
+    EXPECT_GE(on == 0 ? r1 : r0, 1 - 1e-6) << "outside the other ball";
+    EXPECT_EQ(hit.patch >= 1, on == 1) << "the block's patch (one patch a block)";
+    ++balls[on];
+  }
+  EXPECT_GT(balls[0], 1000);
+  EXPECT_GT(balls[1], 1000);
+  scene.mapper->SetCsgExpression("domain");
+  scene.window->Render();
+  int faces = 0;
+  for (const auto& hit : scene.mapper->GetLastGBuffer().hits)
+  {
+    // On the union's outside: a box's face, not inside the other box.
+    const glm::dvec3 local[2] = { hit.position - centres[0], hit.position - centres[1] };
+    auto inside = [](const glm::dvec3& x) {
+      return std::max({ std::abs(x[0]), std::abs(x[1]), std::abs(x[2]) }) < 1.5 - 1e-6;
+    };
+    EXPECT_FALSE(inside(local[0]) || inside(local[1])) << "inside a box at " << hit.position[0];
+    ++faces;
+  }
+  EXPECT_GT(faces, 5000);
 }
 
 TEST(CsgMapper, AllLayersFillTheGBufferAndDrawTheSameImage)
