@@ -1,7 +1,7 @@
 /**
  * @class   vtkIGADeepEXR
- * @brief   Every layer of the engine's G-buffer as a deep OpenEXR image (deep scan lines), for
- *          compositing tools.
+ * @brief   Every layer of the engine's G-buffer as a deep OpenEXR image (deep scan lines): the
+ *          geometry of each sample (no colour) for compositing and analysis tools.
  *
  * Per pixel its hits front to back as deep samples (row 0 of the G-buffer, the bottom, is the
  * image's last row, as EXR rows run top to bottom), FLOAT channels: Z (eye depth), P.X P.Y

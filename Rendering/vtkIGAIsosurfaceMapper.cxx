@@ -243,12 +243,16 @@ double vtkIGAIsosurfaceMapper::GetIsovalue(int index) const
 
 void vtkIGAIsosurfaceMapper::SetCsgExpression(const char* expression)
 {
-  const std::string text = expression ? expression : "";
+  std::string text = expression ? expression : "";
+  if (text.find_first_not_of(" \t\n\r\v\f") == std::string::npos)
+  {
+    text.clear(); // blank: no solid, only the slices
+  }
   if (text == this->CsgExpression)
   {
     return;
   }
-  if (text.find_first_not_of(" \t\n") != std::string::npos)
+  if (!text.empty())
   {
     try
     {
@@ -1155,9 +1159,10 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
     }
     this->ReportOnce("constant",
       (csg ? std::string("an operand's attribute") : "attribute '" + this->SurfaceArrayName + "'") +
-        " is constant" + value + " on " + std::to_string(report.constantAttributeRoots) + " of " +
-        std::to_string(in.Set.patches.size()) +
-        " patches: a constant field has no isosurface there, so they are not drawn; not "
+        " is constant" + value + " on " + std::to_string(report.constantAttributeRoots) +
+        (csg ? std::string(" patches of its operands")
+             : " of " + std::to_string(in.Set.patches.size()) + " patches") +
+        ": a constant field has no isosurface there, so they are not drawn; not "
         "reported again until the settings or the input change",
       false);
   }
@@ -1289,6 +1294,11 @@ void vtkIGAIsosurfaceMapper::AllocateLayers(const Frame& frame)
       false);
   }
   in.LayerCount = std::min(most, kMaxLayers);
+  for (size_t k = size_t(in.LayerCount); k < in.Layers.size(); ++k) // unused: their memory goes
+  {
+    in.Layers[k]->Colour = std::vector<float>();
+    in.Layers[k]->Depth = std::vector<float>();
+  }
   while (in.Layers.size() < size_t(in.LayerCount))
   {
     in.Layers.push_back(std::make_unique<LayerImage>());

@@ -212,7 +212,10 @@ public:
 
   ///@{
   /// Cap on a frame's memory in MiB (default 4096) besides the copies of the data: the image
-  /// (GetImageBytes) and the engine's working set (iga::sst::Settings::memoryBudgetBytes). A
+  /// (GetImageBytes) and the engine's working set (iga::sst::Settings::memoryBudgetBytes; in
+  /// DRAW_CSG per pass, the passes' hits kept besides). A translucent surface's further layers
+  /// (20 bytes a pixel each, at most 7, in host memory and as textures) and their hits are not
+  /// counted. A
   /// viewport whose image needs more is not drawn (said once); a frame with more (pixel, patch)
   /// pairs than a pass takes is drawn in bands of rows, and pixels whose subdivision would pass
   /// it are left unresolved.

@@ -146,6 +146,7 @@ private:
     {
       throw ExpressionError("expression ends where an operand or '(' is expected", start);
     }
+    const bool quoted = this->Text[start] == '"';
     const std::string name = this->name();
     const char comparison = this->peek();
     Operand operand;
@@ -157,11 +158,11 @@ private:
       operand.attribute = name;
       operand.value = this->number("a value after '" + std::string(1, comparison) + "'");
     }
-    else if (name == "domain")
+    else if (name == "domain" && !quoted)
     {
       operand.kind = Operand::Kind::Domain;
     }
-    else if (name == "plane")
+    else if (name == "plane" && !quoted)
     {
       operand.kind = Operand::Kind::Plane;
       this->plane(operand);
@@ -169,7 +170,7 @@ private:
     else
     {
       throw ExpressionError(
-        "'" + name + "' needs '<' or '>' and a value (or is it domain or plane?)", this->At);
+        "'" + name + "' needs '<' or '>' and a value (or is it domain or plane?)", start);
     }
     return this->leaf(operand);
   }
@@ -186,7 +187,7 @@ private:
       operand.plane[size_t(k)] = this->number("coefficient " + std::to_string(k + 1) + " of plane");
     }
     this->expect(')', "')' after the plane's four coefficients");
-    if (operand.plane[0] == 0 && operand.plane[1] == 0 && operand.plane[2] == 0)
+    if (!isPlane(operand.plane))
     {
       throw ExpressionError("plane has a zero normal (a, b, c)", operand.position);
     }
@@ -231,14 +232,15 @@ private:
     const char* begin = this->Text.c_str() + this->At;
     const char* last = this->Text.c_str() + this->Text.size();
     double value = 0;
-    const auto read = std::from_chars(begin + (*begin == '+' ? 1 : 0), last, value);
-    if (read.ec == std::errc::invalid_argument)
+    const bool plus = *begin == '+';
+    const auto read = std::from_chars(begin + (plus ? 1 : 0), last, value);
+    if (read.ec == std::errc::invalid_argument || (plus && (begin[1] == '-' || begin[1] == '+')))
     {
       throw ExpressionError("expected " + what, this->At);
     }
     if (read.ec == std::errc::result_out_of_range || !std::isfinite(value))
     {
-      throw ExpressionError(what + " is not a finite double", this->At);
+      throw ExpressionError(what + " is beyond the range of double", this->At);
     }
     this->At += size_t(read.ptr - begin);
     return value;
@@ -310,6 +312,50 @@ std::string Expression::text() const
                                : "(" + at(node.left) + symbol + at(node.right) + ")";
   };
   return at(this->root);
+}
+
+bool isPlane(const std::array<double, 4>& plane)
+{
+  return std::isfinite(plane[0]) && std::isfinite(plane[1]) && std::isfinite(plane[2]) &&
+         std::isfinite(plane[3]) && !(plane[0] == 0 && plane[1] == 0 && plane[2] == 0);
+}
+
+void checkExpression(const Expression& e)
+{
+  if (e.operands.size() > size_t(kMaxOperands))
+  {
+    throw std::invalid_argument(
+      "the expression has more than " + std::to_string(kMaxOperands) + " operands");
+  }
+  for (size_t k = 0; k < e.operands.size(); ++k)
+  {
+    const Operand& o = e.operands[k];
+    const bool attribute = o.kind == Operand::Kind::Below || o.kind == Operand::Kind::Above;
+    if ((attribute && (o.attribute.empty() || !std::isfinite(o.value))) ||
+        (o.kind == Operand::Kind::Plane && !isPlane(o.plane)))
+    {
+      throw std::invalid_argument("operand " + std::to_string(k) +
+                                  " of the expression has no attribute, a value that is not "
+                                  "finite, or a plane that is not one");
+    }
+  }
+  for (size_t n = 0; n < e.nodes.size(); ++n)
+  {
+    const Expression::Node& node = e.nodes[n];
+    const bool leaf = node.op == Expression::Op::Leaf;
+    const bool sound =
+      leaf ? node.operand >= 0 && size_t(node.operand) < e.operands.size()
+           : node.left >= 0 && node.right >= 0 && size_t(node.left) < n && size_t(node.right) < n;
+    if (!sound)
+    {
+      throw std::invalid_argument(
+        "node " + std::to_string(n) + " of the expression refers to no operand or later node");
+    }
+  }
+  if (e.root >= 0 && size_t(e.root) + 1 != e.nodes.size())
+  {
+    throw std::invalid_argument("the expression's root is not its last node");
+  }
 }
 
 Expression parseExpression(const std::string& text)

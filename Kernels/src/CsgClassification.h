@@ -53,6 +53,7 @@ struct CsgPasses
   /// operand in that input, -1 where the input lacks it (and for other operands).
   std::vector<int> sources;
   std::vector<CsgPass> list;
+  size_t slices = 0; ///< Slice passes' CsgPass::operand is the operands' count plus 0..slices-1
   std::vector<int> patchOffsets; ///< per input, its first volume in the result's numbering
   const View* view = nullptr;
   const std::vector<std::array<double, 4>>* clip = nullptr;
@@ -62,6 +63,12 @@ struct CsgPasses
 /// Below this |cos| between a hit's normal and the ray, the ray touches the surface rather
 /// than crossing it: the hit changes no operand's inside (a tangential touch must not flip it).
 constexpr double kTouchCosine = 1e-9;
+
+/// a x + b y + c z + d at x.
+inline double planeValue(const std::array<double, 4>& plane, const glm::dvec3& x)
+{
+  return plane[0] * x[0] + plane[1] * x[1] + plane[2] * x[2] + plane[3];
+}
 
 /// Classifies one pixel at a time, keeping its scratch between pixels.
 class PixelClassifier
@@ -92,48 +99,82 @@ public:
   }
 
 private:
+  /// Events closer along the ray than the engine's duplicate tolerance (1e-4 of a pixel's
+  /// footprint) are one crossing seen twice or more: a face two inputs share (leaving one,
+  /// entering the other), a plane in overlapping inputs, a root on a face two patches share.
+  /// Each such group is applied at once and makes at most one surface.
   void classifyResult(size_t pixel, std::vector<Hit>& out)
   {
     this->gather(pixel);
     this->startStates();
     const csg::Expression& expression = *this->Passes.expression;
-    for (int n = 0; n < int(this->Events.size()); ++n)
+    const View& view = *this->Passes.view;
+    for (int n = 0, end = 0; n < int(this->Events.size()); n = end)
     {
+      const double depth = this->Events[size_t(n)].hit->eyeDepth;
+      const double tolerance = 1e-4 * view.pixelFootprint * (view.parallel ? 1.0 : std::abs(depth));
+      for (end = n + 1; end < int(this->Events.size()) &&
+                        this->Events[size_t(end)].hit->eyeDepth - depth <= tolerance;
+           ++end)
+      {
+      }
       // Half-spaces change between hits too (outside the volumes): their sides are taken at
-      // each hit, before and after it.
-      this->setPlaneSides(n, true);
+      // each group, before and after it.
+      this->setPlaneSides(n, end, true);
       this->operandStates(n - 1, this->Before);
       const bool wasInside = expression.contains(this->Before, this->Nodes);
-      this->apply(n);
-      this->setPlaneSides(n, false);
-      this->operandStates(n, this->After);
+      for (int m = n; m < end; ++m)
+      {
+        this->apply(m);
+      }
+      this->setPlaneSides(n, end, false);
+      this->operandStates(end - 1, this->After);
       const bool inside = expression.contains(this->After, this->Nodes);
-      if (inside != wasInside && this->emit(n, inside, out) && this->Passes.firstHitOnly)
+      if (inside != wasInside && this->emit(this->surfaceOf(n, end), inside, out) &&
+          this->Passes.firstHitOnly)
       {
         return;
       }
     }
   }
 
-  void addSlices(size_t pixel, std::vector<Hit>& out) const
+  /// The event of group [n, end) that stands for its surface: the first of an operand whose
+  /// inside changed (a boundary hit for a domain's or an attribute's closure), else the first.
+  int surfaceOf(int n, int end) const
   {
+    for (int m = n; m < end; ++m)
+    {
+      const int k = this->Events[size_t(m)].operand;
+      if (k >= 0 ? this->Before[size_t(k)] != this->After[size_t(k)] : this->Before != this->After)
+      {
+        return m;
+      }
+    }
+    return n;
+  }
+
+  /// Each slice's nearest hit at `pixel` (a ray crosses a plane once: overlapping inputs find
+  /// the crossing in each).
+  void addSlices(size_t pixel, std::vector<Hit>& out)
+  {
+    this->SliceSeen.assign(this->Passes.slices, 0);
     for (const CsgPass& pass : this->Passes.list)
     {
-      if (pass.kind != CsgPass::Kind::Slice)
+      if (pass.kind != CsgPass::Kind::Slice ||
+          pass.hits.offsets[pixel] == pass.hits.offsets[pixel + 1])
       {
         continue;
       }
-      for (uint32_t h = pass.hits.offsets[pixel]; h < pass.hits.offsets[pixel + 1]; ++h)
+      Hit hit = pass.hits.hits[pass.hits.offsets[pixel]];
+      uint8_t& seen = this->SliceSeen[size_t(pass.operand) - this->Operands.size()];
+      if (seen || this->clipped(hit))
       {
-        Hit hit = pass.hits.hits[h];
-        if (this->clipped(hit))
-        {
-          continue;
-        }
-        hit.isovalue = pass.operand; // entersBelow: below -(a x + b y + c z + d), the + side
-        hit.patch += this->Passes.patchOffsets[size_t(pass.input)];
-        out.push_back(hit);
+        continue;
       }
+      seen = 1;
+      hit.isovalue = pass.operand; // entersBelow: below -(a x + b y + c z + d), the + side
+      hit.patch += this->Passes.patchOffsets[size_t(pass.input)];
+      out.push_back(hit);
     }
   }
 
@@ -141,9 +182,7 @@ private:
   {
     for (const auto& plane : *this->Passes.clip)
     {
-      if (plane[0] * hit.position[0] + plane[1] * hit.position[1] + plane[2] * hit.position[2] +
-            plane[3] <
-          0)
+      if (planeValue(plane, hit.position) < 0)
       {
         return true;
       }
@@ -214,34 +253,41 @@ private:
     this->PlaneSide.assign(this->Operands.size(), 0);
   }
 
-  /// Every plane operand's side just before or after event n (a touch of its own plane keeps
-  /// the side it had).
-  void setPlaneSides(int n, bool before)
+  /// Every plane operand's side just before or after the group of events [n, end): from the
+  /// side its own crossing in the group passes to or from, else at the group's position (a touch
+  /// of its own plane keeps the side it had).
+  void setPlaneSides(int n, int end, bool before)
   {
-    const Event& e = this->Events[size_t(n)];
     for (size_t k = 0; k < this->Operands.size(); ++k)
     {
-      if (!(int(k) == e.operand && e.touch))
+      if (this->Operands[k].kind != csg::Operand::Kind::Plane)
       {
-        this->PlaneSide[k] = this->planeSideAt(int(k), e, before);
+        continue;
+      }
+      int own = -1;
+      bool touched = false;
+      for (int m = n; m < end; ++m)
+      {
+        const Event& e = this->Events[size_t(m)];
+        if (e.operand == int(k) && e.touch)
+        {
+          touched = true;
+        }
+        else if (e.operand == int(k) && own < 0)
+        {
+          own = m;
+        }
+      }
+      if (own >= 0)
+      {
+        this->PlaneSide[k] = this->Events[size_t(own)].hit->entersBelow != before ? 1 : 0;
+      }
+      else if (!touched)
+      {
+        const Event& at = this->Events[size_t(before ? n : end - 1)];
+        this->PlaneSide[k] = planeValue(this->Operands[k].plane, at.hit->position) >= 0 ? 1 : 0;
       }
     }
-  }
-
-  /// Plane operand k's inside just after (or, `before`, just before) event e.
-  uint8_t planeSideAt(int k, const Event& e, bool before) const
-  {
-    if (this->Operands[size_t(k)].kind != csg::Operand::Kind::Plane)
-    {
-      return 0;
-    }
-    if (e.operand == k && !e.touch)
-    {
-      return e.hit->entersBelow != before ? 1 : 0;
-    }
-    const auto& plane = this->Operands[size_t(k)].plane;
-    const glm::dvec3& x = e.hit->position;
-    return plane[0] * x[0] + plane[1] * x[1] + plane[2] * x[2] + plane[3] >= 0 ? 1 : 0;
   }
 
   /// Event n's change of the domains' and attributes' states.
@@ -279,8 +325,8 @@ private:
           case csg::Operand::Kind::Domain:
             inside = this->Domain[size_t(i)] != 0;
             break;
-          case csg::Operand::Kind::Plane:
-            inside = this->PlaneSide[k] != 0;
+          case csg::Operand::Kind::Plane: // the half-space within the volumes
+            inside = this->PlaneSide[k] != 0 && this->Domain[size_t(i)] != 0;
             break;
           case csg::Operand::Kind::Below:
           case csg::Operand::Kind::Above:
@@ -387,6 +433,7 @@ private:
   std::vector<int8_t> Below;      ///< per operand and input: 1 below, 0 above, -1 unknown
   std::vector<uint8_t> PlaneSide; ///< per operand: inside the half-space (Plane operands)
   std::vector<uint8_t> Before, After, Nodes;
+  std::vector<uint8_t> SliceSeen; ///< per slice: its hit at this pixel is out
   mutable std::vector<double> Values;
 };
 

@@ -257,18 +257,58 @@ void checkInputs(const CsgScene& scene)
       throw std::invalid_argument("CSG input " + std::to_string(i) + " has no volumes");
     }
   }
+  for (size_t i = 0; i < scene.inputs.size(); ++i)
+  {
+    const CsgInput& input = scene.inputs[i];
+    for (size_t p = 0; p < input.volumes->size(); ++p)
+    {
+      if ((*input.volumes)[p].degree(2) < 1)
+      {
+        throw std::invalid_argument("CSG input " + std::to_string(i) + ", patch " +
+                                    std::to_string(p) +
+                                    ": a surface (degree 0 in its third direction) bounds no "
+                                    "solid; CSG inputs are volumes");
+      }
+    }
+    for (const PatchFace& face : input.boundary ? *input.boundary : std::vector<PatchFace>())
+    {
+      if (face.patch < 0 || size_t(face.patch) >= input.volumes->size() || face.direction < 0 ||
+          face.direction > 2 || face.side < 0 || face.side > 1)
+      {
+        throw std::invalid_argument(
+          "CSG input " + std::to_string(i) + ": a boundary face names no face of its volumes");
+      }
+    }
+  }
   if (scene.expression.root < 0 && scene.slices.empty())
   {
     throw std::invalid_argument("a CSG scene needs an expression or a slice");
   }
+  csg::checkExpression(scene.expression);
   for (size_t s = 0; s < scene.slices.size(); ++s)
   {
-    const auto& plane = scene.slices[s];
-    if (!(std::isfinite(plane[0]) && std::isfinite(plane[1]) && std::isfinite(plane[2]) &&
-          std::isfinite(plane[3])) ||
-        (plane[0] == 0 && plane[1] == 0 && plane[2] == 0))
+    if (!csg::isPlane(scene.slices[s]))
     {
       throw std::invalid_argument("slice " + std::to_string(s) + " is not a finite plane");
+    }
+  }
+}
+
+/// The clipping planes, checked as render checks them (they cut the result, so the passes do
+/// not see them).
+void checkClipPlanes(const Settings& settings)
+{
+  if (settings.clipPlanes.size() > size_t(kMaxClipPlanes))
+  {
+    throw std::invalid_argument("at most " + std::to_string(kMaxClipPlanes) +
+                                " clipping planes are supported, got " +
+                                std::to_string(settings.clipPlanes.size()));
+  }
+  for (size_t k = 0; k < settings.clipPlanes.size(); ++k)
+  {
+    if (!csg::isPlane(settings.clipPlanes[k]))
+    {
+      throw std::invalid_argument("clipping plane " + std::to_string(k) + " is not a finite plane");
     }
   }
 }
@@ -290,6 +330,7 @@ FrameReport renderCsg(const CsgScene& scene, const View& view, const Settings& s
 {
   const auto start = Clock::now();
   checkInputs(scene);
+  checkClipPlanes(settings);
   CsgPasses passes = planPasses(scene);
   FrameReport report;
   const std::vector<BezierVolume<double>> noVolumes;
@@ -306,8 +347,20 @@ FrameReport renderCsg(const CsgScene& scene, const View& view, const Settings& s
         passScene, passSettings(scene, pass, settings, millisecondsSince(start)), pass.hits),
       p == 0);
   }
+  // The passes' G-buffers and derived patches stay until the classification: the frame's peak
+  // is the largest pass's working set and all of them.
+  for (const CsgPass& pass : passes.list)
+  {
+    report.peakBytes +=
+      pass.hits.hits.size() * sizeof(Hit) + pass.hits.offsets.size() * sizeof(uint32_t);
+    for (const auto& volume : pass.volumes)
+    {
+      report.peakBytes += size_t(volume.view().valueCount()) * sizeof(double);
+    }
+  }
   const auto classifyStart = Clock::now();
   passes.patchOffsets = patchOffsets(scene);
+  passes.slices = scene.slices.size();
   passes.view = &view;
   passes.clip = &settings.clipPlanes;
   passes.firstHitOnly = settings.firstHitOnly;

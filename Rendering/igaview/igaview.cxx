@@ -78,7 +78,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --slice a,b,c,d        draw the section a x + b y + c z + d = 0 of the volumes (repeatable),
                          alone or with --csg
   --clip a,b,c,d         keep the part a x + b y + c z + d >= 0, its cut face drawn (repeatable):
-                         the volumes, or the --csg solid, intersected with the half-space
+                         the volumes, or the --csg solid, intersected with the half-space (the
+                         slices are not cut)
   --iso V                isovalue (repeatable; default: the middle of the attribute's range)
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour)
@@ -677,6 +678,15 @@ std::string csgExpression(const Options& options, const Input& input)
         plane[2], plane[3]);
       expression += text;
     }
+  }
+  try
+  {
+    if (!expression.empty()) // --clip may pass the limits on operands and nesting
+      iga::csg::parseExpression(expression);
+  }
+  catch (const iga::csg::ExpressionError& e)
+  {
+    failExpression(expression, e);
   }
   if (!options.csg.empty())
   {

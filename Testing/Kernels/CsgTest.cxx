@@ -84,7 +84,7 @@ TEST(CsgExpression, ErrorsNameTheProblemAndItsPosition)
   EXPECT_EQ(errorPosition("x<1 & (a<0"), 6u);
   EXPECT_EQ(errorPosition("(a<0 b<0)"), 5u);
   EXPECT_EQ(errorPosition("a<0 b<0"), 4u);
-  EXPECT_EQ(errorPosition("a<0 & foo"), 9u);
+  EXPECT_EQ(errorPosition("a<0 & foo"), 6u);
   EXPECT_EQ(errorPosition("plane(1,0,0)"), 11u);
   EXPECT_EQ(errorPosition("domain | plane(0,0,0,1)"), 9u);
   EXPECT_EQ(errorPosition("a<nan"), 2u);
@@ -102,15 +102,21 @@ TEST(CsgExpression, ErrorsNameTheProblemAndItsPosition)
     std::string(iga::csg::kMaxNesting, '(') + "a<0" + std::string(iga::csg::kMaxNesting, ')');
   EXPECT_NO_THROW(parseExpression(deep));
   EXPECT_EQ(errorPosition("(" + deep + ")"), size_t(iga::csg::kMaxNesting));
+  EXPECT_EQ(errorPosition("a<+-3"), 2u);
+  EXPECT_EQ(errorPosition("a<1e-400"), 2u);
   try
   {
     parseExpression("a<0 | b");
+    FAIL() << "no error";
   }
   catch (const ExpressionError& e)
   {
     EXPECT_EQ(std::string(e.what()),
-      "'b' needs '<' or '>' and a value (or is it domain or plane?) at position 7");
+      "'b' needs '<' or '>' and a value (or is it domain or plane?) at position 6");
   }
+  // Quoted, domain and plane are attributes' names.
+  EXPECT_EQ(errorPosition("\"domain\""), 0u);
+  EXPECT_EQ(parseExpression("\"plane\">2").operands[0].kind, Operand::Kind::Above);
 }
 
 // ---- scenes ------------------------------------------------------------------------------------
@@ -169,7 +175,8 @@ bool inBox(const glm::dvec3& x, double slack)
   return std::abs(x[0]) <= 1 + slack && std::abs(x[1]) <= 1 + slack && std::abs(x[2]) <= 1 + slack;
 }
 
-/// The scene's operands' solids at a point: attribute "sN" is sphere N (within the box).
+/// The scene's operands' solids at a point: attribute "sN" is sphere N, a plane its half-space,
+/// both within the box.
 std::vector<uint8_t> operandsAt(
   const Expression& e, const std::vector<iga::Sphere>& spheres, const glm::dvec3& x)
 {
@@ -183,8 +190,8 @@ std::vector<uint8_t> operandsAt(
       case Operand::Kind::Domain:
         in[k] = box;
         break;
-      case Operand::Kind::Plane:
-        in[k] = planeValue(o, x) >= 0;
+      case Operand::Kind::Plane: // the half-space within the box
+        in[k] = box && planeValue(o, x) >= 0;
         break;
       default:
       {
@@ -345,7 +352,8 @@ ReferenceHit exactFirstHit(const Expression& e, const std::vector<iga::Sphere>& 
     {
       const double along = op.plane[0] * d[0] + op.plane[1] * d[1] + op.plane[2] * d[2];
       const double t = -planeValue(op, o) / along;
-      at[n] = along > 0 ? Intervals{ { t, kFar } } : Intervals{ { -kFar, t } };
+      at[n] = combine(box, along > 0 ? Intervals{ { t, kFar } } : Intervals{ { -kFar, t } },
+        Expression::Op::Intersection);
     }
     else
     {
@@ -691,6 +699,109 @@ TEST(CsgFrame, TwoInputsMeetingAtAFace)
     for (const auto& hit : out.hits)
       EXPECT_LE((hit.patch < 4 ? 1 : -1) * hit.position[0], 1e-9)
         << "input 0's patches (x < 0) come first, then input 1's";
+  }
+}
+
+/// All layers of a CSG frame of `inputs` seen by `camera`, clipped by `clip`.
+iga::sst::GBuffer allLayers(const std::vector<iga::sst::CsgInput>& inputs, const std::string& text,
+  const iga::Camera& camera, const std::vector<std::array<double, 4>>& clip = {},
+  const std::vector<std::array<double, 4>>& slices = {})
+{
+  iga::sst::CsgScene scene;
+  scene.inputs = inputs;
+  if (!text.empty())
+    scene.expression = parseExpression(text);
+  scene.slices = slices;
+  iga::sst::Settings settings;
+  settings.width = settings.height = 64;
+  settings.firstHitOnly = false;
+  settings.clipPlanes = clip;
+  iga::sst::GBuffer out;
+  iga::sst::renderCsg(scene, iga::sst::makeView(camera, 64, 64), settings,
+    iga::sst::Method::SharedSubdivisionTree, out);
+  return out;
+}
+
+double boxDistance(const glm::dvec3& x)
+{
+  return std::abs(1 - std::max({ std::abs(x[0]), std::abs(x[1]), std::abs(x[2]) }));
+}
+
+TEST(CsgFrame, TouchingInputsShowNoInnerFaceInAnyLayerClippedOrFromInside)
+{
+  // The box's halves x < 0 and x > 0 as two inputs: the face x = 0 they share is left and
+  // entered at once, which is no surface of their union.
+  const CsgCase c = makeCase({ { { 0, 0, 0 }, 0.5 } }, kEye);
+  std::vector<iga::BezierVolume<double>> halves[2];
+  for (size_t p = 0; p < c.set.patches.size(); ++p)
+    halves[p % 2].push_back(c.set.patches[p]);
+  const std::vector<iga::sst::CsgInput> inputs = { { &halves[0], c.set.attributeNames, nullptr },
+    { &halves[1], c.set.attributeNames, nullptr } };
+  const double bounds[6] = { -1, 1, -1, 1, -1, 1 };
+  const iga::Camera sideways =
+    igatest::truth::makeCamera({ -4.0, 0.6, 0.5 }, { 0, 0, 0 }, { 0, 0, 1 }, 30, bounds);
+  iga::Camera inside = sideways;
+  inside.position = { -0.6, 0.1, 0.05 };
+  inside.clippingRange[0] = 1e-3;
+  struct View
+  {
+    const iga::Camera& camera;
+    std::vector<std::array<double, 4>> clip;
+    const char* what;
+  };
+  for (const View& v : { View{ sideways, {}, "all layers" },
+         View{ sideways, { { -1, 0, 0, 0 } }, "clipped to x <= 0" },
+         View{ inside, {}, "eye inside the first input" } })
+  {
+    const auto out = allLayers(inputs, "domain - s0<0", v.camera, v.clip);
+    int outer = 0, ball = 0;
+    for (const auto& hit : out.hits)
+    {
+      const bool onBox = boxDistance(hit.position) < 1e-6,
+                 onBall = std::abs(glm::length(hit.position) - 0.5) < 1e-6;
+      EXPECT_TRUE(onBox || onBall) << v.what << ": a hit at x = " << hit.position[0];
+      outer += onBox;
+      ball += onBall;
+    }
+    EXPECT_GT(outer, 500) << v.what;
+    EXPECT_GT(ball, 100) << v.what;
+  }
+}
+
+TEST(CsgFrame, OverlappingInputsFindEachCrossingOnce)
+{
+  // The same volumes given twice: a plane's section and a slice are crossed once per ray.
+  const CsgCase c = makeCase({ { { 0, 0, 0 }, 0.5 } }, kEye);
+  const iga::sst::CsgInput input{ &c.set.patches, c.set.attributeNames, nullptr };
+  for (const std::string text : { "domain & plane(0, 0, 1, 0.1)", "" })
+  {
+    const std::vector<std::array<double, 4>> slices =
+      text.empty() ? std::vector<std::array<double, 4>>{ { 1, 0, 0, 0.2 } }
+                   : std::vector<std::array<double, 4>>{};
+    const auto once = allLayers({ input }, text, c.camera, {}, slices);
+    const auto twice = allLayers({ input, input }, text, c.camera, {}, slices);
+    ASSERT_GT(once.hits.size(), 500u);
+    EXPECT_EQ(once.offsets, twice.offsets) << text;
+  }
+}
+
+TEST(CsgFrame, SurfacesAreNoSolids)
+{
+  const CsgCase c = makeCase({ { { 0, 0, 0 }, 0.5 } }, kEye);
+  // A patch of degree 0 across: the engine's form of a surface.
+  const int degree[3] = { 2, 2, 0 };
+  std::vector<iga::BezierVolume<double>> flat(1, iga::BezierVolume<double>(degree, 5));
+  for (int p = 0; p < flat[0].view().pointCount(); ++p)
+    std::copy_n(c.set.patches[0].view().point(p), 5, flat[0].view().point(p));
+  try
+  {
+    allLayers({ { &flat, c.set.attributeNames, nullptr } }, "domain", c.camera);
+    FAIL() << "no error";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("CSG input 0, patch 0: a surface"), std::string::npos)
+      << e.what();
   }
 }
 

@@ -71,6 +71,13 @@ private:
   size_t Position;
 };
 
+/// Whether a x + b y + c z + d = 0 is a plane: finite coefficients, a non-zero normal.
+bool isPlane(const std::array<double, 4>& plane);
+
+/// Checks an expression built by hand (parseExpression's are sound): its nodes, operands and
+/// values. Throws std::invalid_argument naming the problem.
+void checkExpression(const Expression& expression);
+
 /// Most operands and deepest nesting an expression may have: a per-pixel classification keeps
 /// one state per operand, and parsing recurses per level.
 constexpr int kMaxOperands = 64;
@@ -82,7 +89,8 @@ constexpr int kMaxNesting = 64;
 ///   factor     := '(' expression ')' | 'domain' | 'plane' '(' a ',' b ',' c ',' d ')'
 ///               | NAME '<' NUMBER | NAME '>' NUMBER
 /// A NAME is letters, digits and _ . : (starting with a letter or _), or any text in double
-/// quotes. Throws ExpressionError naming the problem and its position.
+/// quotes (a quoted "domain" or "plane" is an attribute's name). Throws ExpressionError naming
+/// the problem and its position.
 Expression parseExpression(const std::string& text);
 
 } // namespace csg

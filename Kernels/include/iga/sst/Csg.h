@@ -53,9 +53,12 @@ struct CsgScene
 /// Hit::isovalue is, on the result's surfaces, the operand whose solid the result enters or
 /// leaves there, and Hit::entersBelow whether the ray enters the result; on slice s it is the
 /// number of operands plus s, and entersBelow whether the ray passes to the plane's positive
-/// side. Throws std::invalid_argument for bad input: an attribute no input holds
-/// (csg::ExpressionError at the operand's position), a plane that is not finite or has no
-/// normal, and what render throws for the passes' patches.
+/// side. FrameReport::peakBytes is the largest pass's working set plus every pass's G-buffer and
+/// derived patches (kept until the classification); Settings::memoryBudgetBytes caps each pass.
+/// Throws std::invalid_argument for bad input: an attribute no input holds
+/// (csg::ExpressionError at the operand's position), a surface among the volumes, boundary
+/// faces naming no face, an unsound expression (csg::checkExpression), a slice or clipping
+/// plane that is not a plane, and what render throws for the passes' patches.
 FrameReport renderCsg(
   const CsgScene& scene, const View& view, const Settings& settings, Method method, GBuffer& out);
 
