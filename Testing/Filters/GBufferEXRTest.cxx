@@ -47,7 +47,8 @@ std::map<std::string, std::vector<float>> readEXR(const std::string& file, int& 
   return channels;
 }
 
-TEST(GBufferEXR, ChannelsRowsAndValuesRoundTrip)
+/// A 40x30 frame of the tube's radius isosurfaces at `isovalues`, coloured by height.
+iga::sst::GBuffer tubeFrame(const std::vector<double>& isovalues, bool firstHitOnly)
 {
   const auto set = iga::makeTube<double>(0.5, 0.0);
   double bounds[6];
@@ -56,11 +57,18 @@ TEST(GBufferEXR, ChannelsRowsAndValuesRoundTrip)
   iga::sst::Settings settings;
   settings.width = 40;
   settings.height = 30;
-  settings.isovalues = { 0.75 };
+  settings.isovalues = isovalues;
   settings.surfaceAttribute = 1;
   settings.colorAttribute = 2;
+  settings.firstHitOnly = firstHitOnly;
   iga::sst::GBuffer gbuffer;
   iga::sst::render(set.patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+  return gbuffer;
+}
+
+TEST(GBufferEXR, ChannelsRowsAndValuesRoundTrip)
+{
+  const iga::sst::GBuffer gbuffer = tubeFrame({ 0.75 }, true);
   std::vector<float> rgba(40 * 30 * 4);
   for (size_t k = 0; k < rgba.size(); ++k)
     rgba[k] = float(k % 7) / 7.0f;
@@ -135,24 +143,13 @@ TEST(GBufferEXR, WriterReportsProblemsWithTheFileName)
 /// deep EXR and read back with OpenEXR: per pixel the same samples in the same order.
 TEST(GBufferEXR, DeepImageHoldsEveryLayer)
 {
-  const auto set = iga::makeTube<double>(0.5, 0.0);
-  double bounds[6];
-  iga::sst::patchBounds(set.patches, bounds);
-  iga::Camera camera = iga::frameBounds(bounds, { -0.5, 0.7, -0.4 }, { 0, 0, 1 }, 30);
-  iga::sst::Settings settings;
-  settings.width = 40;
-  settings.height = 30;
-  settings.isovalues = { 0.6, 0.85 };
-  settings.surfaceAttribute = 1;
-  settings.firstHitOnly = false;
-  iga::sst::GBuffer gbuffer;
-  iga::sst::render(set.patches, camera, settings, iga::sst::Method::SharedSubdivisionTree, gbuffer);
+  const iga::sst::GBuffer gbuffer = tubeFrame({ 0.6, 0.85 }, false);
   const std::string file = testing::TempDir() + "deep.exr";
   std::string error;
   ASSERT_TRUE(vtkIGADeepEXR::Write(gbuffer, file, error)) << error;
 
   Imf::DeepScanLineInputFile in(file.c_str());
-  const int width = settings.width, height = settings.height;
+  const int width = gbuffer.width, height = gbuffer.height;
   std::vector<unsigned int> counts(size_t(width) * height);
   // The slices first (their pointer tables filled once the counts are known), then the counts,
   // then the samples.
