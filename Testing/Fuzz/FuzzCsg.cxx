@@ -1,7 +1,8 @@
 // libFuzzer target: CSG expressions. The bytes are an expression: it parses, or throws
 // csg::ExpressionError with a position within the text; one that parses is written back and
 // reads as the same expression, and is drawn at 12x10 over a box of two patches holding two
-// sphere fields (attributes a and b): the frame draws finite hits or throws
+// sphere fields (attributes a and b), by the input's length once or twice (overlapping), with a
+// slice and a clipping plane or not: the frame draws finite hits or throws
 // std::invalid_argument (an attribute the box lacks).
 #include "iga/Csg.h"
 #include "iga/Datasets.h"
@@ -69,6 +70,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     std::abort(); // what is written back must read as the same expression
   iga::sst::CsgScene scene;
   scene.inputs.push_back({ &box.patches, box.attributeNames, nullptr });
+  if (size % 3 == 0)
+    scene.inputs.push_back({ &box.patches, box.attributeNames, nullptr });
+  if (size % 5 < 2)
+    scene.slices.push_back({ 0.3, 1, 0, -0.1 });
   scene.expression = expression;
   scene.colorAttribute = "a";
   iga::Camera camera;
@@ -82,6 +87,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   settings.threads = 1;
   settings.firstHitOnly = size % 2 == 0;
   settings.backend = iga::sst::Backend::Cpu;
+  if (size % 7 < 3)
+    settings.clipPlanes.push_back({ 0, 0, -1, 0.4 });
   iga::sst::GBuffer out;
   try
   {
@@ -94,7 +101,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   }
   for (const auto& hit : out.hits)
     if (!std::isfinite(hit.eyeDepth) || hit.isovalue < 0 ||
-        hit.isovalue >= int(expression.operands.size()))
+        hit.isovalue >= int(expression.operands.size() + scene.slices.size()))
       std::abort();
   return 0;
 }

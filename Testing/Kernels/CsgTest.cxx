@@ -378,10 +378,9 @@ ReferenceHit exactFirstHit(const Expression& e, const std::vector<iga::Sphere>& 
   return {};
 }
 
-/// The first drawn hit by brute force: the result's inside sampled densely along the ray
-/// through the box (from just before it to just after it), its first change located by
-/// bisection.
-ReferenceHit sampledFirstHit(const Expression& e, const std::vector<iga::Sphere>& spheres,
+/// Every drawn hit by brute force: the result's inside sampled densely along the ray through
+/// the box (from just before it to just after it), each change located by bisection.
+std::vector<ReferenceHit> sampledHits(const Expression& e, const std::vector<iga::Sphere>& spheres,
   const glm::dvec3& o, const glm::dvec3& d)
 {
   const Intervals box = boxIntervals(o, d);
@@ -392,26 +391,34 @@ ReferenceHit sampledFirstHit(const Expression& e, const std::vector<iga::Sphere>
   const double t0 = std::max(box[0][0], 0.0), t1 = box[0][1];
   const double margin = 1e-9 * (t1 - t0);
   const int samples = 2000;
-  double a = t0 - margin;
-  const bool state = inside(a);
+  double previous = t0 - margin;
+  bool state = inside(previous);
+  std::vector<ReferenceHit> hits;
   for (int s = 0; s <= samples + 1; ++s)
   {
-    double b = s <= samples ? t0 + (t1 - t0) * s / samples : t1 + margin;
-    if (inside(b) == state)
+    const double next = s <= samples ? t0 + (t1 - t0) * s / samples : t1 + margin;
+    if (inside(next) != state)
     {
-      a = b;
-      continue;
+      double a = previous, b = next;
+      for (int k = 0; k < 60; ++k)
+      {
+        const double m = 0.5 * (a + b);
+        (inside(m) == state ? a : b) = m;
+      }
+      hits.push_back(surfaceAt(e, spheres, o + b * d, b));
+      hits.back().entering = !state;
+      state = !state;
     }
-    for (int k = 0; k < 60; ++k)
-    {
-      const double m = 0.5 * (a + b);
-      (inside(m) == state ? a : b) = m;
-    }
-    ReferenceHit hit = surfaceAt(e, spheres, o + b * d, b);
-    hit.entering = !state;
-    return hit;
+    previous = next;
   }
-  return {};
+  return hits;
+}
+
+ReferenceHit sampledFirstHit(const Expression& e, const std::vector<iga::Sphere>& spheres,
+  const glm::dvec3& o, const glm::dvec3& d)
+{
+  const auto hits = sampledHits(e, spheres, o, d);
+  return hits.empty() ? ReferenceHit() : hits.front();
 }
 
 struct CsgComparison
@@ -467,6 +474,63 @@ CsgComparison compareWithReference(const iga::sst::GBuffer& gbuffer, const iga::
       result.maxNormalError =
         std::max(result.maxNormalError, 1 - std::abs(glm::dot(hit->normal, truth[p].normal)));
       EXPECT_EQ(hit->entersBelow, truth[p].entering) << "the side of pixel " << i << "," << j;
+    }
+  return result;
+}
+
+/// Every layer of a CSG frame against the sampled reference, pixels whose neighbours' layers
+/// lie on other surfaces (creases, silhouettes, near tangencies) set aside.
+CsgComparison compareAllLayers(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera,
+  const Expression& e, const std::vector<iga::Sphere>& spheres)
+{
+  const int w = gbuffer.width, h = gbuffer.height;
+  std::vector<std::vector<ReferenceHit>> truth(size_t(w) * h);
+  std::vector<glm::dvec3> origins(truth.size()), directions(truth.size());
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const size_t p = size_t(j) * w + i;
+      igatest::truth::pixelRay(camera, w, h, i, j, origins[p], directions[p]);
+      truth[p] = sampledHits(e, spheres, origins[p], directions[p]);
+    }
+  auto surfaces = [&](size_t p)
+  {
+    std::vector<int> ids;
+    for (const auto& hit : truth[p])
+      ids.push_back(hit.surface);
+    return ids;
+  };
+  CsgComparison result;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+    {
+      const size_t p = size_t(j) * w + i;
+      bool ambiguous = false;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di)
+        {
+          const int ni = std::clamp(i + di, 0, w - 1), nj = std::clamp(j + dj, 0, h - 1);
+          ambiguous = ambiguous || surfaces(size_t(nj) * w + ni) != surfaces(p);
+        }
+      if (ambiguous)
+      {
+        ++result.ambiguous;
+        continue;
+      }
+      ++result.compared;
+      if (gbuffer.hitCount(i, j) != int(truth[p].size()))
+      {
+        ++result.mismatched;
+        continue;
+      }
+      result.covered += truth[p].empty() ? 0 : 1;
+      for (size_t k = 0; k < truth[p].size(); ++k)
+      {
+        const iga::sst::Hit& hit = gbuffer.firstHit(i, j)[k];
+        const glm::dvec3 x = origins[p] + truth[p][k].t * directions[p];
+        result.maxPositionError = std::max(result.maxPositionError, glm::length(hit.position - x));
+        EXPECT_EQ(hit.entersBelow, truth[p][k].entering) << "pixel " << i << "," << j;
+      }
     }
   return result;
 }
@@ -663,6 +727,12 @@ TEST(CsgFrame, RandomTreesAgainstDenseSampling)
     EXPECT_EQ(result.mismatched, 0) << text;
     EXPECT_LT(result.maxPositionError, 1e-6) << text;
     trees += result.covered > 100 ? 1 : 0;
+    // Every layer, as a translucent view draws them (at 32x32: the reference samples each ray
+    // whole).
+    const auto layers = compareAllLayers(renderCase(c, text, 32, false), c.camera, e, spheres);
+    EXPECT_EQ(layers.mismatched, 0) << text << " (all layers)";
+    EXPECT_LT(layers.maxPositionError, 1e-6) << text << " (all layers)";
+    EXPECT_GT(layers.compared, layers.ambiguous) << text << " (all layers)";
   }
   EXPECT_GE(trees, 6) << "most random trees show something";
 }
