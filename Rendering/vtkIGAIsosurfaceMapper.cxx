@@ -9,7 +9,6 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataObjectTreeIterator.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
@@ -28,11 +27,9 @@
 #include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
-#include "vtkSMPTools.h"
 #include "vtkScalarsToColors.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtk_glew.h"
 
@@ -1228,47 +1225,33 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
   in.Size[0] = width;
   in.Size[1] = height;
   this->AllocateLayers(frame);
-  // Every hit's colour through the table in one call (MapValue is not thread-safe), then the
-  // pixels' rows on VTK's SMP threads (ParaView's VTK defaults to its Sequential backend).
-  vtkSmartPointer<vtkUnsignedCharArray> mapped;
-  if (frame.ByScalars)
+  for (int j = 0; j < height; ++j)
   {
-    vtkNew<vtkDoubleArray> values;
-    values->SetNumberOfTuples(vtkIdType(in.GBuffer.hits.size()));
-    for (size_t h = 0; h < in.GBuffer.hits.size(); ++h)
+    for (int i = 0; i < width; ++i)
     {
-      values->SetValue(vtkIdType(h), in.GBuffer.hits[h].color);
-    }
-    mapped.TakeReference(lut->MapScalars(values, VTK_COLOR_MODE_MAP_SCALARS, -1));
-  }
-  auto shadeRows = [&](vtkIdType firstRow, vtkIdType endRow)
-  {
-    for (vtkIdType j = firstRow; j < endRow; ++j)
-    {
-      for (int i = 0; i < width; ++i)
+      const size_t p = size_t(j) * width + i;
+      const iga::sst::Hit* hits = in.GBuffer.firstHit(i, j);
+      const int count = std::min(in.GBuffer.hitCount(i, j), in.LayerCount);
+      for (int k = 0; k < count; ++k)
       {
-        const size_t p = size_t(j) * width + i;
-        const uint32_t first = in.GBuffer.offsets[p];
-        const int count = std::min(int(in.GBuffer.offsets[p + 1] - first), in.LayerCount);
-        for (int k = 0; k < count; ++k)
+        const iga::sst::Hit& hit = hits[k];
+        double base[3] = { baseColour[0], baseColour[1], baseColour[2] };
+        if (frame.ByScalars)
         {
-          const iga::sst::Hit& hit = in.GBuffer.hits[first + uint32_t(k)];
-          double base[3] = { baseColour[0], baseColour[1], baseColour[2] };
-          for (int c = 0; mapped && c < 3; ++c)
+          const unsigned char* mapped = lut->MapValue(hit.color);
+          for (int c = 0; c < 3; ++c)
           {
-            base[c] = mapped->GetValue(4 * vtkIdType(first + uint32_t(k)) + c) / 255.0;
+            base[c] = mapped[c] / 255.0;
           }
-          const glm::dvec3 toEye =
-            iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit.position);
-          LayerImage& layer = *in.Layers[size_t(k)];
-          shadeHit(hit, base, property, frame.Lights, toEye, &layer.Colour[4 * p]);
-          layer.Depth[p] = float(0.5 * (hit.ndcDepth + 1.0));
         }
+        const glm::dvec3 toEye =
+          iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit.position);
+        LayerImage& layer = *in.Layers[size_t(k)];
+        shadeHit(hit, base, property, frame.Lights, toEye, &layer.Colour[4 * p]);
+        layer.Depth[p] = float(0.5 * (hit.ndcDepth + 1.0));
       }
     }
-  };
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads, "STDThread", false },
-    [&]() { vtkSMPTools::For(0, height, 16, shadeRows); });
+  }
   if (property->GetEdgeVisibility())
   {
     this->DrawEdges(property);
