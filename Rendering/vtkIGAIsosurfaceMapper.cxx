@@ -705,10 +705,6 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
     this->DrawMode == DRAW_CSG && (!this->CsgExpression.empty() || !this->Slices.empty());
   frame.Volumes = !in.Set.patches.empty() &&
                   ((this->DrawMode == DRAW_ISOSURFACES && !this->Isovalues.empty()) || csg);
-  if (!frame.Volumes && in.Surfaces.empty())
-  {
-    return false;
-  }
   // Messages are reported once until the settings (the mapper's own, not the lookup table's)
   // or the input change.
   const vtkMTimeType reportFor[2] = { this->vtkAbstractMapper::GetMTime(), input->GetMTime() };
@@ -717,7 +713,14 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
     in.Reported.clear();
     std::copy(reportFor, reportFor + 2, in.ReportedFor);
   }
-  return true;
+  if (csg && in.Set.patches.empty())
+  {
+    this->ReportOnce("csg without volumes",
+      "DRAW_CSG draws solids of hexahedra, and the input has none; not reported again until the "
+      "settings or the input change",
+      false);
+  }
+  return frame.Volumes || !in.Surfaces.empty();
 }
 
 void vtkIGAIsosurfaceMapper::UpdateSurfaces()

@@ -255,6 +255,13 @@ TEST(CsgMapper, BadExpressionsAreSaidOnceAndTheLastGoodOneKept)
   errors->Clear();
   scene.window->Render();
   EXPECT_FALSE(errors->GetError()) << "said once";
+  // Quadrilaterals alone bound no solid: said, not drawn.
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  scene.mapper->AddObserver(vtkCommand::WarningEvent, warnings);
+  scene.draw(vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTeapot<double>()));
+  EXPECT_NE(warnings->GetWarningMessage().find("DRAW_CSG draws solids of hexahedra"),
+    std::string::npos)
+    << warnings->GetWarningMessage();
 }
 
 } // namespace
