@@ -259,8 +259,8 @@ TEST(CsgMapper, BadExpressionsAreSaidOnceAndTheLastGoodOneKept)
   vtkNew<vtkTest::ErrorObserver> warnings;
   scene.mapper->AddObserver(vtkCommand::WarningEvent, warnings);
   scene.draw(vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTeapot<double>()));
-  EXPECT_NE(warnings->GetWarningMessage().find("DRAW_CSG draws solids of hexahedra"),
-    std::string::npos)
+  EXPECT_NE(
+    warnings->GetWarningMessage().find("DRAW_CSG draws solids of hexahedra"), std::string::npos)
     << warnings->GetWarningMessage();
 }
 
