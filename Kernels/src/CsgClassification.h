@@ -228,8 +228,18 @@ private:
         this->Events.push_back({ &hit, p, operand, touch });
       }
     }
-    std::stable_sort(this->Events.begin(), this->Events.end(),
-      [](const Event& a, const Event& b) { return a.hit->eyeDepth < b.hit->eyeDepth; });
+    // Insertion sort, stable and without the buffer std::stable_sort allocates: a pixel has a
+    // handful of events, each pass's already in depth order.
+    for (size_t k = 1; k < this->Events.size(); ++k)
+    {
+      const Event moving = this->Events[k];
+      size_t at = k;
+      for (; at > 0 && moving.hit->eyeDepth < this->Events[at - 1].hit->eyeDepth; --at)
+      {
+        this->Events[at] = this->Events[at - 1];
+      }
+      this->Events[at] = moving;
+    }
   }
 
   /// The state before the ray's first hit: inside an input where its first boundary crossing
