@@ -429,32 +429,59 @@ struct CsgComparison
 
 /// A CSG frame's first hits against a reference, pixels next to a change of the reference's
 /// surface or coverage (creases, silhouettes) set aside.
+/// A reference per pixel of a w x h image along the pixel's ray (origins and directions kept).
+template<class Truth>
+struct ReferenceImage
+{
+  int w, h;
+  std::vector<Truth> truth;
+  std::vector<glm::dvec3> origins, directions;
+
+  ReferenceImage(const iga::Camera& camera, int width, int height,
+    const std::function<Truth(const glm::dvec3&, const glm::dvec3&)>& reference)
+    : w(width)
+    , h(height)
+    , truth(size_t(width) * height)
+    , origins(truth.size())
+    , directions(truth.size())
+  {
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i)
+      {
+        const size_t p = size_t(j) * w + i;
+        igatest::truth::pixelRay(camera, w, h, i, j, origins[p], directions[p]);
+        truth[p] = reference(origins[p], directions[p]);
+      }
+  }
+
+  /// Whether pixel (i, j)'s 3x3 neighbourhood differs from the pixel in `key`: a crease or
+  /// silhouette passes nearby and the pixel may go either way.
+  template<class Key>
+  bool ambiguousAt(int i, int j, const Key& key) const
+  {
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di)
+      {
+        const int ni = std::clamp(i + di, 0, w - 1), nj = std::clamp(j + dj, 0, h - 1);
+        if (key(truth[size_t(nj) * w + ni]) != key(truth[size_t(j) * w + i]))
+          return true;
+      }
+    return false;
+  }
+};
+
 CsgComparison compareWithReference(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera,
   const std::function<ReferenceHit(const glm::dvec3&, const glm::dvec3&)>& reference)
 {
-  const int w = gbuffer.width, h = gbuffer.height;
-  std::vector<ReferenceHit> truth(size_t(w) * h);
-  std::vector<glm::dvec3> origins(truth.size()), directions(truth.size());
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i)
-    {
-      const size_t p = size_t(j) * w + i;
-      igatest::truth::pixelRay(camera, w, h, i, j, origins[p], directions[p]);
-      truth[p] = reference(origins[p], directions[p]);
-    }
+  const ReferenceImage<ReferenceHit> image(camera, gbuffer.width, gbuffer.height, reference);
+  const auto& truth = image.truth;
+  const int w = image.w, h = image.h;
   CsgComparison result;
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
     {
       const size_t p = size_t(j) * w + i;
-      bool ambiguous = false;
-      for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di)
-        {
-          const int ni = std::clamp(i + di, 0, w - 1), nj = std::clamp(j + dj, 0, h - 1);
-          ambiguous = ambiguous || truth[size_t(nj) * w + ni].surface != truth[p].surface;
-        }
-      if (ambiguous)
+      if (image.ambiguousAt(i, j, [](const ReferenceHit& hit) { return hit.surface; }))
       {
         ++result.ambiguous;
         continue;
@@ -469,7 +496,7 @@ CsgComparison compareWithReference(const iga::sst::GBuffer& gbuffer, const iga::
       if (!hit)
         continue;
       ++result.covered;
-      const glm::dvec3 x = origins[p] + truth[p].t * directions[p];
+      const glm::dvec3 x = image.origins[p] + truth[p].t * image.directions[p];
       result.maxPositionError = std::max(result.maxPositionError, glm::length(hit->position - x));
       result.maxNormalError =
         std::max(result.maxNormalError, 1 - std::abs(glm::dot(hit->normal, truth[p].normal)));
@@ -483,20 +510,14 @@ CsgComparison compareWithReference(const iga::sst::GBuffer& gbuffer, const iga::
 CsgComparison compareAllLayers(const iga::sst::GBuffer& gbuffer, const iga::Camera& camera,
   const Expression& e, const std::vector<iga::Sphere>& spheres)
 {
-  const int w = gbuffer.width, h = gbuffer.height;
-  std::vector<std::vector<ReferenceHit>> truth(size_t(w) * h);
-  std::vector<glm::dvec3> origins(truth.size()), directions(truth.size());
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i)
-    {
-      const size_t p = size_t(j) * w + i;
-      igatest::truth::pixelRay(camera, w, h, i, j, origins[p], directions[p]);
-      truth[p] = sampledHits(e, spheres, origins[p], directions[p]);
-    }
-  auto surfaces = [&](size_t p)
+  const ReferenceImage<std::vector<ReferenceHit>> image(camera, gbuffer.width, gbuffer.height,
+    [&](const glm::dvec3& o, const glm::dvec3& d) { return sampledHits(e, spheres, o, d); });
+  const auto& truth = image.truth;
+  const int w = image.w, h = image.h;
+  auto surfaces = [](const std::vector<ReferenceHit>& hits)
   {
     std::vector<int> ids;
-    for (const auto& hit : truth[p])
+    for (const auto& hit : hits)
       ids.push_back(hit.surface);
     return ids;
   };
@@ -505,14 +526,7 @@ CsgComparison compareAllLayers(const iga::sst::GBuffer& gbuffer, const iga::Came
     for (int i = 0; i < w; ++i)
     {
       const size_t p = size_t(j) * w + i;
-      bool ambiguous = false;
-      for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di)
-        {
-          const int ni = std::clamp(i + di, 0, w - 1), nj = std::clamp(j + dj, 0, h - 1);
-          ambiguous = ambiguous || surfaces(size_t(nj) * w + ni) != surfaces(p);
-        }
-      if (ambiguous)
+      if (image.ambiguousAt(i, j, surfaces))
       {
         ++result.ambiguous;
         continue;
@@ -527,7 +541,7 @@ CsgComparison compareAllLayers(const iga::sst::GBuffer& gbuffer, const iga::Came
       for (size_t k = 0; k < truth[p].size(); ++k)
       {
         const iga::sst::Hit& hit = gbuffer.firstHit(i, j)[k];
-        const glm::dvec3 x = origins[p] + truth[p][k].t * directions[p];
+        const glm::dvec3 x = image.origins[p] + truth[p][k].t * image.directions[p];
         result.maxPositionError = std::max(result.maxPositionError, glm::length(hit.position - x));
         EXPECT_EQ(hit.entersBelow, truth[p][k].entering) << "pixel " << i << "," << j;
       }
