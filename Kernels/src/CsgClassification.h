@@ -204,6 +204,11 @@ private:
   {
     return this->Passes.sources[size_t(k) * size_t(this->Passes.inputs) + size_t(input)];
   }
+  /// Operand k's attribute sign state in input i (Below).
+  int8_t& belowState(size_t k, int input)
+  {
+    return this->Below[k * size_t(this->Passes.inputs) + size_t(input)];
+  }
 
   void gather(size_t pixel)
   {
@@ -228,18 +233,15 @@ private:
         this->Events.push_back({ &hit, p, operand, touch });
       }
     }
-    // Insertion sort, stable and without the buffer std::stable_sort allocates: a pixel has a
-    // handful of events, each pass's already in depth order.
-    for (size_t k = 1; k < this->Events.size(); ++k)
-    {
-      const Event moving = this->Events[k];
-      size_t at = k;
-      for (; at > 0 && moving.hit->eyeDepth < this->Events[at - 1].hit->eyeDepth; --at)
+    // Ties in pass order, then in each pass's own (its hits lie in one array): the order of a
+    // stable sort, without the buffer std::stable_sort allocates for every pixel.
+    std::sort(this->Events.begin(), this->Events.end(),
+      [](const Event& a, const Event& b)
       {
-        this->Events[at] = this->Events[at - 1];
-      }
-      this->Events[at] = moving;
-    }
+        return a.hit->eyeDepth != b.hit->eyeDepth ? a.hit->eyeDepth < b.hit->eyeDepth
+               : a.pass != b.pass                 ? a.pass < b.pass
+                                                  : a.hit < b.hit;
+      });
   }
 
   /// The state before the ray's first hit: inside an input where its first boundary crossing
@@ -310,13 +312,12 @@ private:
       this->Domain[size_t(input)] = e.hit->entersBelow ? 1 : 0;
       for (size_t k = 0; k < this->Operands.size(); ++k)
       {
-        this->Below[k * size_t(this->Passes.inputs) + size_t(input)] = -1;
+        this->belowState(k, input) = -1;
       }
     }
     else if (!e.touch && this->passOf(e).kind == CsgPass::Kind::Attribute)
     {
-      this->Below[size_t(e.operand) * size_t(this->Passes.inputs) + size_t(input)] =
-        e.hit->entersBelow ? 1 : 0;
+      this->belowState(size_t(e.operand), input) = e.hit->entersBelow ? 1 : 0;
     }
   }
 
@@ -358,7 +359,7 @@ private:
   /// entered it.
   bool below(int k, int input, int n)
   {
-    int8_t& state = this->Below[size_t(k) * size_t(this->Passes.inputs) + size_t(input)];
+    int8_t& state = this->belowState(size_t(k), input);
     if (state >= 0)
     {
       return state != 0;

@@ -294,25 +294,6 @@ void checkInputs(const CsgScene& scene)
   }
 }
 
-/// The clipping planes, checked as render checks them (they cut the result, so the passes do
-/// not see them).
-void checkClipPlanes(const Settings& settings)
-{
-  if (settings.clipPlanes.size() > size_t(kMaxClipPlanes))
-  {
-    throw std::invalid_argument("at most " + std::to_string(kMaxClipPlanes) +
-                                " clipping planes are supported, got " +
-                                std::to_string(settings.clipPlanes.size()));
-  }
-  for (size_t k = 0; k < settings.clipPlanes.size(); ++k)
-  {
-    if (!csg::isPlane(settings.clipPlanes[k]))
-    {
-      throw std::invalid_argument("clipping plane " + std::to_string(k) + " is not a finite plane");
-    }
-  }
-}
-
 } // namespace
 
 FrameReport renderCsg(
@@ -330,7 +311,7 @@ FrameReport renderCsg(const CsgScene& scene, const View& view, const Settings& s
 {
   const auto start = Clock::now();
   checkInputs(scene);
-  checkClipPlanes(settings);
+  checkClipPlanes(settings); // they cut the result, so the passes do not see them
   CsgPasses passes = planPasses(scene);
   FrameReport report;
   const std::vector<BezierVolume<double>> noVolumes;

@@ -330,11 +330,26 @@ void checkSettings(const Settings& s, bool volumes)
     throw std::invalid_argument(
       "transfer chunk of " + std::to_string(s.transferChunkBytes) + " bytes is below 4096");
   }
+  checkClipPlanes(s);
+}
+
+void checkClipPlanes(const Settings& s)
+{
   if (s.clipPlanes.size() > size_t(kMaxClipPlanes))
   {
     throw std::invalid_argument("at most " + std::to_string(kMaxClipPlanes) +
                                 " clipping planes are supported, got " +
                                 std::to_string(s.clipPlanes.size()));
+  }
+  for (size_t k = 0; k < s.clipPlanes.size(); ++k)
+  {
+    const auto& plane = s.clipPlanes[k];
+    const bool finite = std::isfinite(plane[0]) && std::isfinite(plane[1]) &&
+                        std::isfinite(plane[2]) && std::isfinite(plane[3]);
+    if (!finite || (plane[0] == 0 && plane[1] == 0 && plane[2] == 0))
+    {
+      throw std::invalid_argument("clipping plane " + std::to_string(k) + " is not a finite plane");
+    }
   }
 }
 
@@ -369,11 +384,8 @@ FramePlan planView(const View& view, const Settings& s, const AttributeRange& at
   plan.frame.clip.count = 0;
   for (const auto& plane : s.clipPlanes)
   {
-    const bool finite = std::isfinite(plane[0]) && std::isfinite(plane[1]) &&
-                        std::isfinite(plane[2]) && std::isfinite(plane[3]);
-    glm::dvec4 inWindow;
-    if (!finite || (plane[0] == 0 && plane[1] == 0 && plane[2] == 0) ||
-        !transformPlane(plan.windowFromWorld, glm::make_vec4(plane.data()), inWindow))
+    glm::dvec4 inWindow; // finite, with a normal (checkSettings)
+    if (!transformPlane(plan.windowFromWorld, glm::make_vec4(plane.data()), inWindow))
     {
       throw std::invalid_argument(
         "clipping plane " + std::to_string(plan.frame.clip.count) + " is not a finite plane");

@@ -97,6 +97,10 @@ int drawInBands(const std::vector<int>& bands, FrameConstants& frame, Pass pass)
 /// chunk, clipping plane count). A scene without volumes needs no isovalue.
 void checkSettings(const Settings& settings, bool volumes = true);
 
+/// The clipping planes: at most kMaxClipPlanes, each finite with a normal. Throws
+/// std::invalid_argument naming the plane.
+void checkClipPlanes(const Settings& settings);
+
 /// The plan's view part (frame constants, window matrix, clipping planes), without roots.
 /// Throws std::invalid_argument for bad settings.
 FramePlan planView(const View& view, const Settings& settings, const AttributeRange& attribute,
