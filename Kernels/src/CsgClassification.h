@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -68,6 +69,15 @@ constexpr double kTouchCosine = 1e-9;
 inline double planeValue(const std::array<double, 4>& plane, const glm::dvec3& x)
 {
   return plane[0] * x[0] + plane[1] * x[1] + plane[2] * x[2] + plane[3];
+}
+
+/// Whether a clipping plane cuts x away. A point on the plane within rounding stays: the cap of
+/// a solid cut by the same half-space (igaview's --clip) lies on it.
+inline bool clippedBy(const std::array<double, 4>& plane, const glm::dvec3& x)
+{
+  const double scale = std::abs(plane[0] * x[0]) + std::abs(plane[1] * x[1]) +
+                       std::abs(plane[2] * x[2]) + std::abs(plane[3]);
+  return planeValue(plane, x) < -1e-9 * scale;
 }
 
 /// Classifies one pixel at a time, keeping its scratch between pixels.
@@ -182,7 +192,7 @@ private:
   {
     for (const auto& plane : *this->Passes.clip)
     {
-      if (planeValue(plane, hit.position) < 0)
+      if (clippedBy(plane, hit.position))
       {
         return true;
       }

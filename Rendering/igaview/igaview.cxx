@@ -22,6 +22,7 @@
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
+#include "vtkPlane.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
@@ -78,8 +79,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --slice a,b,c,d        draw the section a x + b y + c z + d = 0 of the volumes (repeatable),
                          alone or with --csg
   --clip a,b,c,d         keep the part a x + b y + c z + d >= 0, its cut face drawn (repeatable):
-                         the volumes, or the --csg solid, intersected with the half-space (the
-                         slices are not cut)
+                         the volumes, or the --csg solid, intersected with the half-space, and
+                         the slices cut by it
   --iso V                isovalue (repeatable; default: the middle of the attribute's range)
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour)
@@ -767,6 +768,15 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
   {
     const auto& plane = options.slices[k];
     mapper->SetSlice(int(k), plane[0], plane[1], plane[2], plane[3]);
+  }
+  // The solid is already cut by the --clip half-spaces; as clipping planes they cut the slices.
+  for (const auto& clip : options.clips)
+  {
+    const double n2 = clip[0] * clip[0] + clip[1] * clip[1] + clip[2] * clip[2];
+    vtkNew<vtkPlane> plane;
+    plane->SetNormal(clip[0], clip[1], clip[2]);
+    plane->SetOrigin(-clip[3] * clip[0] / n2, -clip[3] * clip[1] / n2, -clip[3] * clip[2] / n2);
+    mapper->AddClippingPlane(plane);
   }
   mapper->SetNumberOfThreads(options.threads);
   mapper->SetMemoryBudgetMB(options.memoryBudgetMB);

@@ -1014,6 +1014,29 @@ TEST(CsgSlices, DeformedTubeSlicesAndCappedClip)
     EXPECT_GE(hit.position[2], centre[2]);
     EXPECT_TRUE(std::isnan(hit.color)) << "no colour attribute";
   }
+  // igaview's --clip: the solid cut by the half-space and everything drawn clipped by its plane.
+  // The cap on that plane stays whole; a slice across it keeps only its kept side.
+  const std::array<double, 4> half = { 0.2, 1, 0.1, -centre[1] };
+  const std::vector<std::array<double, 4>> across = { { 0, 0, 1, -centre[2] } };
+  const auto cut = renderSlices(tube, "temperature", across, camera, 96,
+    "domain & plane(0.2, 1, 0.1, " + std::to_string(-centre[1]) + ")", { half });
+  const auto uncut = renderSlices(tube, "temperature", across, camera, 96,
+    "domain & plane(0.2, 1, 0.1, " + std::to_string(-centre[1]) + ")");
+  int cutCaps = 0, cutSlice = 0, uncutSlice = 0;
+  for (const auto& hit : cut.hits)
+  {
+    cutCaps += hit.isovalue == 1 ? 1 : 0;
+    if (hit.isovalue == 2)
+    {
+      ++cutSlice;
+      EXPECT_GE(0.2 * hit.position[0] + hit.position[1] + 0.1 * hit.position[2] + half[3], -1e-9);
+    }
+  }
+  for (const auto& hit : uncut.hits)
+    uncutSlice += hit.isovalue == 2 ? 1 : 0;
+  EXPECT_EQ(cutCaps, caps) << "the clipping plane keeps the cap lying on it";
+  EXPECT_GT(cutSlice, 50);
+  EXPECT_LT(cutSlice, uncutSlice) << "the slice is cut";
 }
 
 TEST(CsgSlices, BadSlicesAreRefused)
