@@ -3,6 +3,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <sstream>
 
@@ -365,6 +366,25 @@ Expression parseExpression(const std::string& text)
     throw ExpressionError("expression holds a NUL character", text.find('\0'));
   }
   return Parser(text).parse();
+}
+
+std::string cutByHalfSpaces(
+  const std::string& expression, const std::vector<std::array<double, 4>>& planes)
+{
+  if (planes.empty())
+  {
+    return expression;
+  }
+  const bool blank = expression.find_first_not_of(" \t\r\n") == std::string::npos;
+  std::string text = blank ? "domain" : "(" + expression + ")";
+  for (const auto& plane : planes)
+  {
+    char term[160];
+    std::snprintf(term, sizeof term, " & plane(%.17g,%.17g,%.17g,%.17g)", plane[0], plane[1],
+      plane[2], plane[3]);
+    text += term;
+  }
+  return text;
 }
 
 } // namespace csg

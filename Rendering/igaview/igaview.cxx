@@ -668,18 +668,7 @@ struct Drawing
 /// The solid of --csg and --clip, its attributes checked against the input's.
 std::string csgExpression(const Options& options, const Input& input)
 {
-  std::string expression = options.csg;
-  if (!options.clips.empty())
-  {
-    expression = options.csg.empty() ? "domain" : "(" + options.csg + ")";
-    for (const auto& plane : options.clips)
-    {
-      char text[160];
-      std::snprintf(text, sizeof text, " & plane(%.17g,%.17g,%.17g,%.17g)", plane[0], plane[1],
-        plane[2], plane[3]);
-      expression += text;
-    }
-  }
+  const std::string expression = iga::csg::cutByHalfSpaces(options.csg, options.clips);
   try
   {
     if (!expression.empty()) // --clip may pass the limits on operands and nesting

@@ -48,6 +48,17 @@ TEST(CsgExpression, IntersectionBindsTighterUnionAndDifferenceGoLeftToRight)
   EXPECT_EQ(parseExpression("domain&plane(1, 0,-2, +0.5)").text(), "(domain & plane(1,0,-2,0.5))");
 }
 
+TEST(CsgExpression, CutByHalfSpacesIntersectsTheSolidOrTheDomain)
+{
+  using iga::csg::cutByHalfSpaces;
+  EXPECT_EQ(cutByHalfSpaces("a<0 | b<0", {}), "a<0 | b<0");
+  EXPECT_EQ(parseExpression(cutByHalfSpaces("a<0 | b<0", { { 0, 0, 1, -0.25 } })).text(),
+    "((\"a\"<0 | \"b\"<0) & plane(0,0,1,-0.25))");
+  EXPECT_EQ(parseExpression(cutByHalfSpaces(" ", { { 1, 0, 0, 0 }, { 0, 1, 0, 0.1 } })).text(),
+    "((domain & plane(1,0,0,0)) & plane(0,1,0,0.10000000000000001))");
+  EXPECT_THROW(parseExpression(cutByHalfSpaces("a<", { { 1, 0, 0, 0 } })), ExpressionError);
+}
+
 TEST(CsgExpression, OperandsKeepTheirValuesNamesAndPositions)
 {
   const Expression e = parseExpression("  \"Temperature (K)\">300 & s.x_1<-1.5e-3");

@@ -93,5 +93,11 @@ constexpr int kMaxNesting = 64;
 /// the problem and its position.
 Expression parseExpression(const std::string& text);
 
+/// The text of `expression` (blank: the volumes, `domain`) intersected with the half-spaces
+/// a x + b y + c z + d >= 0 of `planes`: the solid of a capped clip. Unparsed: a bad expression
+/// stays bad, its error positions shifted by the parenthesis put around it.
+std::string cutByHalfSpaces(
+  const std::string& expression, const std::vector<std::array<double, 4>>& planes);
+
 } // namespace csg
 } // namespace iga
