@@ -12,6 +12,8 @@
 #include "vtkOutlineSource.h"
 #include "vtkPVLODActor.h"
 #include "vtkPVRenderView.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -20,6 +22,9 @@
 #include "vtkTransform.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "iga/Csg.h"
+
+#include <algorithm>
 #include <string>
 
 vtkStandardNewMacro(vtkIGAIsosurfaceRepresentation);
@@ -245,17 +250,94 @@ void vtkIGAIsosurfaceRepresentation::SetInputArrayToProcess(
 
 void vtkIGAIsosurfaceRepresentation::SetCsgExpression(const char* expression)
 {
-  this->Mapper->SetCsgExpression(expression);
+  this->CsgExpression = expression ? expression : "";
+  this->UpdateCsg();
 }
 
 void vtkIGAIsosurfaceRepresentation::SetNumberOfSlices(int count)
 {
-  this->Mapper->SetNumberOfSlices(count);
+  this->Slices.resize(size_t(std::max(count, 0)), { 1, 0, 0, 0 });
+  this->UpdateCsg();
 }
 
 void vtkIGAIsosurfaceRepresentation::SetSlice(int index, double a, double b, double c, double d)
 {
-  this->Mapper->SetSlice(index, a, b, c, d);
+  if (index < 0 || size_t(index) >= this->Slices.size())
+  {
+    vtkErrorMacro(<< "slice " << index << " of " << this->Slices.size());
+    return;
+  }
+  this->Slices[size_t(index)] = { a, b, c, d };
+  this->UpdateCsg();
+}
+
+void vtkIGAIsosurfaceRepresentation::SetPlaneUse(int use)
+{
+  if (use < PLANE_OFF || use > PLANE_CLIP)
+  {
+    vtkErrorMacro(<< "plane use " << use << " is none of off (0), slice (1) and clip (2)");
+    return;
+  }
+  this->PlaneUse = use;
+  this->UpdateCsg();
+}
+
+void vtkIGAIsosurfaceRepresentation::SetPlaneOrigin(double x, double y, double z)
+{
+  this->PlaneOrigin[0] = x;
+  this->PlaneOrigin[1] = y;
+  this->PlaneOrigin[2] = z;
+  this->UpdateCsg();
+}
+
+void vtkIGAIsosurfaceRepresentation::SetPlaneNormal(double x, double y, double z)
+{
+  this->PlaneNormal[0] = x;
+  this->PlaneNormal[1] = y;
+  this->PlaneNormal[2] = z;
+  this->UpdateCsg();
+}
+
+std::array<double, 4> vtkIGAIsosurfaceRepresentation::WidgetPlane() const
+{
+  const double* n = this->PlaneNormal;
+  return { n[0], n[1], n[2], -vtkMath::Dot(n, this->PlaneOrigin) };
+}
+
+void vtkIGAIsosurfaceRepresentation::UpdateCsg()
+{
+  // A zero normal (while the widget's fields are typed in) is no plane: the widget is ignored.
+  const bool plane = this->PlaneUse != PLANE_OFF && vtkMath::Norm(this->PlaneNormal) > 0;
+  const bool clip = plane && this->PlaneUse == PLANE_CLIP;
+  const std::string expression = iga::csg::cutByHalfSpaces(this->CsgExpression,
+    clip ? std::vector{ this->WidgetPlane() } : std::vector<std::array<double, 4>>{});
+  if (expression != this->MapperExpression) // a refused one is reported once
+  {
+    this->MapperExpression = expression;
+    this->Mapper->SetCsgExpression(expression.c_str());
+  }
+  auto slices = this->Slices;
+  if (plane && !clip)
+  {
+    slices.push_back(this->WidgetPlane());
+  }
+  this->Mapper->SetNumberOfSlices(int(slices.size()));
+  for (size_t k = 0; k < slices.size(); ++k)
+  {
+    this->Mapper->SetSlice(int(k), slices[k][0], slices[k][1], slices[k][2], slices[k][3]);
+  }
+  // As a clipping plane the half-space cuts the slices; the solid keeps its cap on it.
+  vtkPlaneCollection* planes = this->Mapper->GetClippingPlanes();
+  if (planes && planes->IsItemPresent(this->ClipPlane))
+  {
+    this->Mapper->RemoveClippingPlane(this->ClipPlane);
+  }
+  if (clip)
+  {
+    this->ClipPlane->SetOrigin(this->PlaneOrigin);
+    this->ClipPlane->SetNormal(this->PlaneNormal);
+    this->Mapper->AddClippingPlane(this->ClipPlane);
+  }
 }
 
 void vtkIGAIsosurfaceRepresentation::SetRepresentation(const char* name)

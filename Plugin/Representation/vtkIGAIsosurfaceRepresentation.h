@@ -45,9 +45,14 @@
 #include "vtkPVDataRepresentation.h"
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
+#include <array>  // for the slices
+#include <string> // for the expression
+#include <vector> // for the slices
+
 class vtkIGAIsosurfaceMapper;
 class vtkDataObject;
 class vtkOutlineSource;
+class vtkPlane;
 class vtkPolyDataMapper;
 class vtkProperty;
 class vtkPVLODActor;
@@ -88,6 +93,19 @@ public:
   void SetCsgExpression(const char* expression);
   void SetNumberOfSlices(int count);
   void SetSlice(int index, double a, double b, double c, double d);
+
+  /// What "IGA CSG" does with the plane of ParaView's plane widget (origin and normal): nothing,
+  /// one more slice, or a capped clip (the solid cut by the half-space the normal points into,
+  /// its cut face drawn, the slices cut with it).
+  enum PlaneUse
+  {
+    PLANE_OFF = 0,
+    PLANE_SLICE = 1,
+    PLANE_CLIP = 2
+  };
+  void SetPlaneUse(int use);
+  void SetPlaneOrigin(double x, double y, double z);
+  void SetPlaneNormal(double x, double y, double z);
 
   ///@{
   /// The element edges of "IGA Surface With Edges", forwarded to the property.
@@ -142,6 +160,10 @@ private:
 
   /// The mapper's progress, fired again as this representation's.
   void OnMapperProgress(vtkObject* caller, unsigned long event, void* data);
+  /// Hands the expression, the slices and the widget's plane to the mapper.
+  void UpdateCsg();
+  /// The widget's plane as a x + b y + c z + d, the normal's side positive.
+  std::array<double, 4> WidgetPlane() const;
 
   vtkNew<vtkIGAIsosurfaceMapper> Mapper;
   vtkNew<vtkPolyDataMapper> OutlineMapper;
@@ -151,6 +173,13 @@ private:
   /// This rank's piece: a grid of Bézier hexahedra or a composite of them (possibly empty).
   vtkSmartPointer<vtkDataObject> Cache;
   double DataBounds[6];
+  std::string CsgExpression;
+  std::string MapperExpression; ///< what the mapper was last given, the widget's cut included
+  std::vector<std::array<double, 4>> Slices;
+  int PlaneUse = PLANE_OFF;
+  double PlaneOrigin[3] = { 0, 0, 0 };
+  double PlaneNormal[3] = { 1, 0, 0 };
+  vtkNew<vtkPlane> ClipPlane;
 };
 
 #endif

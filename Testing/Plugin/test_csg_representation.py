@@ -1,7 +1,8 @@
 """pvpython: the "IGA CSG" representation of the IGAView plugin. The bundled dice (a rounded
 cube minus its pips) matches its baseline image; cutting it with a half-space and adding a
 slice coloured by an attribute changes what is covered as the geometry says; an expression
-that does not parse is refused and the image stays.
+that does not parse is refused and the image stays; the plane widget's plane, as a clip and as
+a slice, covers what the typed half-space and slice cover, and as a clip it cuts the slices.
 
 Usage: pvpython test_csg_representation.py PLUGIN DATA_DIR BASELINE_DIR WORK_DIR"""
 import os
@@ -54,4 +55,34 @@ assert 0.3 * whole < cut < whole, (cut, whole)
 display.IGACsgExpression = "cube<0 - (pips<0"
 again = covered_pixels(screenshot(view, "dice_refused"))
 assert again == cut, (again, cut)
-print(f"dice: {whole} pixels covered, cut open with a slice {cut}, image difference {difference}")
+
+# ParaView's plane widget. As a clip it cuts the solid as the typed half-space does, and the
+# slices with it; as a slice it draws what the typed slice draws.
+display.IGACsgExpression = "(cube<0 - pips<0) & plane(0, 0, 1, 0)"
+display.IGASlices = []
+typed_clip = covered_pixels(screenshot(view, "dice_typed_clip"))
+display.IGACsgExpression = "cube<0 - pips<0"
+display.IGAPlaneOrigin = [0.0, 0.0, 0.0]
+display.IGAPlaneNormal = [0.0, 0.0, 1.0]
+display.IGAPlaneUse = "Clip"
+widget_clip = covered_pixels(screenshot(view, "dice_widget_clip"))
+assert abs(widget_clip - typed_clip) <= 10 and typed_clip < whole, (widget_clip, typed_clip)
+display.IGASlices = [1.0, 0.0, 0.0, 0.0]
+clipped_slice = covered_pixels(screenshot(view, "dice_widget_clip_slice"))
+# The slice is the volumes' section: in the upper half it shows beyond the rounded cube, in the
+# lower half (shown uncut in `cut`, the same solid) it is gone.
+assert widget_clip + 300 < clipped_slice < cut - 1000, (clipped_slice, widget_clip, cut)
+
+display.IGACsgExpression = ""
+display.IGAPlaneUse = "Off"
+typed_slice = covered_pixels(screenshot(view, "dice_typed_slice"))
+display.IGASlices = []
+display.IGAPlaneNormal = [1.0, 0.0, 0.0]
+display.IGAPlaneUse = "Slice"
+widget_slice = covered_pixels(screenshot(view, "dice_widget_slice"))
+assert 1000 < typed_slice and abs(widget_slice - typed_slice) <= 10, (widget_slice, typed_slice)
+display.IGAPlaneUse = "Off"
+assert covered_pixels(screenshot(view, "dice_nothing")) == 0
+print(f"dice: {whole} pixels covered, cut open with a slice {cut}, image difference {difference}; "
+      f"plane widget: clip {widget_clip} (typed {typed_clip}), with the slice cut {clipped_slice}, "
+      f"slice {widget_slice} (typed {typed_slice})")
