@@ -1004,8 +1004,9 @@ TEST(CsgSlices, DeformedTubeSlicesAndCappedClip)
   EXPECT_LT(errors[0], 1e-9);
   EXPECT_LT(errors[1], 1e-9);
   // The tube cut by the half-space y >= centre: the cut face is the slice's section, capped.
-  const auto capped = renderSlices(tube, "temperature", {}, camera, 96,
-    "domain & plane(0.2, 1, 0.1, " + std::to_string(-centre[1]) + ")");
+  const std::array<double, 4> half = { 0.2, 1, 0.1, -centre[1] };
+  const std::string cutOpen = iga::csg::cutByHalfSpaces("", { half });
+  const auto capped = renderSlices(tube, "temperature", {}, camera, 96, cutOpen);
   int caps = 0;
   for (const auto& hit : capped.hits)
   {
@@ -1027,12 +1028,9 @@ TEST(CsgSlices, DeformedTubeSlicesAndCappedClip)
   }
   // igaview's --clip: the solid cut by the half-space and everything drawn clipped by its plane.
   // The cap on that plane stays whole; a slice across it keeps only its kept side.
-  const std::array<double, 4> half = { 0.2, 1, 0.1, -centre[1] };
   const std::vector<std::array<double, 4>> across = { { 0, 0, 1, -centre[2] } };
-  const auto cut = renderSlices(tube, "temperature", across, camera, 96,
-    "domain & plane(0.2, 1, 0.1, " + std::to_string(-centre[1]) + ")", { half });
-  const auto uncut = renderSlices(tube, "temperature", across, camera, 96,
-    "domain & plane(0.2, 1, 0.1, " + std::to_string(-centre[1]) + ")");
+  const auto cut = renderSlices(tube, "temperature", across, camera, 96, cutOpen, { half });
+  const auto uncut = renderSlices(tube, "temperature", across, camera, 96, cutOpen);
   int cutCaps = 0, cutSlice = 0, uncutSlice = 0;
   for (const auto& hit : cut.hits)
   {
