@@ -111,6 +111,9 @@ struct vtkIGAIsosurfaceMapper::Internals
   std::vector<unsigned int> QuadBlock;
   std::vector<vtkIdType> QuadCell;
   std::vector<uint64_t> Topology;
+  // The input they came from (its identity only: another data object, even an older one, is
+  // converted again) and its modification time.
+  const vtkDataObject* SetInput = nullptr;
   vtkMTimeType SetTime = 0;
   bool SetValid = false;
   // The surfaces drawn (the quadrilaterals, then in DRAW_SURFACES the volumes' boundary faces)
@@ -673,7 +676,7 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
   this->UpdateInput();
   vtkDataObject* input = frame.Input = this->GetInputDataObject(0, 0);
   // Patches, when the data changed.
-  if (input->GetMTime() > in.SetTime || !in.SetTime)
+  if (input != in.SetInput || input->GetMTime() != in.SetTime)
   {
     std::string error;
     std::vector<std::string> warnings;
@@ -686,6 +689,7 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
     in.QuadBlock = std::move(collected.surfaceBlocks);
     in.QuadCell = std::move(collected.surfaceCells);
     in.Topology = std::move(collected.topology);
+    in.SetInput = input;
     in.SetTime = input->GetMTime();
     for (const auto& warning : warnings)
     {

@@ -191,6 +191,31 @@ TEST(IsosurfaceMapper, ReusesTheFrameUntilSomethingChanges)
   EXPECT_NE(scene.mapper->GetLastEngineTime(), first);
 }
 
+TEST(IsosurfaceMapper, DrawsAnInputOlderThanTheOneItDrewLast)
+{
+  // The scene's sphere was made first; the larger sphere (moved out by 1.5) after it. Drawn
+  // in that order, the older sphere's data must be converted again, though its modification
+  // time is older than what the mapper last converted.
+  Scene scene;
+  const vtkSmartPointer<vtkDataObject> older = scene.mapper->GetInputDataObject(0, 0);
+  scene.render();
+  const size_t sphere = scene.mapper->GetLastGBuffer().coveredPixels();
+  auto larger = iga::makeMarsdenSphere<double>(2);
+  for (auto& patch : larger.patches)
+  {
+    const auto view = patch.view();
+    for (int p = 0; p < view.pointCount(); ++p)
+      for (int d = 0; d < 3; ++d)
+        view.point(p)[d] *= 1.5;
+  }
+  scene.mapper->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(larger));
+  scene.render();
+  EXPECT_GT(scene.mapper->GetLastGBuffer().coveredPixels(), sphere + 100);
+  scene.mapper->SetInputData(older);
+  scene.render();
+  EXPECT_EQ(scene.mapper->GetLastGBuffer().coveredPixels(), sphere);
+}
+
 /// Two spheres as blocks of a multiblock dataset, the second moved by +2.5 in x.
 vtkSmartPointer<vtkMultiBlockDataSet> twoSphereBlocks()
 {
