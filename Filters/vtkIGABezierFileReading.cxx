@@ -55,41 +55,44 @@ std::string headOf(const std::string& name, const std::string* text)
   return text ? text->substr(0, 1 << 20) : igaFileHead(name, 1 << 20);
 }
 
-/// Updates the reader with VTK's messages collected rather than printed (several lines each,
-/// from the reader and its arrays and compressors); returns the first one's text, or sets
-/// `error` for what the reader throws.
-std::string updateQuietly(
-  vtkXMLUnstructuredGridReader* reader, const std::string& name, std::string& error)
+} // namespace
+
+bool vtkIGABezierFileReading::RunQuietly(const std::function<bool()>& request, std::string& message)
 {
   const vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
   vtkNew<vtkStringOutputWindow> collected;
   vtkOutputWindow::SetInstance(collected);
   const vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // VTK's log repeats each message
+  bool ok = false;
+  message.clear();
   try
   {
-    reader->Update();
+    ok = request();
   }
   catch (const std::bad_alloc&)
   {
-    error = "'" + name + "': not enough memory to read it (the sizes it gives are too large)";
+    message = "not enough memory to read it (the sizes it gives are too large)";
   }
   catch (const std::exception& e)
   {
-    error = "'" + name + "': cannot be read: " + e.what();
+    message = std::string("cannot be read: ") + e.what();
   }
   vtkLogger::SetStderrVerbosity(verbosity);
   vtkOutputWindow::SetInstance(previous);
+  if (!message.empty())
+  {
+    return false;
+  }
   // VTK writes "ERROR: In FILE, line N\nCLASS (ADDRESS): TEXT\n\n".
   const std::string text = collected->GetOutput();
   const size_t open = text.find("(0x");
   const size_t start = open == std::string::npos ? open : text.find("): ", open);
-  if (start == std::string::npos)
+  if (start != std::string::npos)
   {
-    return std::string();
+    message = text.substr(start + 3, text.find('\n', start) - (start + 3));
   }
-  return text.substr(start + 3, text.find('\n', start) - (start + 3));
-}
+  return ok;
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierFileReading::Read(const std::string& name,
@@ -125,14 +128,17 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierFileReading::Read(const std::st
   {
     reader->SetFileName(name.c_str());
   }
-  const std::string readerMessage = updateQuietly(reader, name, error);
-  if (!error.empty())
-  {
-    return nullptr;
-  }
+  std::string readerMessage;
+  const bool read = RunQuietly(
+    [&]
+    {
+      reader->Update();
+      return reader->GetErrorCode() == 0;
+    },
+    readerMessage);
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   grid->ShallowCopy(reader->GetOutput());
-  if (reader->GetErrorCode() != 0 || grid->GetNumberOfCells() == 0)
+  if (!read || grid->GetNumberOfCells() == 0)
   {
     error = "'" + name + "' is not a readable VTK XML unstructured grid with cells" +
             (readerMessage.empty() ? "" : " (" + readerMessage + ")");

@@ -15,7 +15,7 @@
  * are checked, all of a text's. Then it reads with VTK's
  * messages collected (the first is returned in the error or as a warning), catches what the
  * reader throws, and converts the grid with vtkIGABezierHexahedra. igaview and the .vtu fuzz
- * target read through it.
+ * target read through it; RunQuietly serves any pipeline request the same way.
  */
 #ifndef vtkIGABezierFileReading_h
 #define vtkIGABezierFileReading_h
@@ -24,6 +24,7 @@
 #include "vtkIGABezierHexahedra.h" // for Patches
 #include "vtkSmartPointer.h"       // for return value
 
+#include <functional> // for RunQuietly
 #include <string>
 #include <vector>
 
@@ -38,6 +39,12 @@ public:
   static vtkSmartPointer<vtkUnstructuredGrid> Read(const std::string& name, const std::string* text,
     vtkIGABezierHexahedra::Patches& patches, std::string& error, std::vector<std::string>& warnings,
     double memoryLimitBytes = 0);
+
+  /// Runs `request` (a pipeline update, returning whether it succeeded) with VTK's messages
+  /// collected rather than printed (several lines each, repeated by VTK's log). `message`: the
+  /// first one's text, without the file, line and object VTK puts before it, or what `request`
+  /// threw (then false).
+  static bool RunQuietly(const std::function<bool()>& request, std::string& message);
 };
 
 #endif

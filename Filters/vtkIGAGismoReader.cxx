@@ -1,8 +1,8 @@
 #include "vtkIGAGismoReader.h"
 
 #include "IGAReadError.h"
+#include "IGAXMLDocument.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkIGANurbsData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -15,7 +15,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -304,50 +303,7 @@ private:
   const std::string& Text;
 };
 
-/// vtkXMLDataParser that builds no element deeper than kMaxDepth: the element tree is built and
-/// destroyed recursively, so a file nested tens of thousands of levels deep would overflow the
-/// stack. G+Smo files nest a handful of levels.
-class DepthLimitedParser : public vtkXMLDataParser
-{
-public:
-  static DepthLimitedParser* New();
-  vtkTypeMacro(DepthLimitedParser, vtkXMLDataParser);
-  static constexpr int kMaxDepth = 256;
-  bool TooDeep = false;
-
-protected:
-  void StartElement(const char* name, const char** attributes) override
-  {
-    this->TooDeep = this->TooDeep || ++this->Depth > kMaxDepth;
-    if (!this->TooDeep)
-    {
-      this->Superclass::StartElement(name, attributes);
-    }
-  }
-  void EndElement(const char* name) override
-  {
-    if (!this->TooDeep)
-    {
-      this->Superclass::EndElement(name);
-    }
-    --this->Depth;
-  }
-  int ParsingComplete() override { return this->TooDeep || this->Superclass::ParsingComplete(); }
-
-private:
-  int Depth = 0;
-};
-vtkStandardNewMacro(DepthLimitedParser);
-
-void storeMessage(vtkObject*, unsigned long, void* clientData, void* callData)
-{
-  auto* message = static_cast<std::string*>(clientData);
-  if (message->empty() && callData)
-  {
-    *message = static_cast<const char*>(callData);
-  }
-}
-}
+} // namespace
 
 void vtkIGAGismoReader::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -363,32 +319,11 @@ bool vtkIGAGismoReader::IsOwnFormat(const std::string& head) const
 
 std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsData* data)
 {
-  std::istringstream stream(text);
-  vtkNew<DepthLimitedParser> parser;
-  parser->SetStream(&stream);
-  parser->SetIgnoreCharacterData(0);
-  std::string parserMessage;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetCallback(storeMessage);
-  onError->SetClientData(&parserMessage);
-  parser->AddObserver(vtkCommand::ErrorEvent, onError);
-  const bool parsed = parser->Parse() != 0;
-  if (parser->TooDeep)
+  std::string error;
+  const auto parser = igaParseXML(text, error);
+  if (!parser)
   {
-    return "elements are nested more than " + std::to_string(DepthLimitedParser::kMaxDepth) +
-           " levels deep";
-  }
-  if (!parsed || !parser->GetRootElement())
-  {
-    // vtkXMLParser says "... at line L, column C, byte index B: what".
-    std::smatch match;
-    if (std::regex_search(parserMessage, match, std::regex("line ([0-9]+), column ([0-9]+)")))
-    {
-      const size_t colon = parserMessage.find(": ", match.position(0));
-      return match[1].str() + ": not well-formed XML (column " + match[2].str() +
-             "): " + (colon == std::string::npos ? parserMessage : parserMessage.substr(colon + 2));
-    }
-    return "not well-formed XML: " + parserMessage;
+    return error;
   }
   GismoParser gismo(text);
   iga::NurbsSet<double> set;

@@ -5,6 +5,7 @@
 // window (trackball camera, keys for the isovalue and time, frame-time readout).
 #include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierHexahedra.h"
+#include "vtkIGABezierSeriesReader.h"
 #include "vtkIGADeepEXR.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAEXRWriter.h"
@@ -59,14 +60,16 @@ boundary of its volumes and its surface patches), pixel-exactly (Shared Subdivis
 PNG image and optionally an OpenEXR G-buffer.
 view: shows them in an interactive window: drag to rotate (trackball), right-drag or wheel to
 zoom, middle-drag to pan; Up/Down raise/lower the isovalue by 2% of the attribute's range,
-Right/Left step the time (inputs with time steps, e.g. the default dataset), r resets the camera,
+Right/Left step the time (inputs with time steps: the default dataset, a .pvd series), r resets
+the camera,
 q quits. The corner shows the isovalue, the time and the last frame's engine and frame time.
 With no INPUT both use the bundled default dataset (a twisted rational tube of 8 tri-quadratic
 patches, deforming over the time steps 0..1).
 
 INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON and
                          VTK_BEZIER_QUADRILATERAL cells with RationalWeights (and
-                         HigherOrderDegrees where a cell's degrees differ), or a G+Smo XML or
+                         HigherOrderDegrees where a cell's degrees differ), a .pvd collection of
+                         such files (a time series: one file a time step), or a G+Smo XML or
                          GeoPDEs text geometry (geometry only: drawn as surfaces by default)
   --surface              draw the surfaces (volumes' boundaries, surface patches), not
                          isosurfaces; the default for geometry files and for input without volumes
@@ -85,7 +88,12 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour)
   --size WxH             image size in pixels (default 800x600)
-  --time T               deformation time of the default dataset, 0..1 (default 0.5)
+  --time T               the time drawn: the default dataset's deformation time, 0..1, or
+                         the time step nearest T of a .pvd series (default 0.5)
+  --series               render: draw every time step (the default dataset's 11, a .pvd's) to
+                         -o, --exr and --deep-exr numbered _000, _001, ... before the extension,
+                         with one camera framing all steps and the isovalue and colour range of
+                         the --time step
   --camera-position x,y,z
   --focal-point x,y,z
   --view-up x,y,z
@@ -111,7 +119,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
 
 struct Options
 {
-  bool view = false; ///< `igaview view`
+  bool view = false;   ///< `igaview view`
+  bool series = false; ///< --series
   bool surface = false, edges = false;
   std::string csg; ///< --csg as typed
   std::vector<std::array<double, 4>> slices, clips;
@@ -285,6 +294,8 @@ Options parseArguments(int argc, char** argv)
       options.colorBy = value();
     else if (arg == "--time")
       options.time = parseNumber(value(), arg);
+    else if (arg == "--series" && !options.view)
+      options.series = true;
     else if (arg == "-o")
       options.output = value(), options.hasOutput = true;
     else if (arg == "--keys" && options.view)
@@ -354,10 +365,6 @@ Options parseArguments(int argc, char** argv)
     else
       fail("more than one input given: '" + options.input + "' and '" + arg + "'");
   }
-  if (!(options.time >= 0 && options.time <= 1))
-  {
-    fail("--time must lie in 0..1");
-  }
   checkImageBudget(options);
   return options;
 }
@@ -371,36 +378,90 @@ struct Input
   bool geometry = false;
 };
 
-/// A NURBS reader's output read like the mapper takes it, failing with the reader's message.
-void readGeometry(vtkIGANurbsReader* reader, const std::string& file, Input& input,
-  std::string& error, std::vector<std::string>& warnings)
+/// Runs `request` (a pipeline update returning whether it succeeded), failing with the first
+/// message VTK gave, on one line.
+template<class Request>
+void requestOrFail(const std::string& name, Request request)
 {
   std::string message;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&message);
-  onError->SetCallback([](vtkObject*, unsigned long, void* data, void* text)
-    { *static_cast<std::string*>(data) = static_cast<const char*>(text); });
-  reader->AddObserver(vtkCommand::ErrorEvent, onError);
-  reader->SetFileName(file.c_str());
-  reader->Update();
+  if (!vtkIGABezierFileReading::RunQuietly(request, message))
+    fail(message.empty() ? name + ": the pipeline update failed" : message);
   if (!message.empty())
+    std::fprintf(stderr, "igaview: warning: %s\n", message.c_str());
+}
+
+/// The time steps the producer advertises (none for a static input).
+std::vector<double> timeSteps(vtkAlgorithm* producer)
+{
+  producer->UpdateInformation();
+  vtkInformation* info = producer->GetOutputInformation(0);
+  if (!info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+    return {};
+  const double* steps = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  return { steps, steps + info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()) };
+}
+
+/// The index of the step nearest `time` (0 for none).
+size_t nearestStep(const std::vector<double>& steps, double time)
+{
+  size_t nearest = 0;
+  for (size_t k = 0; k < steps.size(); ++k)
   {
-    fail(message);
+    if (std::abs(steps[k] - time) < std::abs(steps[nearest] - time))
+      nearest = k;
   }
+  return nearest;
+}
+
+/// The patches of the producer's output, read like the mapper takes them.
+void convertOutput(vtkAlgorithm* producer, const std::string& name,
+  vtkIGABezierHexahedra::Patches& patches, std::vector<std::string>& warnings)
+{
+  std::string error;
+  if (!vtkIGABezierHexahedra::FromUnstructuredGrid(
+        vtkUnstructuredGrid::SafeDownCast(producer->GetOutputDataObject(0)), patches, error,
+        warnings))
+  {
+    fail(name + ": " + error);
+  }
+}
+
+/// A NURBS reader's output read like the mapper takes it, failing with the reader's message.
+void readGeometry(vtkIGANurbsReader* reader, const std::string& file, Input& input,
+  std::vector<std::string>& warnings)
+{
+  reader->SetFileName(file.c_str());
+  requestOrFail("'" + file + "'", [&] { return reader->Update(0, nullptr) != 0; });
   input.producer = reader;
   input.geometry = true;
-  if (!vtkIGABezierHexahedra::FromUnstructuredGrid(
-        reader->GetOutput(), input.patches, error, warnings))
-  {
-    fail("'" + file + "': " + error);
-  }
+  convertOutput(reader, "'" + file + "'", input.patches, warnings);
+}
+
+/// A .pvd series at its time step nearest --time.
+void readSeries(const Options& options, Input& input, std::vector<std::string>& warnings)
+{
+  auto reader = vtkSmartPointer<vtkIGABezierSeriesReader>::New();
+  reader->SetFileName(options.input.c_str());
+  std::vector<double> steps;
+  const std::string name = "'" + options.input + "'";
+  requestOrFail(name,
+    [&]
+    {
+      const bool ok = reader->GetExecutive()->UpdateInformation() != 0;
+      steps = timeSteps(reader);
+      return ok && !steps.empty();
+    });
+  const double time = steps[nearestStep(steps, options.time)];
+  requestOrFail(name, [&] { return reader->UpdateTimeStep(time) != 0; });
+  std::printf("igaview: %s: %zu time steps, time %g\n", options.input.c_str(), steps.size(), time);
+  input.producer = reader;
+  convertOutput(reader, "'" + options.input + "'", input.patches, warnings);
 }
 
 /// The default dataset's source, a G+Smo or GeoPDEs geometry's reader, or the grid of a .vtu
 /// read as the mapper would take it.
 Input loadInput(const Options& options)
 {
-  std::string error;
   std::vector<std::string> warnings;
   Input input;
   std::string name = options.input;
@@ -408,6 +469,8 @@ Input loadInput(const Options& options)
   vtkNew<vtkIGAGeoPDEsReader> geopdes;
   if (options.input.empty())
   {
+    if (!(options.time >= 0 && options.time <= 1))
+      fail("--time must lie in 0..1 for the default dataset");
     auto source = vtkSmartPointer<vtkIGADefaultVolumeSource>::New();
     source->SetTime(options.time);
     source->Update();
@@ -416,22 +479,23 @@ Input loadInput(const Options& options)
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
       options.time);
-    if (!vtkIGABezierHexahedra::FromUnstructuredGrid(
-          source->GetOutput(), input.patches, error, warnings))
-    {
-      fail(name + ": " + error);
-    }
+    convertOutput(source, name, input.patches, warnings);
   }
   else if (gismo->CanReadFile(options.input.c_str()))
   {
-    readGeometry(gismo, options.input, input, error, warnings);
+    readGeometry(gismo, options.input, input, warnings);
   }
   else if (geopdes->CanReadFile(options.input.c_str()))
   {
-    readGeometry(geopdes, options.input, input, error, warnings);
+    readGeometry(geopdes, options.input, input, warnings);
+  }
+  else if (vtkIGABezierSeriesReader::CanReadFile(options.input.c_str()))
+  {
+    readSeries(options, input, warnings);
   }
   else
   {
+    std::string error;
     const auto grid =
       vtkIGABezierFileReading::Read(options.input, nullptr, input.patches, error, warnings);
     if (!grid)
@@ -487,10 +551,33 @@ void attributeRange(const Input& input, int attribute, bool surfaces, double* ra
   }
 }
 
+/// The bounds of the input's patches; with --series, of every time step's.
+void inputBounds(const Options& options, const Input& input, double* bounds)
+{
+  iga::sst::patchBounds(sceneOf(input), bounds);
+  if (!options.series)
+    return;
+  for (double time : timeSteps(input.producer))
+  {
+    requestOrFail(
+      "time " + std::to_string(time), [&] { return input.producer->UpdateTimeStep(time) != 0; });
+    Input step;
+    std::vector<std::string> warnings; // said when the step was read first
+    convertOutput(input.producer, "time " + std::to_string(time), step.patches, warnings);
+    double stepBounds[6];
+    iga::sst::patchBounds(sceneOf(step), stepBounds);
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], stepBounds[2 * a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], stepBounds[2 * a + 1]);
+    }
+  }
+}
+
 iga::Camera chooseCamera(const Options& options, const Input& input)
 {
   double bounds[6];
-  iga::sst::patchBounds(sceneOf(input), bounds);
+  inputBounds(options, input, bounds);
   // Default view: from the front right and above, z up, framing the data like ResetCamera.
   iga::Camera camera =
     iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, options.viewAngle);
@@ -589,19 +676,10 @@ struct Viewer
 /// caller then writes the last frame like `render` does).
 void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
 {
-  vtkInformation* info = viewer.producer->GetOutputInformation(0);
-  if (info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
+  viewer.times = timeSteps(viewer.producer);
+  if (!viewer.times.empty())
   {
-    const double* steps = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    viewer.times.assign(
-      steps, steps + info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
-    // Start at the step nearest the requested time.
-    for (size_t k = 0; k < viewer.times.size(); ++k)
-    {
-      if (std::abs(viewer.times[k] - options.time) <
-          std::abs(viewer.times[viewer.timeIndex] - options.time))
-        viewer.timeIndex = k;
-    }
+    viewer.timeIndex = nearestStep(viewer.times, options.time);
     viewer.setTime();
   }
   viewer.readout->GetTextProperty()->SetFontSize(16);
@@ -887,6 +965,40 @@ void writeOutputs(const Options& options, const Input& input, const Drawing& dra
   }
 }
 
+/// `file` with _NNN (step k) before its extension.
+std::string numbered(const std::string& file, size_t k)
+{
+  char suffix[24];
+  std::snprintf(suffix, sizeof(suffix), "_%03zu", k);
+  const size_t slash = file.find_last_of('/');
+  const size_t dot = file.find_last_of('.');
+  const size_t at =
+    dot != std::string::npos && (slash == std::string::npos || dot > slash) ? dot : file.size();
+  return file.substr(0, at) + suffix + file.substr(at);
+}
+
+/// --series: each time step drawn and written, the outputs numbered by step.
+void renderSeries(const Options& options, const Input& input, const Drawing& drawing,
+  vtkRenderWindow* window, vtkIGAIsosurfaceMapper* mapper)
+{
+  const std::vector<double> steps = timeSteps(input.producer);
+  if (steps.empty())
+    fail("--series: '" + options.input +
+         "' has no time steps (a .pvd series and the default dataset have)");
+  for (size_t k = 0; k < steps.size(); ++k)
+  {
+    requestOrFail("time " + std::to_string(steps[k]),
+      [&] { return input.producer->UpdateTimeStep(steps[k]) != 0; });
+    window->Render();
+    std::printf("igaview: time step %zu of %zu, time %g\n", k + 1, steps.size(), steps[k]);
+    Options frame = options;
+    frame.output = numbered(options.output, k);
+    frame.exr = options.exr.empty() ? "" : numbered(options.exr, k);
+    frame.deepExr = options.deepExr.empty() ? "" : numbered(options.deepExr, k);
+    writeOutputs(frame, input, drawing, window, mapper);
+  }
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -908,6 +1020,11 @@ int main(int argc, char** argv)
   window->AddRenderer(renderer);
   window->SetSize(options.size[0], options.size[1]);
   describe(options, input, drawing);
+  if (options.series)
+  {
+    renderSeries(options, input, drawing, window, mapper);
+    return 0;
+  }
   if (options.view)
   {
     vtkNew<vtkTextActor> readout;

@@ -1,14 +1,17 @@
 // Bézier cells in VTK XML files: what VTK 9.2's vtkXMLUnstructuredGridWriter writes (file
 // version, active-attribute flags), that the NURBS description survives a .vtu round trip, and
 // that a .pvd series written by vtkIGABezierSeriesWriter reads back through ParaView's
-// vtkPVDReader with its time steps.
+// vtkPVDReader and vtkIGABezierSeriesReader with its time steps, the latter refusing bad
+// collections with one error.
 #include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierHexahedra.h"
+#include "vtkIGABezierSeriesReader.h"
 #include "vtkIGABezierSeriesWriter.h"
 #include "vtkIGADefaultVolumeSource.h"
 #include "vtkIGAGismoReader.h"
 #include "vtkIGANurbsData.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -319,44 +322,126 @@ TEST(BezierVTU, WriterVersionAndActiveFlagsSurviveARoundTrip)
     EXPECT_NEAR(b.volumes[0].net[v], a.volumes[0].net[v], 1e-15);
 }
 
-TEST(BezierVTU, PVDSeriesReadsBackWithItsTimeSteps)
+/// The default source's series written as a .pvd (its 11 time steps, 0..1).
+std::string writeDefaultSeries()
 {
   const std::string pvd = testing::TempDir() + "/igaview_series.pvd";
   vtkNew<vtkIGADefaultVolumeSource> source;
   vtkNew<vtkIGABezierSeriesWriter> writer;
   writer->SetFileName(pvd.c_str());
   writer->SetInputConnection(source->GetOutputPort());
-  ASSERT_EQ(writer->Write(), 1);
+  EXPECT_EQ(writer->Write(), 1);
+  return pvd;
+}
 
-  vtkNew<vtkPVDReader> reader;
-  reader->SetFileName(pvd.c_str());
+/// `reader` of the default source's series: its 11 steps, and at `requested` the grid of
+/// `step`, point for point the source's at that step.
+void expectDefaultSeriesStep(vtkAlgorithm* reader, double requested, double step)
+{
   reader->UpdateInformation();
   vtkInformation* info = reader->GetOutputInformation(0);
   ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
   ASSERT_EQ(info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()), 11);
   EXPECT_NEAR(info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[3], 0.3, 1e-15);
+  reader->UpdateTimeStep(requested);
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(reader->GetOutputDataObject(0));
+  ASSERT_NE(grid, nullptr) << reader->GetOutputDataObject(0)->GetClassName();
+  ASSERT_NE(grid->GetPointData()->GetRationalWeights(), nullptr);
+  // Degree 2 in every direction: VTK infers it from the 27 points; no cell arrays at all
+  // (see vtkIGABezierHexahedra::CellLayout).
+  EXPECT_EQ(grid->GetCellData()->GetNumberOfArrays(), 0);
+  EXPECT_EQ(grid->GetCellSize(0), 27);
+  vtkNew<vtkIGADefaultVolumeSource> reference;
+  reference->UpdateTimeStep(step);
+  vtkUnstructuredGrid* expected = reference->GetOutput();
+  ASSERT_EQ(grid->GetNumberOfPoints(), expected->GetNumberOfPoints());
+  double worst = 0;
+  for (vtkIdType p = 0; p < grid->GetNumberOfPoints(); ++p)
+    for (int d = 0; d < 3; ++d)
+      worst = std::max(worst, std::abs(grid->GetPoint(p)[d] - expected->GetPoint(p)[d]));
+  EXPECT_EQ(worst, 0.0) << "time " << requested; // binary XML keeps doubles exactly
+}
 
-  const double* steps = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+TEST(BezierVTU, PVDSeriesReadsBackWithItsTimeSteps)
+{
+  const std::string pvd = writeDefaultSeries();
+  vtkNew<vtkPVDReader> reader;
+  reader->SetFileName(pvd.c_str());
+  reader->UpdateInformation();
+  const double* steps =
+    reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  ASSERT_NE(steps, nullptr);
   for (double time : { steps[3], steps[10] })
+    expectDefaultSeriesStep(reader, time, time);
+}
+
+TEST(BezierVTU, SeriesReaderGivesTheStepAtOrBeforeTheRequestedTime)
+{
+  const std::string pvd = writeDefaultSeries();
+  EXPECT_EQ(vtkIGABezierSeriesReader::CanReadFile(pvd.c_str()), 1);
+  EXPECT_EQ(vtkIGABezierSeriesReader::CanReadFile(IGAVIEW_DATA_DIR "/dice.vtu"), 0);
+  vtkNew<vtkIGABezierSeriesReader> reader;
+  reader->SetFileName(pvd.c_str());
+  vtkNew<vtkIGADefaultVolumeSource> source; // its steps, as written
+  source->UpdateInformation();
+  const double* steps =
+    source->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  expectDefaultSeriesStep(reader, steps[3], steps[3]);
+  expectDefaultSeriesStep(reader, steps[3] + 0.08, steps[3]); // between steps: the one before
+  expectDefaultSeriesStep(reader, -1.0, steps[0]);            // before all: the first
+  expectDefaultSeriesStep(reader, 7.0, steps[10]);
+  EXPECT_EQ(reader->GetNumberOfTimeSteps(), 11);
+  EXPECT_EQ(reader->GetTimeStep(10), steps[10]);
+}
+
+/// The errors vtkIGABezierSeriesReader reports reading the collection `text` (written beside the
+/// default series' files, which it may name).
+std::vector<std::string> seriesErrors(const std::string& text)
+{
+  const std::string pvd = testing::TempDir() + "/igaview_bad_series.pvd";
+  std::ofstream(pvd) << text;
+  vtkNew<vtkIGABezierSeriesReader> reader;
+  reader->SetFileName(pvd.c_str());
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&errors);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
+  reader->AddObserver(vtkCommand::ErrorEvent, onError);
+  reader->Update();
+  return errors;
+}
+
+TEST(BezierVTU, SeriesReaderRefusesBadCollectionsWithOneError)
+{
+  writeDefaultSeries(); // igaview_series/igaview_series_0.vtu exists: a good step
+  const std::string head = "<VTKFile type=\"Collection\"><Collection>";
+  const std::string tail = "</Collection></VTKFile>";
+  const std::string good = "<DataSet timestep=\"0\" file=\"igaview_series_0.vtu\"/>";
+  std::string deep;
+  for (int i = 0; i < 1000; ++i)
+    deep += "<a>";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    { head + tail, "the collection lists no DataSet" },
+    { head + "<DataSet timestep=\"nan\" file=\"a.vtu\"/>" + tail,
+      "DataSet 0 has no finite timestep" },
+    { head + "<DataSet timestep=\"1x\" file=\"a.vtu\"/>" + tail,
+      "DataSet 0 has no finite timestep" },
+    { head + good + "<DataSet timestep=\"1\"/>" + tail, "DataSet 1 names no file" },
+    { head + good + good + tail, "several parts at time 0 \\(each time step must be one file\\)" },
+    { head + "<DataSet timestep=\"0\" file=\"missing.vtu\"/>" + tail,
+      "time step 0 of '.*': cannot open '.*missing.vtu'" },
+    { head + "<DataSet timestep=\"0\" file=\"igaview_series.pvd\"/>" + tail,
+      "time step 0 of '.*': '.*igaview_series.pvd' is not a readable VTK XML unstructured grid" },
+    { head + good, ":1: not well-formed XML \\(column [0-9]+\\): " },
+    { head + deep, "elements are nested more than 256 levels deep" },
+    { "<VTKFile type=\"UnstructuredGrid\"><Collection/></VTKFile>", "not a VTK collection" },
+  };
+  for (const auto& [text, message] : cases)
   {
-    reader->UpdateTimeStep(time);
-    auto* grid = vtkUnstructuredGrid::SafeDownCast(reader->GetOutputDataObject(0));
-    ASSERT_NE(grid, nullptr) << reader->GetOutputDataObject(0)->GetClassName();
-    ASSERT_NE(grid->GetPointData()->GetRationalWeights(), nullptr);
-    // Degree 2 in every direction: VTK infers it from the 27 points; no cell arrays at all
-    // (see vtkIGABezierHexahedra::CellLayout).
-    EXPECT_EQ(grid->GetCellData()->GetNumberOfArrays(), 0);
-    EXPECT_EQ(grid->GetCellSize(0), 27);
-    // The step's points are the source's at that time.
-    vtkNew<vtkIGADefaultVolumeSource> reference;
-    reference->UpdateTimeStep(time);
-    vtkUnstructuredGrid* expected = reference->GetOutput();
-    ASSERT_EQ(grid->GetNumberOfPoints(), expected->GetNumberOfPoints());
-    double worst = 0;
-    for (vtkIdType p = 0; p < grid->GetNumberOfPoints(); ++p)
-      for (int d = 0; d < 3; ++d)
-        worst = std::max(worst, std::abs(grid->GetPoint(p)[d] - expected->GetPoint(p)[d]));
-    EXPECT_EQ(worst, 0.0) << "time " << time; // binary XML keeps doubles exactly
+    const auto errors = seriesErrors(text);
+    ASSERT_EQ(errors.size(), 1u) << text;
+    EXPECT_TRUE(std::regex_search(errors[0], std::regex(message))) << errors[0];
   }
 }
 

@@ -1,8 +1,11 @@
 // vtkIGAIsosurfaceMapper drawing CSG solids and slices (DRAW_CSG): the dice's hits lie on the
 // cube outside the pips or on a pip inside the cube while the dice twists; a capped clip and a
-// slice of the tube; bad expressions; regression images.
+// slice of the tube; the twisting dice's .pvd series drawn like the deformation it was written
+// from; bad expressions; regression images.
 #include "RenderingTestUtilities.h"
 #include "vtkIGABezierHexahedra.h"
+#include "vtkIGABezierSeriesReader.h"
+#include "vtkIGABezierSeriesWriter.h"
 #include "vtkIGAIsosurfaceMapper.h"
 #include "vtkIGASyntheticDeformation.h"
 
@@ -109,6 +112,48 @@ TEST(CsgMapper, TwistingDiceShowsItsCubeAndPipsAndNothingElse)
   twist->SetAxis(2);
   twist->SetAmount(1.2);
   expectSolidMinusHoles(scene, iga::makeDice<double>(), twist, 8000, 800, "MapperTwistedDiceCsg");
+}
+
+TEST(CsgMapper, TwistingDiceSeriesDrawsLikeTheDeformationItWasWrittenFrom)
+{
+  CsgScene scene;
+  scene.look(3.2, -4.4, 3.6, 0, 0, 0);
+  scene.mapper->SetCsgExpression("cube<0 - pips<0");
+  vtkNew<vtkIGASyntheticDeformation> twist;
+  twist->SetAxis(2);
+  twist->SetAmount(1.2);
+  twist->SetNumberOfTimeSteps(3);
+  twist->SetInputData(vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeDice<double>()));
+  const std::string pvd = testing::TempDir() + "/igaview_dice_series.pvd";
+  vtkNew<vtkIGABezierSeriesWriter> writer;
+  writer->SetFileName(pvd.c_str());
+  writer->SetInputConnection(twist->GetOutputPort());
+  ASSERT_EQ(writer->Write(), 1);
+  vtkNew<vtkIGABezierSeriesReader> reader;
+  reader->SetFileName(pvd.c_str());
+  for (double time : { 0.0, 0.5, 1.0 })
+  {
+    twist->UpdateTimeStep(time);
+    auto deformed = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    deformed->ShallowCopy(twist->GetOutput());
+    const iga::sst::GBuffer expected = scene.draw(deformed);
+    // The mapper draws the reader's output at the time the pipeline asks for.
+    scene.mapper->SetInputConnection(reader->GetOutputPort());
+    reader->UpdateTimeStep(time);
+    scene.window->Render();
+    const iga::sst::GBuffer& drawn = scene.mapper->GetLastGBuffer();
+    ASSERT_EQ(drawn.hits.size(), expected.hits.size()) << "time " << time;
+    EXPECT_GT(drawn.coveredPixels(), 8000u);
+    double worst = 0;
+    for (size_t h = 0; h < drawn.hits.size(); ++h)
+    {
+      EXPECT_EQ(drawn.hits[h].isovalue, expected.hits[h].isovalue);
+      worst = std::max(worst, glm::length(drawn.hits[h].position - expected.hits[h].position));
+    }
+    EXPECT_EQ(worst, 0.0) << "time " << time << ": binary XML keeps the control points exactly";
+  }
+  // The last frame is the twisting dice's regression image at time 1.
+  igatest::compareWithBaseline(scene.window, "MapperTwistedDiceCsg");
 }
 
 TEST(CsgMapper, BendingCheeseShowsItsBlockAndHolesAndNothingElse)

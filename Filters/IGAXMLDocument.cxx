@@ -1,0 +1,91 @@
+#include "IGAXMLDocument.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+
+#include <regex>
+#include <sstream>
+
+namespace
+{
+
+/// vtkXMLDataParser that builds no element deeper than kIGAXMLMaxDepth.
+class DepthLimitedParser : public vtkXMLDataParser
+{
+public:
+  static DepthLimitedParser* New();
+  vtkTypeMacro(DepthLimitedParser, vtkXMLDataParser);
+  bool TooDeep = false;
+
+protected:
+  void StartElement(const char* name, const char** attributes) override
+  {
+    this->TooDeep = this->TooDeep || ++this->Depth > kIGAXMLMaxDepth;
+    if (!this->TooDeep)
+    {
+      this->Superclass::StartElement(name, attributes);
+    }
+  }
+  void EndElement(const char* name) override
+  {
+    if (!this->TooDeep)
+    {
+      this->Superclass::EndElement(name);
+    }
+    --this->Depth;
+  }
+  int ParsingComplete() override { return this->TooDeep || this->Superclass::ParsingComplete(); }
+
+private:
+  int Depth = 0;
+};
+vtkStandardNewMacro(DepthLimitedParser);
+
+void storeMessage(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  auto* message = static_cast<std::string*>(clientData);
+  if (message->empty() && callData)
+  {
+    *message = static_cast<const char*>(callData);
+  }
+}
+
+} // namespace
+
+vtkSmartPointer<vtkXMLDataParser> igaParseXML(const std::string& text, std::string& error)
+{
+  std::istringstream stream(text);
+  vtkNew<DepthLimitedParser> parser;
+  parser->SetStream(&stream);
+  parser->SetIgnoreCharacterData(0);
+  std::string parserMessage;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetCallback(storeMessage);
+  onError->SetClientData(&parserMessage);
+  parser->AddObserver(vtkCommand::ErrorEvent, onError);
+  const bool parsed = parser->Parse() != 0;
+  parser->SetStream(nullptr);
+  if (parser->TooDeep)
+  {
+    error = "elements are nested more than " + std::to_string(kIGAXMLMaxDepth) + " levels deep";
+    return nullptr;
+  }
+  if (!parsed || !parser->GetRootElement())
+  {
+    // vtkXMLParser says "... at line L, column C, byte index B: what".
+    std::smatch match;
+    if (std::regex_search(parserMessage, match, std::regex("line ([0-9]+), column ([0-9]+)")))
+    {
+      const size_t colon = parserMessage.find(": ", match.position(0));
+      error = match[1].str() + ": not well-formed XML (column " + match[2].str() + "): " +
+              (colon == std::string::npos ? parserMessage : parserMessage.substr(colon + 2));
+    }
+    else
+    {
+      error = "not well-formed XML: " + parserMessage;
+    }
+    return nullptr;
+  }
+  return vtkSmartPointer<vtkXMLDataParser>(parser.Get());
+}
