@@ -190,7 +190,8 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DrawMode: " << this->DrawMode << "\n";
   os << indent << "AllLayers: " << this->AllLayers << "\n";
   os << indent << "CsgExpression: " << this->CsgExpression << "\n";
-  os << indent << "Slices: " << this->Slices.size() / 4 << "\n";
+  os << indent << "Slices: " << this->Slices.size() << "\n";
+  os << indent << "CappedClips: " << this->CappedClips.size() << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "Backend: " << this->Backend << "\n";
   os << indent << "MaximumSubdivisionDepth: " << this->MaximumSubdivisionDepth << "\n";
@@ -269,35 +270,73 @@ void vtkIGAIsosurfaceMapper::SetCsgExpression(const char* expression)
   this->Modified();
 }
 
+namespace
+{
+
+/// Resizes a list of planes, the new ones x = 0; whether it changed.
+bool resizePlanes(std::vector<std::array<double, 4>>& planes, int count)
+{
+  if (count < 0 || size_t(count) == planes.size())
+  {
+    return false;
+  }
+  planes.resize(size_t(count), { 1, 0, 0, 0 });
+  return true;
+}
+
+/// Sets plane `index` of a list, growing it as needed; whether it changed.
+bool setPlane(
+  std::vector<std::array<double, 4>>& planes, int index, double a, double b, double c, double d)
+{
+  if (index < 0)
+  {
+    return false;
+  }
+  const bool grown = size_t(index) >= planes.size() && resizePlanes(planes, index + 1);
+  const std::array<double, 4> plane = { a, b, c, d };
+  if (planes[size_t(index)] == plane)
+  {
+    return grown;
+  }
+  planes[size_t(index)] = plane;
+  return true;
+}
+
+} // namespace
+
 void vtkIGAIsosurfaceMapper::SetNumberOfSlices(int count)
 {
-  if (count < 0 || count == this->GetNumberOfSlices())
+  if (resizePlanes(this->Slices, count))
   {
-    return;
+    this->Modified();
   }
-  const size_t from = this->Slices.size() / 4;
-  this->Slices.resize(4 * size_t(count));
-  for (size_t k = from; k < size_t(count); ++k)
-  {
-    this->Slices[4 * k] = 1;
-  }
-  this->Modified();
 }
 
 void vtkIGAIsosurfaceMapper::SetSlice(int index, double a, double b, double c, double d)
 {
-  if (index < 0)
+  if (setPlane(this->Slices, index, a, b, c, d))
   {
+    this->Modified();
+  }
+}
+
+void vtkIGAIsosurfaceMapper::SetNumberOfCappedClips(int count)
+{
+  if (resizePlanes(this->CappedClips, count))
+  {
+    this->Modified();
+  }
+}
+
+void vtkIGAIsosurfaceMapper::SetCappedClip(int index, double a, double b, double c, double d)
+{
+  if (a == 0 && b == 0 && c == 0)
+  {
+    vtkErrorMacro(<< "capped clip " << index << ": the normal (a, b, c) is zero; ignored");
     return;
   }
-  if (index >= this->GetNumberOfSlices())
+  if (setPlane(this->CappedClips, index, a, b, c, d))
   {
-    this->SetNumberOfSlices(index + 1);
-  }
-  const double plane[4] = { a, b, c, d };
-  if (!std::equal(plane, plane + 4, this->Slices.begin() + 4 * index))
-  {
-    std::copy(plane, plane + 4, this->Slices.begin() + 4 * index);
     this->Modified();
   }
 }
@@ -706,7 +745,8 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
   }
   this->UpdateSurfaces();
   const bool csg =
-    this->DrawMode == DRAW_CSG && (!this->CsgExpression.empty() || !this->Slices.empty());
+    this->DrawMode == DRAW_CSG &&
+    (!this->CsgExpression.empty() || !this->Slices.empty() || !this->CappedClips.empty());
   frame.Volumes = !in.Set.patches.empty() &&
                   ((this->DrawMode == DRAW_ISOSURFACES && !this->Isovalues.empty()) || csg);
   // Messages are reported once until the settings (the mapper's own, not the lookup table's)
@@ -899,6 +939,13 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   {
     this->GetClippingPlaneInDataCoords(identity, int(k), settings.clipPlanes[k].data());
     frame.Key.insert(frame.Key.end(), settings.clipPlanes[k].begin(), settings.clipPlanes[k].end());
+  }
+  // Capped clips cut the slices like clipping planes; the solid, cut by them too, keeps its cap
+  // on them (ComputeCsgFrame).
+  if (this->DrawMode == DRAW_CSG)
+  {
+    settings.clipPlanes.insert(
+      settings.clipPlanes.end(), this->CappedClips.begin(), this->CappedClips.end());
   }
   settings.surfaceAttribute = frame.Volumes ? surfaceAttribute : 0;
   frame.ByScalars = this->ScalarVisibility && this->ArrayName && *this->ArrayName &&
@@ -1098,15 +1145,21 @@ iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, con
     scene.inputs.push_back(
       { ranges.size() > 1 ? &blocks[b] : &volumes, in.Set.attributeNames, &in.BlockFaces[b] });
   }
-  if (!this->CsgExpression.empty())
+  const std::string solid = iga::csg::cutByHalfSpaces(this->CsgExpression, this->CappedClips);
+  try
   {
+    if (!solid.empty())
+      scene.expression = iga::csg::parseExpression(solid);
+  }
+  catch (const iga::csg::ExpressionError& e)
+  {
+    // The expression parsed alone; cut, it can pass the limits on operands and nesting.
+    this->ReportOnce("capped clips",
+      std::string("the solid cut by the capped clips is refused: ") + e.what() + "; drawn uncut",
+      true);
     scene.expression = iga::csg::parseExpression(this->CsgExpression);
   }
-  for (size_t k = 0; k + 3 < this->Slices.size(); k += 4)
-  {
-    scene.slices.push_back(
-      { this->Slices[k], this->Slices[k + 1], this->Slices[k + 2], this->Slices[k + 3] });
-  }
+  scene.slices = this->Slices;
   scene.colorAttribute = frame.ByScalars ? this->ArrayName : "";
   return iga::sst::renderCsg(
     scene, frame.View, frame.Settings, iga::sst::Method::SharedSubdivisionTree, in.GBuffer);

@@ -96,6 +96,7 @@ class Scene;
 }
 #endif
 
+#include <array>  // for the planes
 #include <memory> // for std::unique_ptr
 #include <string> // for std::string
 #include <vector> // for std::vector
@@ -162,8 +163,21 @@ public:
   /// hexahedra, exact, coloured like the rest (by the colour array through the lookup table).
   /// Setting slice `index` adds slices up to it as needed (the new ones x = 0).
   void SetNumberOfSlices(int count);
-  int GetNumberOfSlices() const { return static_cast<int>(this->Slices.size() / 4); }
+  int GetNumberOfSlices() const { return static_cast<int>(this->Slices.size()); }
   void SetSlice(int index, double a, double b, double c, double d);
+  ///@}
+
+  ///@{
+  /// Capped clips of DRAW_CSG: each keeps the part a x + b y + c z + d >= 0 (world coordinates,
+  /// like clipping planes) of the solid, or of the hexahedra when there is no expression, with
+  /// its cut face drawn and coloured like the rest, and cuts the slices: the solid drawn is
+  /// CsgExpression intersected with the half-spaces (iga::csg::cutByHalfSpaces). A clipping
+  /// plane (AddClippingPlane) cuts the surface open; a capped clip closes it. A zero normal is
+  /// refused with an error. Setting clip `index` adds clips up to it as needed (the new ones
+  /// x >= 0).
+  void SetNumberOfCappedClips(int count);
+  int GetNumberOfCappedClips() const { return static_cast<int>(this->CappedClips.size()); }
+  void SetCappedClip(int index, double a, double b, double c, double d);
   ///@}
 
   ///@{
@@ -351,7 +365,7 @@ private:
   std::unique_ptr<Internals> Internal;
   std::vector<double> Isovalues;
   std::string CsgExpression;
-  std::vector<double> Slices; ///< a, b, c, d per slice
+  std::vector<std::array<double, 4>> Slices, CappedClips; ///< a, b, c, d each
   std::string SurfaceArrayName;
   int DrawMode = DRAW_ISOSURFACES;
   bool AllLayers = false;

@@ -12,8 +12,6 @@
 #include "vtkOutlineSource.h"
 #include "vtkPVLODActor.h"
 #include "vtkPVRenderView.h"
-#include "vtkPlane.h"
-#include "vtkPlaneCollection.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -21,8 +19,6 @@
 #include "vtkScalarsToColors.h"
 #include "vtkTransform.h"
 #include "vtkUnstructuredGrid.h"
-
-#include "iga/Csg.h"
 
 #include <algorithm>
 #include <string>
@@ -250,8 +246,7 @@ void vtkIGAIsosurfaceRepresentation::SetInputArrayToProcess(
 
 void vtkIGAIsosurfaceRepresentation::SetCsgExpression(const char* expression)
 {
-  this->CsgExpression = expression ? expression : "";
-  this->UpdateCsg();
+  this->Mapper->SetCsgExpression(expression);
 }
 
 void vtkIGAIsosurfaceRepresentation::SetNumberOfSlices(int count)
@@ -309,13 +304,6 @@ void vtkIGAIsosurfaceRepresentation::UpdateCsg()
   // A zero normal (while the widget's fields are typed in) is no plane: the widget is ignored.
   const bool plane = this->PlaneUse != PLANE_OFF && vtkMath::Norm(this->PlaneNormal) > 0;
   const bool clip = plane && this->PlaneUse == PLANE_CLIP;
-  const std::string expression = iga::csg::cutByHalfSpaces(this->CsgExpression,
-    clip ? std::vector{ this->WidgetPlane() } : std::vector<std::array<double, 4>>{});
-  if (expression != this->MapperExpression) // a refused one is reported once
-  {
-    this->MapperExpression = expression;
-    this->Mapper->SetCsgExpression(expression.c_str());
-  }
   auto slices = this->Slices;
   if (plane && !clip)
   {
@@ -326,17 +314,11 @@ void vtkIGAIsosurfaceRepresentation::UpdateCsg()
   {
     this->Mapper->SetSlice(int(k), slices[k][0], slices[k][1], slices[k][2], slices[k][3]);
   }
-  // As a clipping plane the half-space cuts the slices; the solid keeps its cap on it.
-  vtkPlaneCollection* planes = this->Mapper->GetClippingPlanes();
-  if (planes && planes->IsItemPresent(this->ClipPlane))
-  {
-    this->Mapper->RemoveClippingPlane(this->ClipPlane);
-  }
+  this->Mapper->SetNumberOfCappedClips(clip ? 1 : 0);
   if (clip)
   {
-    this->ClipPlane->SetOrigin(this->PlaneOrigin);
-    this->ClipPlane->SetNormal(this->PlaneNormal);
-    this->Mapper->AddClippingPlane(this->ClipPlane);
+    const auto cut = this->WidgetPlane();
+    this->Mapper->SetCappedClip(0, cut[0], cut[1], cut[2], cut[3]);
   }
 }
 

@@ -46,13 +46,11 @@
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
 #include <array>  // for the slices
-#include <string> // for the expression
 #include <vector> // for the slices
 
 class vtkIGAIsosurfaceMapper;
 class vtkDataObject;
 class vtkOutlineSource;
-class vtkPlane;
 class vtkPolyDataMapper;
 class vtkProperty;
 class vtkPVLODActor;
@@ -160,7 +158,7 @@ private:
 
   /// The mapper's progress, fired again as this representation's.
   void OnMapperProgress(vtkObject* caller, unsigned long event, void* data);
-  /// Hands the expression, the slices and the widget's plane to the mapper.
+  /// Hands the slices and the widget's plane (one more slice, or a capped clip) to the mapper.
   void UpdateCsg();
   /// The widget's plane as a x + b y + c z + d, the normal's side positive.
   std::array<double, 4> WidgetPlane() const;
@@ -173,13 +171,10 @@ private:
   /// This rank's piece: a grid of Bézier hexahedra or a composite of them (possibly empty).
   vtkSmartPointer<vtkDataObject> Cache;
   double DataBounds[6];
-  std::string CsgExpression;
-  std::string MapperExpression; ///< what the mapper was last given, the widget's cut included
   std::vector<std::array<double, 4>> Slices;
   int PlaneUse = PLANE_OFF;
   double PlaneOrigin[3] = { 0, 0, 0 };
   double PlaneNormal[3] = { 1, 0, 0 };
-  vtkNew<vtkPlane> ClipPlane;
 };
 
 #endif

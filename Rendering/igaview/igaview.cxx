@@ -23,7 +23,6 @@
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
-#include "vtkPlane.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
@@ -829,21 +828,17 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
                                          : vtkIGAIsosurfaceMapper::DRAW_ISOSURFACES);
   if (!drawing.surfaces && !drawing.csg)
     mapper->SetSurfaceArrayName(names[drawing.surface].c_str());
-  mapper->SetCsgExpression(drawing.expression.c_str());
+  mapper->SetCsgExpression(options.csg.c_str());
   mapper->SetAllLayers(!options.deepExr.empty());
   for (size_t k = 0; k < options.slices.size(); ++k)
   {
     const auto& plane = options.slices[k];
     mapper->SetSlice(int(k), plane[0], plane[1], plane[2], plane[3]);
   }
-  // The solid is already cut by the --clip half-spaces; as clipping planes they cut the slices.
-  for (const auto& clip : options.clips)
+  for (size_t k = 0; k < options.clips.size(); ++k)
   {
-    const double n2 = clip[0] * clip[0] + clip[1] * clip[1] + clip[2] * clip[2];
-    vtkNew<vtkPlane> plane;
-    plane->SetNormal(clip[0], clip[1], clip[2]);
-    plane->SetOrigin(-clip[3] * clip[0] / n2, -clip[3] * clip[1] / n2, -clip[3] * clip[2] / n2);
-    mapper->AddClippingPlane(plane);
+    const auto& clip = options.clips[k];
+    mapper->SetCappedClip(int(k), clip[0], clip[1], clip[2], clip[3]);
   }
   mapper->SetNumberOfThreads(options.threads);
   mapper->SetMemoryBudgetMB(options.memoryBudgetMB);

@@ -13,6 +13,7 @@
 #include "vtkCommand.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
+#include "vtkPlane.h"
 #include "vtkRenderWindow.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkUnstructuredGrid.h"
@@ -269,6 +270,56 @@ TEST(CsgMapper, AllLayersFillTheGBufferAndDrawTheSameImage)
         ASSERT_EQ(all.firstHit(i, j)->eyeDepth, first.firstHit(i, j)->eyeDepth);
       }
   EXPECT_EQ(scene.mapper->GetLastColours(), colours) << "an opaque surface shows its first layer";
+}
+
+TEST(CsgMapper, CappedClipIsTheCutSolidWithTheSlicesCut)
+{
+  const auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5));
+  // The capped clip y >= 0.1 of the volumes, and a slice x = -0.2 across both halves.
+  auto draw = [&](const char* expression, bool cappedClip, bool clippingPlane)
+  {
+    CsgScene scene;
+    scene.look(2.6, -3.4, 3.0, 0, 0, 1);
+    scene.mapper->SetCsgExpression(expression);
+    scene.mapper->SetSlice(0, 1, 0, 0, 0.2);
+    if (cappedClip)
+      scene.mapper->SetCappedClip(0, 0, 1, 0, -0.1);
+    vtkNew<vtkPlane> plane;
+    plane->SetOrigin(0, 0.1, 0);
+    plane->SetNormal(0, 1, 0);
+    if (clippingPlane)
+      scene.mapper->AddClippingPlane(plane);
+    return scene.draw(grid);
+  };
+  const iga::sst::GBuffer capped = draw("", true, false);
+  // The same by hand: the cut solid typed out, the half-space as a clipping plane.
+  const iga::sst::GBuffer byHand = draw("domain & plane(0, 1, 0, -0.1)", false, true);
+  ASSERT_EQ(capped.hits.size(), byHand.hits.size());
+  int caps = 0;
+  for (size_t h = 0; h < capped.hits.size(); ++h)
+  {
+    EXPECT_EQ(capped.hits[h].isovalue, byHand.hits[h].isovalue);
+    EXPECT_LT(glm::length(capped.hits[h].position - byHand.hits[h].position), 1e-12);
+    EXPECT_GE(capped.hits[h].position[1], 0.1 - 1e-9) << "the half-space y >= 0.1 is kept";
+    caps += capped.hits[h].isovalue == 1 ? 1 : 0;
+  }
+  EXPECT_GT(caps, 300) << "the cut face";
+  // Without the clipping plane the slice shows on the cut-away side too.
+  const iga::sst::GBuffer uncutSlice = draw("domain & plane(0, 1, 0, -0.1)", false, false);
+  EXPECT_GT(uncutSlice.coveredPixels(), capped.coveredPixels() + 100);
+}
+
+TEST(CsgMapper, ACappedClipWithoutNormalIsRefused)
+{
+  CsgScene scene;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  scene.mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+  scene.mapper->SetCappedClip(0, 0, 0, 0, 1);
+  ASSERT_TRUE(errors->GetError());
+  EXPECT_NE(errors->GetErrorMessage().find("capped clip 0: the normal (a, b, c) is zero"),
+    std::string::npos)
+    << errors->GetErrorMessage();
+  EXPECT_EQ(scene.mapper->GetNumberOfCappedClips(), 0);
 }
 
 TEST(CsgMapper, BadExpressionsAreSaidOnceAndTheLastGoodOneKept)
