@@ -56,6 +56,7 @@ struct CsgPasses
   std::vector<CsgPass> list;
   size_t slices = 0; ///< Slice passes' CsgPass::operand is the operands' count plus 0..slices-1
   std::vector<int> patchOffsets; ///< per input, its first volume in the result's numbering
+  std::vector<const std::vector<BezierVolume<double>>*> volumes; ///< per input
   const View* view = nullptr;
   const std::vector<std::array<double, 4>>* clip = nullptr;
   bool firstHitOnly = true;
@@ -78,6 +79,17 @@ inline bool clippedBy(const std::array<double, 4>& plane, const glm::dvec3& x)
   const double scale = std::abs(plane[0] * x[0]) + std::abs(plane[1] * x[1]) +
                        std::abs(plane[2] * x[2]) + std::abs(plane[3]);
   return planeValue(plane, x) < -1e-9 * scale;
+}
+
+/// The rational attribute at `channel` of a volume at parameter `uvw` (`values`: scratch).
+inline double attributeInVolume(const BezierVolume<double>& volume, const glm::dvec3& uvw,
+  int channel, std::vector<double>& values)
+{
+  const auto view = volume.view();
+  values.resize(size_t(view.channels));
+  const double u[3] = { uvw[0], uvw[1], uvw[2] };
+  evaluateHomogeneous<double, 3>(view, u, values.data(), nullptr);
+  return values[size_t(channel)] / values[kWeightChannel];
 }
 
 /// Classifies one pixel at a time, keeping its scratch between pixels.
@@ -365,8 +377,8 @@ private:
 
   /// Whether operand k's attribute is below its value in input i after event n, inside the
   /// input: known from the last crossing, else from the next one before the ray leaves the
-  /// input (the sign holds until then), else from the attribute where the ray leaves or
-  /// entered it.
+  /// input (the sign holds until then), else from the attribute where the ray leaves it, or at
+  /// event n (passes bounded by a far depth may end before either).
   bool below(int k, int input, int n)
   {
     int8_t& state = this->belowState(size_t(k), input);
@@ -393,24 +405,29 @@ private:
         return state != 0;
       }
     }
-    if (n >= 0 && this->isBoundary(this->Events[size_t(n)]) &&
-        this->passOf(this->Events[size_t(n)]).input == input)
+    if (n >= 0 && this->passOf(this->Events[size_t(n)]).input == input)
     {
       state = this->attributeAt(this->Events[size_t(n)], k) < this->Operands[size_t(k)].value;
     }
     return state != 0;
   }
 
-  /// Operand k's attribute at a boundary hit, from the face's net (every channel of the volume).
+  /// Operand k's attribute at a hit: from the face's net (every channel of the volume) for a
+  /// boundary hit, else from the input's volume at the hit's parameter.
   double attributeAt(const Event& e, int k) const
   {
     const CsgPass& pass = this->passOf(e);
-    const auto face = pass.surfaces[size_t(e.hit->patch)].view();
-    this->Values.resize(size_t(face.channels));
-    const double st[2] = { e.hit->uvw[0], e.hit->uvw[1] };
-    evaluateHomogeneous<double, 2>(face, st, this->Values.data(), nullptr);
     const int channel = kFirstAttributeChannel + this->sourceOf(k, pass.input);
-    return this->Values[size_t(channel)] / this->Values[kWeightChannel];
+    if (this->isBoundary(e))
+    {
+      const auto face = pass.surfaces[size_t(e.hit->patch)].view();
+      this->Values.resize(size_t(face.channels));
+      const double st[2] = { e.hit->uvw[0], e.hit->uvw[1] };
+      evaluateHomogeneous<double, 2>(face, st, this->Values.data(), nullptr);
+      return this->Values[size_t(channel)] / this->Values[kWeightChannel];
+    }
+    return attributeInVolume((*this->Passes.volumes[size_t(pass.input)])[size_t(e.hit->patch)],
+      e.hit->uvw, channel, this->Values);
   }
 
   /// Appends event n as a surface of the result (entering it where `entering`), unless a

@@ -1,5 +1,9 @@
 // CSG frames: one all-hits engine pass per kind of surface an operand has, then a
-// classification of every pixel's merged hits along its ray (CsgClassification.h).
+// classification of every pixel's merged hits along its ray (CsgClassification.h). An opaque
+// frame of one input first finds, per pixel, a surface of the result: the nearest hit of its
+// first attribute operand, where the expression changes across it (the others taken at its
+// point). The passes then stop at that depth, and the few pixels where that was wrong (a crease)
+// are drawn again without it.
 #include "iga/sst/Csg.h"
 
 #include "CsgClassification.h"
@@ -197,9 +201,9 @@ Settings passSettings(
   return s;
 }
 
-void accumulate(FrameReport& total, const FrameReport& pass, bool first)
+void accumulate(FrameReport& total, const FrameReport& pass)
 {
-  if (first)
+  if (total.method.empty()) // the first pass's
   {
     total.method = pass.method;
     total.backend = pass.backend;
@@ -306,6 +310,213 @@ FrameReport renderCsg(
     out);
 }
 
+namespace
+{
+
+/// Runs every pass but `skip` with the far depths `far` (empty: none), all hits.
+void drawPasses(const CsgScene& scene, const Settings& settings, const std::vector<double>& far,
+  int skip, const CsgPassRenderer& renderPass, CsgPasses& passes, FrameReport& report,
+  Clock::time_point start)
+{
+  const std::vector<BezierVolume<double>> noVolumes;
+  for (size_t p = 0; p < passes.list.size(); ++p)
+  {
+    CsgPass& pass = passes.list[p];
+    if (int(p) == skip)
+      continue;
+    const auto& volumes = pass.kind == CsgPass::Kind::Attribute
+                            ? *scene.inputs[size_t(pass.input)].volumes
+                          : pass.kind == CsgPass::Kind::Boundary ? noVolumes
+                                                                 : pass.volumes;
+    Settings s = passSettings(scene, pass, settings, millisecondsSince(start));
+    s.farDepths = far;
+    accumulate(report, renderPass(Scene(volumes, pass.surfaces), s, pass.hits));
+  }
+}
+
+/// The passes classified into `out`, their peak added to the report's.
+void classify(const CsgScene& scene, const View& view, const Settings& settings, CsgPasses& passes,
+  FrameReport& report, GBuffer& out)
+{
+  // The passes' G-buffers and derived patches stay until the classification: the frame's peak
+  // is the largest pass's working set and all of them.
+  size_t held = 0;
+  for (const CsgPass& pass : passes.list)
+  {
+    held += pass.hits.hits.size() * sizeof(Hit) + pass.hits.offsets.size() * sizeof(uint32_t);
+    for (const auto& volume : pass.volumes)
+    {
+      held += size_t(volume.view().valueCount()) * sizeof(double);
+    }
+  }
+  report.peakBytes = std::max(report.peakBytes, held);
+  const auto classifyStart = Clock::now();
+  passes.patchOffsets = patchOffsets(scene);
+  for (const CsgInput& input : scene.inputs)
+    passes.volumes.push_back(input.volumes);
+  passes.slices = scene.slices.size();
+  passes.view = &view;
+  passes.clip = &settings.clipPlanes;
+  passes.firstHitOnly = settings.firstHitOnly;
+  classifyPixels(passes, threadCount(settings), out);
+  report.msGBuffer += millisecondsSince(classifyStart);
+}
+
+/// The pass whose nearest hits bound an opaque frame (its first attribute pass), or -1 where
+/// none does: all layers, several inputs (a point's inside of another input is not at hand), or
+/// volumes reaching behind the near plane (the ray then starts inside them).
+int boundingPass(
+  const CsgScene& scene, const View& view, const Settings& settings, const CsgPasses& passes)
+{
+  if (!settings.firstHitOnly || scene.inputs.size() != 1 || scene.expression.root < 0)
+    return -1;
+  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+  for (const auto& volume : *scene.inputs[0].volumes)
+  {
+    const auto v = volume.view();
+    for (int p = 0; p < v.pointCount(); ++p)
+      for (int d = 0; d < 3; ++d)
+      {
+        lo[d] = std::min(lo[d], v.point(p)[d] / v.point(p)[kWeightChannel]);
+        hi[d] = std::max(hi[d], v.point(p)[d] / v.point(p)[kWeightChannel]);
+      }
+  }
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec4 clip =
+      view.worldToClip * glm::dvec4(corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1],
+                           corner & 4 ? hi[2] : lo[2], 1.0);
+    if (!(clip.w > 0 && clip.z > -clip.w))
+      return -1;
+  }
+  for (size_t p = 0; p < passes.list.size(); ++p)
+  {
+    if (passes.list[p].kind == CsgPass::Kind::Attribute)
+      return int(p);
+  }
+  return -1;
+}
+
+/// Whether `hit` of the attribute pass is a surface of the result: the expression differs with
+/// its operand inside and outside, the other operands taken at its point (inside the volumes),
+/// and no clipping plane cuts it away.
+bool isResultSurface(const CsgScene& scene, const CsgPasses& passes, const CsgPass& pass,
+  const Hit& hit, const Settings& settings, std::vector<uint8_t>& states,
+  std::vector<uint8_t>& nodes, std::vector<double>& values)
+{
+  for (const auto& plane : settings.clipPlanes)
+  {
+    if (clippedBy(plane, hit.position))
+      return false;
+  }
+  const csg::Expression& e = scene.expression;
+  const auto& volume = (*scene.inputs[0].volumes)[size_t(hit.patch)];
+  states.assign(e.operands.size(), 1);
+  for (size_t k = 0; k < e.operands.size(); ++k)
+  {
+    const csg::Operand& operand = e.operands[k];
+    if (operand.kind == csg::Operand::Kind::Plane)
+    {
+      states[k] = planeValue(operand.plane, hit.position) >= 0 ? 1 : 0;
+    }
+    else if (operand.kind != csg::Operand::Kind::Domain)
+    {
+      const int source = passes.sources[k * size_t(passes.inputs)];
+      const double value =
+        attributeInVolume(volume, hit.uvw, kFirstAttributeChannel + source, values);
+      states[k] =
+        (operand.kind == csg::Operand::Kind::Below ? value < operand.value : value > operand.value)
+          ? 1
+          : 0;
+    }
+  }
+  const size_t own = size_t(pass.operandOfIsovalue[size_t(hit.isovalue)]);
+  states[own] = 1;
+  const bool inside = e.contains(states, nodes);
+  states[own] = 0;
+  return inside != e.contains(states, nodes);
+}
+
+/// Per pixel the NDC depth just beyond the nearest hit of `hits` that is a surface of the result
+/// (the engine's duplicate tolerance further along the ray), infinity where there is none;
+/// `accepted`: whether there is.
+std::vector<double> resultBounds(const CsgScene& scene, const View& view, const Settings& settings,
+  const CsgPasses& passes, const CsgPass& pass, const GBuffer& hits, std::vector<uint8_t>& accepted)
+{
+  const size_t pixels = size_t(hits.width) * size_t(hits.height);
+  std::vector<double> far(pixels, INFINITY);
+  accepted.assign(pixels, 0);
+  parallelFor(pixels, threadCount(settings),
+    [&](size_t begin, size_t end)
+    {
+      std::vector<uint8_t> states, nodes;
+      std::vector<double> values;
+      for (size_t p = begin; p < end; ++p)
+      {
+        if (hits.offsets[p] == hits.offsets[p + 1])
+          continue;
+        const Hit& hit = hits.hits[hits.offsets[p]];
+        if (!isResultSurface(scene, passes, pass, hit, settings, states, nodes, values))
+          continue;
+        const glm::dvec3 ray =
+          view.parallel ? view.forward : glm::normalize(hit.position - view.eye);
+        const double step = 2e-4 * view.pixelFootprint * (view.parallel ? 1.0 : hit.eyeDepth);
+        const glm::dvec4 clip = view.worldToClip * glm::dvec4(hit.position + step * ray, 1.0);
+        far[p] = std::max(clip.z / clip.w, hit.ndcDepth);
+        accepted[p] = 1;
+      }
+    });
+  return far;
+}
+
+/// `into` with the hits of `from` at the pixels `take` marks.
+GBuffer splicePixels(const GBuffer& into, const GBuffer& from, const std::vector<uint8_t>& take)
+{
+  GBuffer out;
+  out.width = into.width;
+  out.height = into.height;
+  const size_t pixels = size_t(into.width) * size_t(into.height);
+  out.offsets.assign(pixels + 1, 0);
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    const GBuffer& source = take[p] ? from : into;
+    out.hits.insert(out.hits.end(), source.hits.begin() + source.offsets[p],
+      source.hits.begin() + source.offsets[p + 1]);
+    out.offsets[p + 1] = uint32_t(out.hits.size());
+  }
+  return out;
+}
+
+/// The bounding pass: its nearest hits first, to bound the others (returned); then all its hits
+/// where the nearest is no surface of the result.
+std::vector<double> drawBoundingPass(const CsgScene& scene, const View& view,
+  const Settings& settings, int bounding, const CsgPassRenderer& renderPass, CsgPasses& passes,
+  FrameReport& report, Clock::time_point start)
+{
+  CsgPass& pass = passes.list[size_t(bounding)];
+  const Scene passScene(*scene.inputs[0].volumes);
+  Settings s = passSettings(scene, pass, settings, millisecondsSince(start));
+  s.firstHitOnly = true;
+  GBuffer nearest;
+  accumulate(report, renderPass(passScene, s, nearest));
+  std::vector<uint8_t> accepted;
+  std::vector<double> far = resultBounds(scene, view, settings, passes, pass, nearest, accepted);
+  // Where the nearest hit is the result's, it is the pass's only hit in front of the bound.
+  s = passSettings(scene, pass, settings, millisecondsSince(start));
+  s.farDepths.assign(far.size(), INFINITY);
+  for (size_t p = 0; p < far.size(); ++p)
+  {
+    const bool none = nearest.offsets[p] == nearest.offsets[p + 1];
+    s.farDepths[p] = accepted[p] || none ? -2.0 : INFINITY;
+  }
+  GBuffer rest;
+  accumulate(report, renderPass(passScene, s, rest));
+  pass.hits = splicePixels(rest, nearest, accepted);
+  return far;
+}
+
+} // namespace
+
 FrameReport renderCsg(const CsgScene& scene, const View& view, const Settings& settings,
   const CsgPassRenderer& renderPass, GBuffer& out)
 {
@@ -314,39 +525,40 @@ FrameReport renderCsg(const CsgScene& scene, const View& view, const Settings& s
   checkClipPlanes(settings); // they cut the result, so the passes do not see them
   CsgPasses passes = planPasses(scene);
   FrameReport report;
-  const std::vector<BezierVolume<double>> noVolumes;
-  for (size_t p = 0; p < passes.list.size(); ++p)
+  const int bounding = boundingPass(scene, view, settings, passes);
+  std::vector<double> far;
+  if (bounding >= 0)
+    far = drawBoundingPass(scene, view, settings, bounding, renderPass, passes, report, start);
+  drawPasses(scene, settings, far, bounding, renderPass, passes, report, start);
+  classify(scene, view, settings, passes, report, out);
+  if (bounding >= 0)
   {
-    CsgPass& pass = passes.list[p];
-    const auto& volumes = pass.kind == CsgPass::Kind::Attribute
-                            ? *scene.inputs[size_t(pass.input)].volumes
-                          : pass.kind == CsgPass::Kind::Boundary ? noVolumes
-                                                                 : pass.volumes;
-    const Scene passScene(volumes, pass.surfaces);
-    accumulate(report,
-      renderPass(
-        passScene, passSettings(scene, pass, settings, millisecondsSince(start)), pass.hits),
-      p == 0);
-  }
-  // The passes' G-buffers and derived patches stay until the classification: the frame's peak
-  // is the largest pass's working set and all of them.
-  for (const CsgPass& pass : passes.list)
-  {
-    report.peakBytes +=
-      pass.hits.hits.size() * sizeof(Hit) + pass.hits.offsets.size() * sizeof(uint32_t);
-    for (const auto& volume : pass.volumes)
+    // Where the bound held no surface of the result, the pixel is drawn again without it.
+    std::vector<uint8_t> again(far.size(), 0);
+    std::vector<double> unbounded(far.size(), -2.0);
+    size_t count = 0;
+    const size_t operands = scene.expression.operands.size();
+    for (size_t p = 0; p < far.size(); ++p)
     {
-      report.peakBytes += size_t(volume.view().valueCount()) * sizeof(double);
+      bool found = false;
+      for (uint32_t h = out.offsets[p]; h < out.offsets[p + 1]; ++h)
+        found = found || size_t(out.hits[h].isovalue) < operands;
+      if (far[p] < INFINITY && !found)
+      {
+        again[p] = 1;
+        unbounded[p] = INFINITY;
+        ++count;
+      }
+    }
+    if (count > 0)
+    {
+      CsgPasses redrawn = planPasses(scene);
+      GBuffer fixed;
+      drawPasses(scene, settings, unbounded, -1, renderPass, redrawn, report, start);
+      classify(scene, view, settings, redrawn, report, fixed);
+      out = splicePixels(out, fixed, again);
     }
   }
-  const auto classifyStart = Clock::now();
-  passes.patchOffsets = patchOffsets(scene);
-  passes.slices = scene.slices.size();
-  passes.view = &view;
-  passes.clip = &settings.clipPlanes;
-  passes.firstHitOnly = settings.firstHitOnly;
-  classifyPixels(passes, threadCount(settings), out);
-  report.msGBuffer += millisecondsSince(classifyStart);
   report.msTotal = millisecondsSince(start);
   return report;
 }

@@ -74,7 +74,6 @@ namespace
 {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double millisecondsSince(Clock::time_point start)
 {
@@ -192,10 +191,13 @@ private:
     }
     checkIndexable(total, "hits");
     s.Hits.resize(total);
+    // Beyond a pixel's far depth (the bound each method starts from) nothing is kept.
+    const auto kept = [&](const RawHit& hit)
+    { return s.frame.hits.keeps(hit.ndcDepth, s.BestDepth[hit.pixel]); };
     for (const auto& hits : perPixel)
     {
-      s.HitCount =
-        size_t(std::copy(hits.begin(), hits.end(), s.Hits.begin() + s.HitCount) - s.Hits.begin());
+      s.HitCount = size_t(
+        std::copy_if(hits.begin(), hits.end(), s.Hits.begin() + s.HitCount, kept) - s.Hits.begin());
     }
   }
 
@@ -233,7 +235,7 @@ private:
         {
           const size_t p = first + k;
           const int i = int(p % this->Config.width), j = int(p / this->Config.width);
-          double best = kInfinity;
+          double best = s.BestDepth[p];
           for (uint32_t item = s.ItemOffsets[p]; item < s.ItemOffsets[p + 1]; ++item)
           {
             const Node& initial = this->Plan.initialNodes[s.ItemNodes[item]];
@@ -262,10 +264,10 @@ private:
               double u[3], ndc;
               const TupleOutcome result =
                 solveNodeTuple(this->nodeView(node, current), node, i, j, s.frame, u, ndc);
-              if (result == TupleOutcome::Hit)
+              if (result == TupleOutcome::Hit && s.frame.hits.keeps(ndc, best))
               {
                 perPixel[k].push_back(rawHitOf(uint32_t(p), node, u, ndc));
-                best = std::min(best, ndc);
+                best = s.frame.hits.afterHit(best, ndc);
               }
               if (result != TupleOutcome::Undecided)
               {

@@ -330,6 +330,18 @@ void checkSettings(const Settings& s, bool volumes)
     throw std::invalid_argument(
       "transfer chunk of " + std::to_string(s.transferChunkBytes) + " bytes is below 4096");
   }
+  if (!s.farDepths.empty() && s.farDepths.size() != size_t(s.width) * size_t(s.height))
+  {
+    throw std::invalid_argument("far depths for " + std::to_string(s.farDepths.size()) +
+                                " pixels, not one per pixel of the image");
+  }
+  for (double depth : s.farDepths)
+  {
+    if (std::isnan(depth))
+    {
+      throw std::invalid_argument("a far depth is NaN");
+    }
+  }
   checkClipPlanes(s);
 }
 

@@ -916,9 +916,7 @@ TEST(DeviceEngineCaps, BadInputIsRejected)
   expectMatchesTheCpuDriver(s, out, report);
 }
 
-/// A CSG frame, the cheese cut open with a slice, its passes drawn on the device: the same
-/// result as on CPU threads (the classification runs on the host for both).
-TEST(DeviceEngineCsg, CheeseCutOpenWithASliceMatchesTheCpuDriver)
+void cheeseCutOpenMatchesTheCpuDriver(bool opaque)
 {
   const auto cheese = iga::makeCheese<double>();
   iga::sst::CsgScene csg;
@@ -929,7 +927,7 @@ TEST(DeviceEngineCsg, CheeseCutOpenWithASliceMatchesTheCpuDriver)
   const iga::Camera camera = lookAt(cheese, { 3.5, -3.0, 2.5 }, { 1, 0.6, 0.5 }, 35);
   Settings settings;
   settings.width = settings.height = 64;
-  settings.firstHitOnly = false;
+  settings.firstHitOnly = opaque;
   const iga::sst::View view = iga::sst::makeView(camera, 64, 64);
   GBuffer cpu, device;
   iga::sst::renderCsg(csg, view, settings, iga::sst::Method::SharedSubdivisionTree, cpu);
@@ -957,6 +955,18 @@ TEST(DeviceEngineCsg, CheeseCutOpenWithASliceMatchesTheCpuDriver)
   EXPECT_EQ(report.backend, "cuda") << report.notice;
   igatest::expectSameFirstHits(cpu, device, 8, kPositionTolerance);
 #endif
+}
+
+/// A CSG frame, the cheese cut open with a slice, its passes drawn on the device: the same
+/// result as on CPU threads (the classification runs on the host for both), every layer and
+/// opaque (its passes bounded by per-pixel far depths).
+TEST(DeviceEngineCsg, CheeseCutOpenWithASliceMatchesTheCpuDriver)
+{
+  for (const bool opaque : { false, true })
+  {
+    SCOPED_TRACE(opaque ? "opaque" : "every layer");
+    cheeseCutOpenMatchesTheCpuDriver(opaque);
+  }
 }
 
 } // namespace

@@ -87,6 +87,47 @@ TEST(Engine, AllHitsModeFindsFrontAndBackOfTheSphere)
   EXPECT_EQ(sides.twoHits, sides.crossing);
 }
 
+/// Per-pixel far depths: all hits of the sphere in front of each pixel's front hit are that
+/// hit alone; a pixel below -1 is skipped; in first-hit mode a far depth in front of the front
+/// hit leaves the pixel empty. A wrong count of them, or NaN, is refused.
+TEST(Engine, FarDepthsStopEachPixelsWork)
+{
+  auto [set, camera, settings] = sphereView(2, { 0, -4, 0.5 }, 48);
+  settings.firstHitOnly = false;
+  const GBuffer all = renderSet(set, camera, settings);
+  const size_t pixels = size_t(settings.width) * size_t(settings.height);
+  settings.farDepths.assign(pixels, -2.0);
+  size_t covered = 0;
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    if (all.offsets[p + 1] - all.offsets[p] == 2 && p % 3 != 0) // every third pixel skipped
+    {
+      settings.farDepths[p] = all.hits[all.offsets[p]].ndcDepth;
+      ++covered;
+    }
+  }
+  ASSERT_GT(covered, 300u);
+  const GBuffer front = renderSet(set, camera, settings);
+  EXPECT_EQ(front.hits.size(), covered);
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    const size_t count = front.offsets[p + 1] - front.offsets[p];
+    ASSERT_EQ(count, settings.farDepths[p] > -2 ? 1u : 0u) << "pixel " << p;
+    if (count == 1)
+    {
+      EXPECT_EQ(front.hits[front.offsets[p]].position, all.hits[all.offsets[p]].position);
+    }
+  }
+  settings.firstHitOnly = true;
+  for (double& far : settings.farDepths)
+    far = far > -2 ? far - 1e-9 : far;
+  EXPECT_EQ(renderSet(set, camera, settings).hits.size(), 0u);
+  settings.farDepths.pop_back();
+  EXPECT_THROW(renderSet(set, camera, settings), std::invalid_argument);
+  settings.farDepths.push_back(std::nan(""));
+  EXPECT_THROW(renderSet(set, camera, settings), std::invalid_argument);
+}
+
 /// Every hit says whether the ray enters the region below the isovalue there: the sphere's
 /// inside (x^2 + y^2 + z^2 - 1 < 0) is entered at the front and left at the back, whatever the
 /// orientation of the parametrisation (mirrored: det J < 0); with the attribute negated the

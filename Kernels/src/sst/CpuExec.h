@@ -109,6 +109,13 @@ struct CpuExec
     std::fill(first, first + n, value);
   }
 
+  /// Copies host memory in (the same memory here).
+  template<class T>
+  void upload(const T* host, size_t n, T* to) const
+  {
+    std::copy(host, host + n, to);
+  }
+
   template<class T>
   void copy(const T* from, size_t n, T* to) const
   {

@@ -22,10 +22,14 @@ namespace sst
 
 /// The frame's per-pixel arrays and counters, before its first band.
 template<class Exec>
-void beginFrame(LoopState<Exec>& s)
+void beginFrame(LoopState<Exec>& s, const Settings& settings)
 {
   const size_t pixels = s.pixelCount;
-  s.exec.fill(sized(s.BestDepth, pixels), pixels, std::numeric_limits<double>::infinity());
+  // Each pixel's bound starts at its far depth (HitPolicy).
+  if (settings.farDepths.empty())
+    s.exec.fill(sized(s.BestDepth, pixels), pixels, std::numeric_limits<double>::infinity());
+  else
+    s.exec.upload(settings.farDepths.data(), pixels, sized(s.BestDepth, pixels));
   s.exec.fill(sized(s.Unresolved, pixels), pixels, uint8_t(0));
   sized(s.PixelSolves, pixels); // zeroed per pass for its pixels with work
   // Empty groups: a pass sets those of its pixels with work items, and reads no others.
@@ -166,7 +170,7 @@ template<class Exec, class Pass>
 void drawFrame(LoopState<Exec>& s, const Settings& settings, Pass pass)
 {
   s.stages.begin();
-  beginFrame(s);
+  beginFrame(s, settings);
   s.stages.end(s.report->msSetup);
   s.report->bands = drawInBands(frameBands(s, settings), s.frame, pass);
   gBufferStage(s);

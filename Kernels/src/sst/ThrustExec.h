@@ -119,6 +119,16 @@ struct ThrustExec
     thrust::fill(exec(), first, first + n, value);
   }
 
+  /// Copies host memory to the execution's.
+  template<class T>
+  void upload(const T* host, size_t n, T* to) const
+  {
+    if (n > 0)
+    {
+      copyToDevice(to, host, n * sizeof(T));
+    }
+  }
+
   template<class T>
   void copy(const T* from, size_t n, T* to) const
   {

@@ -50,6 +50,10 @@ struct Settings
   /// World-space clipping planes (a, b, c, d): the surface is kept where a x + b y + c z + d >= 0
   /// for every plane (vtkPlane's normal side); at most kMaxClipPlanes. Cut exactly at each hit.
   std::vector<std::array<double, 4>> clipPlanes;
+  /// Per pixel (width * height, row 0 at the bottom) an NDC depth beyond which its work is
+  /// dropped and no hit is kept (infinity: none; below -1: the pixel is skipped), or empty for
+  /// none: CSG frames bound their passes by the result's nearest surface known so far.
+  std::vector<double> farDepths;
   int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
   /// Cap on a shared-subdivision-tree frame's memory besides its copies of the input. The image
   /// takes imageBytes (its per-pixel arrays and a G-buffer of one hit a pixel): a size needing

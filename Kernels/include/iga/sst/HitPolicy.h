@@ -64,9 +64,21 @@ struct HitPolicy
   /// The nearest hit only (the fast path), else all hits sorted front to back.
   bool firstHitOnly = true;
 
+  /// A pixel's bound `best` (NDC depth) starts at its far depth (Settings::farDepths, else
+  /// infinity); in first-hit mode each hit nearer than it becomes it.
+
   /// Whether work on a pixel nearest at depth `near` may still change what the pixel keeps when
-  /// its nearest hit so far lies at `best`. The loop drops work that cannot.
-  IGA_HD bool mayMatter(double near, double best) const { return !(firstHitOnly && near > best); }
+  /// its bound lies at `best`. The loop drops work that cannot.
+  IGA_HD bool mayMatter(double near, double best) const { return !(near > best); }
+
+  /// Whether a root at `depth` is kept next to the bound `best`.
+  IGA_HD bool keeps(double depth, double best) const { return !(depth > best); }
+
+  /// The bound after a kept root at `depth`.
+  IGA_HD double afterHit(double best, double depth) const
+  {
+    return firstHitOnly && depth < best ? depth : best;
+  }
 
   /// Whether a pixel's work is taken one depth group at a time (the nearest group first, the
   /// next only while it may matter), rather than all at once.

@@ -452,8 +452,8 @@ IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t las
     switch (solveNodeTuple(viewOf(node), node, i, j, frame, &solution[4 * t], solution[4 * t + 3]))
     {
       case TupleOutcome::Hit:
-        state[t] = Solved;
-        best = solution[4 * t + 3] < best ? solution[4 * t + 3] : best;
+        state[t] = frame.hits.keeps(solution[4 * t + 3], best) ? Solved : Dropped;
+        best = state[t] == Solved ? frame.hits.afterHit(best, solution[4 * t + 3]) : best;
         break;
       case TupleOutcome::Miss:
         state[t] = Dropped;
