@@ -3,6 +3,7 @@
 // that a .pvd series written by vtkIGABezierSeriesWriter reads back through ParaView's
 // vtkPVDReader and vtkIGABezierSeriesReader with its time steps, the latter refusing bad
 // collections with one error.
+#include "FilterErrors.h"
 #include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGABezierSeriesReader.h"
@@ -11,7 +12,6 @@
 #include "vtkIGAGismoReader.h"
 #include "vtkIGANurbsData.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -402,14 +402,7 @@ std::vector<std::string> seriesErrors(const std::string& text)
   std::ofstream(pvd) << text;
   vtkNew<vtkIGABezierSeriesReader> reader;
   reader->SetFileName(pvd.c_str());
-  std::vector<std::string> errors;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&errors);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
-    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
-  reader->AddObserver(vtkCommand::ErrorEvent, onError);
-  reader->Update();
-  return errors;
+  return igatest::updateCollectingErrors(reader);
 }
 
 TEST(BezierVTU, SeriesReaderRefusesBadCollectionsWithOneError)

@@ -1,4 +1,4 @@
-// Runs a filter on an input and collects the error messages it reports.
+// Runs a filter (on an input) and collects the error messages it reports.
 #pragma once
 
 #include "vtkAlgorithm.h"
@@ -13,19 +13,25 @@
 namespace igatest
 {
 
-/// Runs `filter` on `input`, collecting its error messages.
-inline std::vector<std::string> runCollectingErrors(vtkAlgorithm* filter, vtkDataObject* input)
+/// Updates `algorithm`, collecting its error messages.
+inline std::vector<std::string> updateCollectingErrors(vtkAlgorithm* algorithm)
 {
   std::vector<std::string> errors;
   vtkNew<vtkCallbackCommand> onError;
   onError->SetClientData(&errors);
   onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
     { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
-  filter->AddObserver(vtkCommand::ErrorEvent, onError);
-  filter->SetInputDataObject(0, input);
-  filter->Update();
-  filter->RemoveObservers(vtkCommand::ErrorEvent);
+  algorithm->AddObserver(vtkCommand::ErrorEvent, onError);
+  algorithm->Update();
+  algorithm->RemoveObservers(vtkCommand::ErrorEvent);
   return errors;
+}
+
+/// Runs `filter` on `input`, collecting its error messages.
+inline std::vector<std::string> runCollectingErrors(vtkAlgorithm* filter, vtkDataObject* input)
+{
+  filter->SetInputDataObject(0, input);
+  return updateCollectingErrors(filter);
 }
 
 } // namespace igatest
