@@ -63,8 +63,9 @@ vtkSmartPointer<vtkXMLDataParser> igaParseXML(const std::string& text, std::stri
   vtkNew<vtkCallbackCommand> onError;
   onError->SetCallback(storeMessage);
   onError->SetClientData(&parserMessage);
-  parser->AddObserver(vtkCommand::ErrorEvent, onError);
+  const unsigned long observer = parser->AddObserver(vtkCommand::ErrorEvent, onError);
   const bool parsed = parser->Parse() != 0;
+  parser->RemoveObserver(observer); // it writes to parserMessage, gone on return
   parser->SetStream(nullptr);
   if (parser->TooDeep)
   {

@@ -1155,9 +1155,11 @@ iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, con
   {
     // The expression parsed alone; cut, it can pass the limits on operands and nesting.
     this->ReportOnce("capped clips",
-      std::string("the solid cut by the capped clips is refused: ") + e.what() + "; drawn uncut",
+      std::string("the solid cut by the capped clips is refused: ") + e.what() +
+        "; drawn cut open, without the cut faces",
       true);
-    scene.expression = iga::csg::parseExpression(this->CsgExpression);
+    if (!this->CsgExpression.empty())
+      scene.expression = iga::csg::parseExpression(this->CsgExpression);
   }
   scene.slices = this->Slices;
   scene.colorAttribute = frame.ByScalars ? this->ArrayName : "";

@@ -349,7 +349,7 @@ void classify(const CsgScene& scene, const View& view, const Settings& settings,
       held += size_t(volume.view().valueCount()) * sizeof(double);
     }
   }
-  report.peakBytes = std::max(report.peakBytes, held);
+  report.peakBytes += held;
   const auto classifyStart = Clock::now();
   passes.patchOffsets = patchOffsets(scene);
   for (const CsgInput& input : scene.inputs)
@@ -537,13 +537,10 @@ FrameReport renderCsg(const CsgScene& scene, const View& view, const Settings& s
     std::vector<uint8_t> again(far.size(), 0);
     std::vector<double> unbounded(far.size(), -2.0);
     size_t count = 0;
-    const size_t operands = scene.expression.operands.size();
     for (size_t p = 0; p < far.size(); ++p)
     {
-      bool found = false;
-      for (uint32_t h = out.offsets[p]; h < out.offsets[p + 1]; ++h)
-        found = found || size_t(out.hits[h].isovalue) < operands;
-      if (far[p] < INFINITY && !found)
+      // Any hit found lies in front of the bound and is the pixel's (a slice in front too).
+      if (far[p] < INFINITY && out.offsets[p] == out.offsets[p + 1])
       {
         again[p] = 1;
         unbounded[p] = INFINITY;

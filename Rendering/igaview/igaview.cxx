@@ -980,11 +980,28 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
   if (steps.empty())
     fail("--series: '" + options.input +
          "' has no time steps (a .pvd series and the default dataset have)");
+  // A step the mapper refuses (an attribute it lacks) leaves the last frame's G-buffer: fail.
+  std::string refused;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&refused);
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void* text)
+    {
+      auto& first = *static_cast<std::string*>(data);
+      const std::string message = static_cast<const char*>(text);
+      const size_t at = message.find("): "); // after VTK's "ERROR: In FILE ... (ADDRESS)"
+      if (first.empty())
+        first = message.substr(at == std::string::npos ? 0 : at + 3);
+    });
+  mapper->AddObserver(vtkCommand::ErrorEvent, onError);
   for (size_t k = 0; k < steps.size(); ++k)
   {
     requestOrFail("time " + std::to_string(steps[k]),
       [&] { return input.producer->UpdateTimeStep(steps[k]) != 0; });
     window->Render();
+    if (!refused.empty())
+      fail("time step " + std::to_string(k + 1) + " of " + std::to_string(steps.size()) + ": " +
+           refused.substr(0, refused.find_last_not_of('\n') + 1));
     std::printf("igaview: time step %zu of %zu, time %g\n", k + 1, steps.size(), steps[k]);
     Options frame = options;
     frame.output = numbered(options.output, k);
