@@ -264,7 +264,7 @@ private:
               double u[3], ndc;
               const TupleOutcome result =
                 solveNodeTuple(this->nodeView(node, current), node, i, j, s.frame, u, ndc);
-              if (result == TupleOutcome::Hit && s.frame.hits.keeps(ndc, best))
+              if (result == TupleOutcome::Hit) // kept or not by appendPixelHits
               {
                 perPixel[k].push_back(rawHitOf(uint32_t(p), node, u, ndc));
                 best = s.frame.hits.afterHit(best, ndc);

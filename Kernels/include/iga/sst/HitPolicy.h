@@ -58,14 +58,12 @@ IGA_HD inline int sortAndMergeHits(Hit* hits, int count, double footprint, bool 
   return kept;
 }
 
-/// What a pixel keeps of its hits.
+/// What a pixel keeps of its hits. A pixel's bound `best` (NDC depth) starts at its far depth
+/// (Settings::farDepths, else infinity); in first-hit mode each hit nearer than it becomes it.
 struct HitPolicy
 {
   /// The nearest hit only (the fast path), else all hits sorted front to back.
   bool firstHitOnly = true;
-
-  /// A pixel's bound `best` (NDC depth) starts at its far depth (Settings::farDepths, else
-  /// infinity); in first-hit mode each hit nearer than it becomes it.
 
   /// Whether work on a pixel nearest at depth `near` may still change what the pixel keeps when
   /// its bound lies at `best`. The loop drops work that cannot.
