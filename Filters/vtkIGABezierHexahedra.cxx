@@ -34,14 +34,19 @@ std::string formatNumber(double value)
   return text.str();
 }
 
+/// An array's name, empty when it has none (or there is no array).
+std::string arrayName(vtkDataArray* array)
+{
+  return array && array->GetName() ? array->GetName() : "";
+}
+
 /// What is wrong with a point that iga::firstInvalidPoint refused, in the file's terms: its id,
 /// and the array or coordinate by name.
 std::string pointProblem(vtkUnstructuredGrid* grid, vtkIdType id, vtkDataArray* weights,
   const std::vector<vtkDataArray*>& attributes)
 {
   const std::string point = "point " + std::to_string(id);
-  const std::string weightName = std::string("rational weight ('") +
-                                 (weights && weights->GetName() ? weights->GetName() : "") + "')";
+  const std::string weightName = "rational weight ('" + arrayName(weights) + "')";
   double x[3];
   grid->GetPoint(id, x);
   const double w = weights ? weights->GetComponent(id, 0) : 1.0;
@@ -148,8 +153,8 @@ std::string findArrays(
   }
   if (weights && weights->GetNumberOfComponents() != 1)
   {
-    return std::string("rational weights '") + (weights->GetName() ? weights->GetName() : "") +
-           "' have " + std::to_string(weights->GetNumberOfComponents()) + " components, expected 1";
+    return "rational weights '" + arrayName(weights) + "' have " +
+           std::to_string(weights->GetNumberOfComponents()) + " components, expected 1";
   }
   for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
   {
@@ -276,7 +281,14 @@ std::string readCell(vtkUnstructuredGrid* grid, vtkIdType npts, const vtkIdType*
     return "refers to a point outside 0.." + std::to_string(pointCount - 1);
   }
   const int bad = iga::firstInvalidPoint<double, Dim>(view);
-  return bad < 0 ? std::string() : pointProblem(grid, ids[bad], arrays.weights, arrays.attributes);
+  if (bad >= 0)
+  {
+    return pointProblem(grid, ids[bad], arrays.weights, arrays.attributes);
+  }
+  return iga::weightsTooSkewed<double, Dim>(view)
+           ? "its " + iga::weightRangeProblem<double, Dim>(view) + " (array '" +
+               arrayName(arrays.weights) + "')"
+           : std::string();
 }
 
 /// Reads cell c into `patches` (a volume or a surface); returns "" or the problem.

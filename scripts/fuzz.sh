@@ -26,7 +26,7 @@ seed() { # corpus directory, then seed files (missing ones skipped)
 seed "$build/corpus/vtu" "$root"/Data/*.vtu "$root"/Testing/Fuzz/regressions/*.vtu
 seed "$build/corpus/gismo" "$root"/Data/gismo_*.xml "$shared"/gismo/*.xml
 seed "$build/corpus/geopdes" "$root"/Data/geopdes_*.txt "$shared"/geopdes/*.txt
-seed "$build/corpus/engine"
+seed "$build/corpus/engine" "$root"/Testing/Fuzz/engine/*
 seed "$build/corpus/csg" "$root"/Testing/Fuzz/csg/*.txt
 
 # UBSan findings are errors; leaks of VTK's singletons at exit are not ours to judge.

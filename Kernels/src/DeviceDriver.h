@@ -99,7 +99,7 @@ struct PatchSummary
 {
   double lo = std::numeric_limits<double>::infinity();
   double hi = -std::numeric_limits<double>::infinity();
-  unsigned invalid = 0; ///< patches that firstInvalidPoint refuses
+  unsigned invalid = 0; ///< patches that firstInvalidPoint or weightsTooSkewed refuses
 
   AttributeRange range() const { return { lo, hi }; }
 };
@@ -387,7 +387,7 @@ struct Driver
         const VolumeView<const double> patch(
           world + shapes[p].world, shapes[p].degree, shapes[p].channels);
         PatchSummary summary;
-        if (firstInvalidPoint(patch) >= 0)
+        if (firstInvalidPoint(patch) >= 0 || weightsTooSkewed(patch))
         {
           summary.invalid = 1;
         }

@@ -167,6 +167,14 @@ TEST(BezierHexahedra, BadInputIsNamed)
               { g->GetPointData()->GetRationalWeights()->SetComponent(5, 0, -1.0); }),
     "cell 0: point 5: its rational weight ('RationalWeights') is -1, weights must be positive "
     "and finite");
+  const std::string skewed = conversionError([](vtkUnstructuredGrid* g)
+    { g->GetPointData()->GetRationalWeights()->SetComponent(5, 0, 1e9); });
+  EXPECT_EQ(skewed.rfind("cell 0: its weights range over ", 0), 0u) << skewed;
+  EXPECT_NE(skewed.find(" .. 1e+09, a ratio of "), std::string::npos) << skewed;
+  EXPECT_NE(
+    skewed.find(": more than the 1e+06 that subdivision resolves (array 'RationalWeights')"),
+    std::string::npos)
+    << skewed;
   vtkIdType last = 0;
   conversionError([&](vtkUnstructuredGrid* g) { last = g->GetNumberOfPoints() - 1; });
   EXPECT_EQ(conversionError([&](vtkUnstructuredGrid* g)

@@ -876,6 +876,13 @@ TEST(DeviceEngineCaps, BadInputIsRejected)
       } },
     { "NaN attribute",
       [=](Scene& s) { s.set.patches[3].view().point(2)[iga::kFirstAttributeChannel] = nan; } },
+    { "weights ranging over more than kMaxWeightRatio",
+      [](Scene& s)
+      {
+        double* point = s.set.patches[6].view().point(4);
+        for (int c = 0; c < s.set.patches[6].channels(); ++c)
+          point[c] *= 2 * iga::kMaxWeightRatio;
+      } },
     { "missing colour attribute", [](Scene& s) { s.settings.colorAttribute = 4; } },
   };
   GBuffer out;

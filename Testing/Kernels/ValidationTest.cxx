@@ -48,4 +48,36 @@ TEST(PatchValidation, AcceptsGoodPatchesAndNamesEachProblem)
   EXPECT_NE(iga::checkPatch(narrow).find("need at least 4"), std::string::npos);
 }
 
+/// Rescales a control point's homogeneous values so that its weight becomes w.
+template<int Dim>
+void setWeight(const iga::PatchView<double, Dim>& patch, int point, double w)
+{
+  double* values = patch.point(point);
+  const double factor = w / values[iga::kWeightChannel];
+  for (int c = 0; c < patch.channels; ++c)
+    values[c] *= factor;
+}
+
+/// Weights may range over kMaxWeightRatio, not more: beyond it subdivision does not resolve the
+/// patch (the engine fuzzer's slowest inputs had one weight of 1e300 among weights near 1).
+TEST(PatchValidation, NamesWeightsRangingOverMoreThanSubdivisionResolves)
+{
+  std::mt19937 rng(51);
+  const int degree[3] = { 1, 2, 1 };
+  auto volume = randomPatch<double, 3>(rng, degree);
+  for (int p = 0; p < volume.view().pointCount(); ++p)
+    setWeight(volume.view(), p, 1.0);
+  setWeight(volume.view(), 3, 0.99 * iga::kMaxWeightRatio);
+  EXPECT_EQ((iga::checkPatch<double, 3>(volume.view())), "");
+  setWeight(volume.view(), 3, 1.01 * iga::kMaxWeightRatio);
+  EXPECT_EQ((iga::checkPatch<double, 3>(volume.view())),
+    "weights range over 1 .. 1.01e+06, a ratio of 1.01e+06: more than the 1e+06 that "
+    "subdivision resolves");
+
+  const int surfaceDegree[2] = { 2, 1 };
+  auto surface = randomPatch<double, 2>(rng, surfaceDegree);
+  setWeight(surface.view(), 4, 1e300);
+  EXPECT_NE((iga::checkPatch<double, 2>(surface.view())).find("a ratio of"), std::string::npos);
+}
+
 } // namespace

@@ -1,6 +1,7 @@
 // A zoo of degenerate patches, each with its expected behaviour, and the G-buffer of every
 // drawable one identical for 1, 2 and 8 threads: collapsed face, edge and whole patch,
-// inverted, self-intersecting, zero / negative / NaN / widely ranging weights, a constant field,
+// inverted, self-intersecting, zero / negative / NaN weights, weights ranging widely (drawn) and
+// beyond kMaxWeightRatio (refused), a constant field,
 // degree 16, the sphere members side by side, and 10^6 patches (1 and 2 threads). Coordinates at
 // 1e-6 and 1e6: ScaleTest.
 #include "EngineScenes.h"
@@ -201,6 +202,14 @@ TEST(Zoo, WidelyRangingWeightsAreDrawn)
 {
   // Drawn with finite hits and alike on all threads.
   expectDrawnOnItsZeroSet(iga::makeSphereWithWideWeights<double>(), "weights 1e-3 .. 1e3", 50);
+}
+
+TEST(Zoo, WeightsRangingOverMoreThanSubdivisionResolvesAreRefused)
+{
+  // A ratio of 3.1e6 costs about 2.5 times the frame above, 3.1e7 leaves pixels at the cap.
+  const std::string message = refusal(iga::makeSphereWithWideWeights<double>(3.25));
+  EXPECT_EQ(message, "patch 0: weights range over 0.000574 .. 1.77e+03, a ratio of 3.08e+06: more "
+                     "than the 1e+06 that subdivision resolves");
 }
 
 TEST(Zoo, ConstantFieldIsCountedNotDrawn)

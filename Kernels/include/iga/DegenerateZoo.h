@@ -64,17 +64,17 @@ VolumeSet<T> makeInvertedSphere()
   return makeEditedSphere<T>(3, [](PatchView<T, 3> patch) { reverseDirection(patch, 1); });
 }
 
-/// The degree-2 sphere's control values times weights 1e-3 .. 1e3 (a ratio of 1e6): another
-/// rational map and field.
+/// The degree-2 sphere's control values times weights 10^(decades sin 7p): another rational map
+/// and field. By default 1e-3 .. 1e3, a ratio of 9.8e5 (about 10^(2 decades)).
 template<class T>
-VolumeSet<T> makeSphereWithWideWeights()
+VolumeSet<T> makeSphereWithWideWeights(double decades = 3)
 {
   return makeEditedSphere<T>(2,
-    [](PatchView<T, 3> patch)
+    [decades](PatchView<T, 3> patch)
     {
       for (int p = 0; p < patch.pointCount(); ++p)
       {
-        const T w = T(std::pow(10.0, 3 * std::sin(7.0 * p)));
+        const T w = T(std::pow(10.0, decades * std::sin(7.0 * p)));
         for (int c = 0; c < patch.channels; ++c)
           patch.point(p)[c] *= w;
       }
