@@ -100,6 +100,10 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierFileReading::Read(const std::st
   std::vector<std::string>& warnings, double memoryLimitBytes)
 {
   patches = vtkIGABezierHexahedra::Patches();
+  if (!text && !(error = igaNotRegularFileProblem(name)).empty())
+  {
+    return nullptr;
+  }
   if (!text && !std::ifstream(name))
   {
     error = "cannot open '" + name + "'";

@@ -1,5 +1,6 @@
 #include "vtkIGABezierSeriesReader.h"
 
+#include "IGAFileHead.h"
 #include "IGAXMLDocument.h"
 #include "vtkIGABezierFileReading.h"
 #include "vtkInformation.h"
@@ -57,12 +58,11 @@ void vtkIGABezierSeriesReader::PrintSelf(ostream& os, vtkIndent indent)
 
 int vtkIGABezierSeriesReader::CanReadFile(const char* name)
 {
-  std::ifstream in(name ? name : "", std::ios::binary);
-  std::string head(1024, '\0');
-  in.read(&head[0], std::streamsize(head.size()));
-  head.resize(size_t(in.gcount()));
+  const std::string head = igaFileHead(name ? name : "", 1024);
   const size_t root = head.find("<VTKFile");
-  return root != std::string::npos && head.find("type=\"Collection\"", root) < head.find('>', root)
+  const size_t end = head.find('>', root);
+  return root != std::string::npos && (head.find("type=\"Collection\"", root) < end ||
+                                        head.find("type='Collection'", root) < end)
            ? 1
            : 0;
 }
@@ -73,6 +73,12 @@ bool vtkIGABezierSeriesReader::ParseCollection(std::string& error)
   this->Files.clear();
   const std::string pvd = this->FileName ? this->FileName : "";
   const std::string name = "'" + pvd + "'";
+  const std::string notRegular = igaNotRegularFileProblem(pvd);
+  if (!notRegular.empty())
+  {
+    error = notRegular;
+    return false;
+  }
   if (pvd.empty() || !vtksys::SystemTools::FileExists(pvd, true))
   {
     error = pvd.empty() ? "no FileName set" : name + ": no such file";

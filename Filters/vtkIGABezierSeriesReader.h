@@ -32,7 +32,8 @@ public:
   vtkGetStringMacro(FileName);
   ///@}
 
-  /// 1 when `name` starts like a VTK XML collection (`<VTKFile type="Collection"`), 0 otherwise.
+  /// 1 when `name` is a regular file starting like a VTK XML collection (`<VTKFile
+  /// type="Collection"`, either quotes, in its first KiB), 0 otherwise.
   static int CanReadFile(const char* name);
 
   /// The time steps of the collection, sorted, after UpdateInformation (none before or on error).

@@ -55,10 +55,19 @@ int vtkIGANurbsReader::RequestInformation(
   {
     this->ParsedFile = stamp;
     this->Data->SetPatches(iga::NurbsSet<double>());
-    std::ifstream in(file, std::ios::binary);
+    const std::string notRegular = igaNotRegularFileProblem(file);
+    std::ifstream in;
+    if (notRegular.empty())
+    {
+      in.open(file, std::ios::binary);
+    }
     if (file.empty())
     {
       this->Error = "no FileName set";
+    }
+    else if (!notRegular.empty())
+    {
+      this->Error = notRegular;
     }
     else if (!in)
     {

@@ -9,6 +9,7 @@
 #include "vtkIGABezierSeriesReader.h"
 #include "vtkIGABezierSeriesWriter.h"
 #include "vtkIGADefaultVolumeSource.h"
+#include "vtkIGAGeoPDEsReader.h"
 #include "vtkIGAGismoReader.h"
 #include "vtkIGANurbsData.h"
 
@@ -33,6 +34,7 @@
 #include <fstream>
 #include <iterator>
 #include <regex>
+#include <sys/stat.h>
 
 namespace
 {
@@ -403,6 +405,47 @@ std::vector<std::string> seriesErrors(const std::string& text)
   vtkNew<vtkIGABezierSeriesReader> reader;
   reader->SetFileName(pvd.c_str());
   return igatest::updateCollectingErrors(reader);
+}
+
+/// A FIFO blocks whoever opens it until a writer comes (none does here): every reader and its
+/// CanReadFile refuse it, and a directory, without opening them; so does a series naming one.
+TEST(BezierVTU, ReadersRefuseFIFOsAndDirectoriesWithoutOpeningThem)
+{
+  const std::string fifo = testing::TempDir() + "/igaview_fifo.vtu";
+  std::remove(fifo.c_str());
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string directory = testing::TempDir();
+  for (const std::string& path : { fifo, directory })
+  {
+    const std::string kind = path == fifo ? "a FIFO" : "a directory";
+    const std::string problem = "'" + path + "' is " + kind + ", not a regular file";
+    vtkNew<vtkIGAGismoReader> gismo;
+    vtkNew<vtkIGAGeoPDEsReader> geopdes;
+    EXPECT_EQ(gismo->CanReadFile(path.c_str()), 0);
+    EXPECT_EQ(geopdes->CanReadFile(path.c_str()), 0);
+    EXPECT_EQ(vtkIGABezierSeriesReader::CanReadFile(path.c_str()), 0);
+    gismo->SetFileName(path.c_str());
+    vtkNew<vtkIGABezierSeriesReader> series;
+    series->SetFileName(path.c_str());
+    for (vtkAlgorithm* reader : std::initializer_list<vtkAlgorithm*>{ gismo, series })
+    {
+      const auto errors = igatest::updateCollectingErrors(reader);
+      ASSERT_EQ(errors.size(), 1u) << reader->GetClassName();
+      EXPECT_NE(errors[0].find("): " + problem + "\n"), std::string::npos) << errors[0];
+    }
+    vtkIGABezierHexahedra::Patches patches;
+    std::string error;
+    std::vector<std::string> warnings;
+    EXPECT_EQ(vtkIGABezierFileReading::Read(path, nullptr, patches, error, warnings), nullptr);
+    EXPECT_EQ(error, problem);
+  }
+  const auto errors =
+    seriesErrors("<VTKFile type='Collection'><Collection><DataSet timestep='0' file='" + fifo +
+                 "'/></Collection></VTKFile>");
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("'" + fifo + "' is a FIFO, not a regular file"), std::string::npos)
+    << errors[0];
+  std::remove(fifo.c_str());
 }
 
 TEST(BezierVTU, SeriesReaderRefusesBadCollectionsWithOneError)
