@@ -1,5 +1,5 @@
 // libFuzzer target: arbitrary bytes as a GeoPDEs text file (vtkIGAGeoPDEsReader).
-#include "FuzzNurbsReader.h"
+#include "FuzzReader.h"
 #include "vtkIGAGeoPDEsReader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)

@@ -1,5 +1,5 @@
-// The body of the NURBS reader fuzz targets: the bytes as a file read by `Reader` with a
-// 64 MiB memory limit; the output is either Bézier cells or one error, never a crash.
+// The body of the reader fuzz targets: the bytes as a file read by a reader; the output is
+// either cells or one error, never a crash.
 #pragma once
 
 #include "vtkCommand.h"
@@ -22,22 +22,30 @@ public:
   int Errors = 0;
 };
 
+/// Writes the bytes to `file`, reads it with `reader` (configured otherwise) and traps when
+/// cells and an error come together.
 template<class Reader>
-int fuzzNurbsReader(const uint8_t* data, size_t size, const char* extension)
+int fuzzReader(Reader* reader, const uint8_t* data, size_t size, const std::string& file)
 {
   vtkObject::GlobalWarningDisplayOff();
-  static const std::string file = "/dev/shm/igaview-fuzz-" + std::to_string(getpid()) + extension;
   std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(data), long(size));
-  vtkNew<Reader> reader;
   vtkNew<ErrorCounter> errors;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetFileName(file.c_str());
-  reader->SetMemoryLimitMB(64);
   reader->Update();
-  // Cells and an error never come together.
   if (errors->Errors > 0 && reader->GetOutput()->GetNumberOfCells() > 0)
   {
     __builtin_trap();
   }
   return 0;
+}
+
+/// A NURBS reader with a 64 MiB memory limit.
+template<class Reader>
+int fuzzNurbsReader(const uint8_t* data, size_t size, const char* extension)
+{
+  static const std::string file = "/dev/shm/igaview-fuzz-" + std::to_string(getpid()) + extension;
+  vtkNew<Reader> reader;
+  reader->SetMemoryLimitMB(64);
+  return fuzzReader(reader.Get(), data, size, file);
 }
