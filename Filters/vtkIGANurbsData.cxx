@@ -39,6 +39,16 @@ using Net = std::shared_ptr<const std::vector<double>>;
 template<int Dim>
 using Extraction = std::shared_ptr<const iga::BezierExtraction<double, Dim>>;
 
+/// Empty when `net` suits the patch: its size, values and weights (iga::checkControlNet) and
+/// the weights each element draws on (iga::skewedElementProblem); else the problem.
+template<int Dim>
+std::string netProblem(const iga::BSplinePatch<double, Dim>& patch,
+  const iga::BezierExtraction<double, Dim>& extraction, const std::vector<double>& net)
+{
+  const std::string problem = iga::checkControlNet(patch, net);
+  return problem.empty() ? iga::skewedElementProblem(extraction, net, patch.channels) : problem;
+}
+
 /// Builds the extraction of a patch and checks its net; throws std::invalid_argument naming the
 /// patch by `name`.
 template<int Dim>
@@ -54,7 +64,7 @@ Extraction<Dim> prepare(
     }
     auto extraction = std::make_shared<iga::BezierExtraction<double, Dim>>(
       patch.knots, patch.degree, patch.netSize);
-    const std::string problem = iga::checkControlNet(patch, patch.net);
+    const std::string problem = netProblem(patch, *extraction, patch.net);
     if (!problem.empty())
     {
       throw std::invalid_argument(problem);
@@ -217,9 +227,12 @@ std::string vtkIGANurbsData::AddTimeStep(double time, const std::vector<std::vec
   const size_t volumes = current.Set.volumes.size();
   for (size_t p = 0; p < nets.size(); ++p)
   {
+    // A reversed volume's extraction has the same supports, mirrored: its elements are named
+    // in the reversed order.
     const std::string problem =
-      p < volumes ? iga::checkControlNet(current.Set.volumes[p], nets[p])
-                  : iga::checkControlNet(current.Set.surfaces[p - volumes], nets[p]);
+      p < volumes ? netProblem(current.Set.volumes[p], *current.VolumeExtractions[p], nets[p])
+                  : netProblem(current.Set.surfaces[p - volumes],
+                      *current.SurfaceExtractions[p - volumes], nets[p]);
     if (!problem.empty())
     {
       return "time " + std::to_string(time) + ", patch " + std::to_string(p) + ": " + problem;

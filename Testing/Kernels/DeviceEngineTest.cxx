@@ -844,6 +844,32 @@ TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
       EXPECT_STREQ(e.what(), "volume 0: control point (2, 1, 0) has non-positive weight -1.000000");
     }
   }
+  // A corner weight 1e7 times the others': of the 3x3x3 elements only (2, 2, 2) draws on it.
+  ball.patch.net[5 * 7 + iga::kWeightChannel] =
+    NurbsBall(1.0).patch.net[5 * 7 + iga::kWeightChannel];
+  for (int c = 0; c < 5; ++c)
+    ball.patch.net[5 * 124 + c] *= 1e7;
+  for (auto backend : { iga::sst::Backend::Cpu, iga::sst::Backend::Cuda })
+  {
+    settings.backend = backend;
+    try
+    {
+      iga::sst::render(ball.volumes(0), iga::sst::makeView(camera, 16, 16), settings,
+        iga::sst::Method::SharedSubdivisionTree, out);
+      ADD_FAILURE() << "weights ranging over 1e7 were accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("volume 0: element (2, 2, 2) draws on control points whose weights "
+                              "range over ",
+                  0),
+        0u)
+        << message;
+      EXPECT_NE(message.find(": more than the 1e+06 that subdivision resolves"), std::string::npos)
+        << message;
+    }
+  }
   ball.patch.net.pop_back();
   try
   {

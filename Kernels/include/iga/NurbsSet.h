@@ -6,6 +6,8 @@
 #include "iga/BSpline.h"
 #include "iga/Validation.h"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -81,6 +83,69 @@ template<class T, int Dim>
 std::string checkControlNet(const BSplinePatch<T, Dim>& patch, const std::vector<T>& net)
 {
   return checkControlNet<T, Dim>(patch.netSize, patch.channels, net);
+}
+
+/// Empty unless an element of the patch draws on control points (its support in the net) whose
+/// weights range over more than kMaxWeightRatio; then names the first such element by its index
+/// along each direction. Its Bézier weights are convex combinations of these, so an element that
+/// passes passes checkPatch too (the converse may fail: this check is the stricter). Walks the
+/// elements only when the whole net's weights range that far. `net` passed checkControlNet.
+template<class T, int Dim>
+std::string skewedElementProblem(
+  const BezierExtraction<T, Dim>& extraction, const std::vector<T>& net, int channels)
+{
+  const auto weight = [&](size_t point) { return net[point * size_t(channels) + kWeightChannel]; };
+  const size_t points = net.size() / size_t(channels);
+  if (points == 0)
+  {
+    return std::string();
+  }
+  T lo = weight(0), hi = lo;
+  for (size_t p = 1; p < points; ++p)
+  {
+    lo = std::min(lo, weight(p));
+    hi = std::max(hi, weight(p));
+  }
+  if (!(hi > T(kMaxWeightRatio) * lo))
+  {
+    return std::string();
+  }
+  for (int e = 0; e < extraction.elementCount(); ++e)
+  {
+    int element[Dim], first[Dim], count = 1;
+    extraction.elementIndex(e, element);
+    for (int d = 0; d < Dim; ++d)
+    {
+      first[d] = extraction.direction(d).firstBasis[size_t(element[d])];
+      count *= extraction.direction(d).degree + 1;
+    }
+    lo = std::numeric_limits<T>::infinity();
+    hi = T(0);
+    for (int k = 0; k < count; ++k) // the support's points, first direction fastest
+    {
+      size_t point = 0, stride = 1;
+      for (int d = 0, rest = k; d < Dim; ++d)
+      {
+        const int order = extraction.direction(d).degree + 1;
+        point += size_t(first[d] + rest % order) * stride;
+        stride *= size_t(extraction.netSize(d));
+        rest /= order;
+      }
+      lo = std::min(lo, weight(point));
+      hi = std::max(hi, weight(point));
+    }
+    if (hi > T(kMaxWeightRatio) * lo)
+    {
+      std::string where = "element (";
+      for (int d = 0; d < Dim; ++d)
+      {
+        where += (d ? ", " : "") + std::to_string(element[d]);
+      }
+      return where + ") draws on control points whose " +
+             weightRatioProblem(double(lo), double(hi));
+    }
+  }
+  return std::string();
 }
 
 /// Greville abscissae xi_i = (t_{i+1} + ... + t_{i+p}) / p of the `count` B-splines of degree p:

@@ -105,18 +105,24 @@ std::string invalidPointProblem(const T* point, int channels)
          " lies beyond 1e+100, farther than double precision can frame";
 }
 
+/// Weights from lo to hi, more than kMaxWeightRatio apart, in words.
+inline std::string weightRatioProblem(double lo, double hi)
+{
+  char text[160];
+  std::snprintf(text, sizeof text,
+    "weights range over %.3g .. %.3g, a ratio of %.3g: more than the %.0e that subdivision "
+    "resolves",
+    lo, hi, hi / lo, kMaxWeightRatio);
+  return text;
+}
+
 /// What weightsTooSkewed found: the weights' range and ratio against kMaxWeightRatio.
 template<class T, int Dim>
 std::string weightRangeProblem(const PatchView<const T, Dim>& patch)
 {
   T lo, hi;
   weightRange(patch, lo, hi);
-  char text[160];
-  std::snprintf(text, sizeof text,
-    "weights range over %.3g .. %.3g, a ratio of %.3g: more than the %.0e that subdivision "
-    "resolves",
-    double(lo), double(hi), double(hi / lo), kMaxWeightRatio);
-  return text;
+  return weightRatioProblem(double(lo), double(hi));
 }
 
 /// Empty when the patch (standard layout) is usable; otherwise one sentence naming the first

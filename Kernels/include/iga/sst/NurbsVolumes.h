@@ -32,8 +32,9 @@ struct NurbsVolumes
 };
 
 /// Checks NURBS volumes: one net per extraction, of the extraction's size, finite values and
-/// positive weights. Their Bézier elements are then valid too: extraction takes convex
-/// combinations of control points. Throws std::invalid_argument naming the volume and point.
+/// positive weights, and elements' weights within kMaxWeightRatio (skewedElementProblem). Their
+/// Bézier elements are then valid too: extraction takes convex combinations of control points.
+/// Throws std::invalid_argument naming the volume and point or element.
 inline void checkNurbsVolumes(const NurbsVolumes& volumes)
 {
   if (volumes.nets.size() != volumes.extractions.size())
@@ -66,8 +67,11 @@ inline void checkNurbsVolumes(const NurbsVolumes& volumes)
       }
       netSize[d] = extraction.netSize(d);
     }
-    const std::string problem =
-      checkControlNet<double, 3>(netSize, volumes.channels, *volumes.nets[v]);
+    std::string problem = checkControlNet<double, 3>(netSize, volumes.channels, *volumes.nets[v]);
+    if (problem.empty())
+    {
+      problem = skewedElementProblem<double, 3>(extraction, *volumes.nets[v], volumes.channels);
+    }
     if (!problem.empty())
     {
       throw std::invalid_argument(name + problem);
