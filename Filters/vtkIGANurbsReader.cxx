@@ -75,7 +75,11 @@ int vtkIGANurbsReader::RequestInformation(
     }
     else
     {
-      std::string problem = this->ReadGuarded(in);
+      std::string problem = this->FileSizeProblem(file);
+      if (problem.empty())
+      {
+        problem = this->ReadGuarded(in);
+      }
       if (problem.empty())
       {
         problem = this->MemoryProblem();
@@ -114,12 +118,32 @@ std::string vtkIGANurbsReader::ReadGuarded(std::istream& in)
   }
 }
 
-std::string vtkIGANurbsReader::MemoryProblem() const
+double vtkIGANurbsReader::MemoryLimitBytes() const
 {
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
-  const double limit = this->MemoryLimitMB > 0     ? this->MemoryLimitMB * 1048576.0
-                       : pages > 0 && pageSize > 0 ? 0.5 * double(pages) * double(pageSize)
-                                                   : VTK_DOUBLE_MAX;
+  return this->MemoryLimitMB > 0     ? this->MemoryLimitMB * 1048576.0
+         : pages > 0 && pageSize > 0 ? 0.5 * double(pages) * double(pageSize)
+                                     : VTK_DOUBLE_MAX;
+}
+
+std::string vtkIGANurbsReader::FileSizeProblem(const std::string& file) const
+{
+  const double size = double(vtksys::SystemTools::FileLength(file));
+  const double limit = this->MemoryLimitBytes();
+  if (size <= limit)
+  {
+    return std::string();
+  }
+  char text[192];
+  std::snprintf(text, sizeof text,
+    "the file holds %.3g GB, more than the reader's memory limit of %.3g GB (MemoryLimitMB)",
+    size / 1e9, limit / 1e9);
+  return text;
+}
+
+std::string vtkIGANurbsReader::MemoryProblem() const
+{
+  const double limit = this->MemoryLimitBytes();
   const double needed = this->Data->GetBezierCellBytes();
   if (needed <= limit)
   {

@@ -75,8 +75,12 @@ private:
 
   /// ReadNurbs on the stream's contents, with what it throws turned into its problem.
   std::string ReadGuarded(std::istream& in);
+  /// MemoryLimitMB in bytes, or half the machine's memory when it is 0.
+  double MemoryLimitBytes() const;
   /// "" when the Bézier cells of a step fit MemoryLimitMB, else why not.
   std::string MemoryProblem() const;
+  /// "" when the file, which is read whole before it is parsed, fits MemoryLimitMB.
+  std::string FileSizeProblem(const std::string& file) const;
 
   vtkNew<vtkIGANurbsData> Data;
   std::string Error;      // of the last parse, empty when it succeeded

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <unistd.h>
 
 using namespace igatest;
 
@@ -433,6 +434,23 @@ TEST(NurbsReaders, CellsBeyondTheMemoryLimitAreRefused)
   EXPECT_TRUE(errors.empty());
   // The estimate is the grid's own size (VTK's count, in KiB) within a few percent.
   EXPECT_NEAR(double(built->GetActualMemorySize()) * 1024, 0.0283e9, 0.05 * 0.0283e9);
+}
+
+/// A file is read whole before it is parsed: one larger than the memory limit is refused unread
+/// (a sparse file of 4 GB here; a file of that many zeros used to be read until memory ran out).
+TEST(NurbsReaders, FilesBeyondTheMemoryLimitAreRefusedUnread)
+{
+  const std::string file = testing::TempDir() + "/igaview_huge.xml";
+  std::ofstream(file) << "<?xml version=\"1.0\"?>\n<xml>\n<Geometry type=\"TensorNurbs3\">\n";
+  ASSERT_EQ(truncate(file.c_str(), off_t(4) << 30), 0);
+  std::vector<std::string> errors;
+  read<vtkIGAGismoReader>(file, &errors, nullptr, 100);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find(file + ": the file holds 4.29 GB, more than the reader's memory limit "
+                                  "of 0.105 GB (MemoryLimitMB)"),
+    std::string::npos)
+    << errors[0];
+  std::remove(file.c_str());
 }
 
 TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
