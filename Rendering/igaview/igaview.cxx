@@ -38,8 +38,12 @@
 #include "iga/Csg.h"
 #include "iga/sst/Engine.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -236,6 +240,33 @@ void checkImageBudget(const Options& options)
   }
 }
 
+/// Refuses an output that cannot be written before anything is read or drawn: a directory, or a
+/// file in a directory that does not exist or is not writable.
+void checkOutputPath(const std::string& option, const std::string& path)
+{
+  struct stat status;
+  if (stat(path.c_str(), &status) == 0 && S_ISDIR(status.st_mode))
+    fail(option + " '" + path + "' is a directory");
+  const size_t slash = path.find_last_of('/');
+  const std::string directory = slash == std::string::npos ? "."
+                                : slash == 0               ? "/"
+                                                           : path.substr(0, slash);
+  if (access(directory.c_str(), W_OK) != 0)
+    fail(option + " '" + path + "': the directory '" + directory + "' " +
+         (errno == ENOENT || errno == ENOTDIR ? "does not exist" : "cannot be written to"));
+}
+
+/// The outputs the run will write, checked (checkOutputPath).
+void checkOutputs(const Options& options)
+{
+  if (!options.view || options.hasOutput)
+    checkOutputPath("-o", options.output);
+  if (!options.exr.empty())
+    checkOutputPath("--exr", options.exr);
+  if (!options.deepExr.empty())
+    checkOutputPath("--deep-exr", options.deepExr);
+}
+
 Options parseArguments(int argc, char** argv)
 {
   if (argc < 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")
@@ -365,6 +396,7 @@ Options parseArguments(int argc, char** argv)
       fail("more than one input given: '" + options.input + "' and '" + arg + "'");
   }
   checkImageBudget(options);
+  checkOutputs(options);
   return options;
 }
 
