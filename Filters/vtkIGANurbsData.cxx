@@ -39,16 +39,6 @@ using Net = std::shared_ptr<const std::vector<double>>;
 template<int Dim>
 using Extraction = std::shared_ptr<const iga::BezierExtraction<double, Dim>>;
 
-/// Empty when `net` suits the patch: its size, values and weights (iga::checkControlNet) and
-/// the weights each element draws on (iga::skewedElementProblem); else the problem.
-template<int Dim>
-std::string netProblem(const iga::BSplinePatch<double, Dim>& patch,
-  const iga::BezierExtraction<double, Dim>& extraction, const std::vector<double>& net)
-{
-  const std::string problem = iga::checkControlNet(patch, net);
-  return problem.empty() ? iga::skewedElementProblem(extraction, net, patch.channels) : problem;
-}
-
 /// Builds the extraction of a patch and checks its net; throws std::invalid_argument naming the
 /// patch by `name`.
 template<int Dim>
@@ -64,7 +54,11 @@ Extraction<Dim> prepare(
     }
     auto extraction = std::make_shared<iga::BezierExtraction<double, Dim>>(
       patch.knots, patch.degree, patch.netSize);
-    const std::string problem = netProblem(patch, *extraction, patch.net);
+    std::string problem = iga::checkControlNet(patch, patch.net);
+    if (problem.empty())
+    {
+      problem = iga::skewedElementProblem(*extraction, patch.net, patch.channels);
+    }
     if (!problem.empty())
     {
       throw std::invalid_argument(problem);
@@ -225,33 +219,37 @@ std::string vtkIGANurbsData::AddTimeStep(double time, const std::vector<std::vec
            std::to_string(current.Set.patchCount()) + " patches";
   }
   const size_t volumes = current.Set.volumes.size();
+  // The nets as kept (a reversed volume's reversed), checked: control points in the caller's
+  // numbering, elements in the kept one (a reversed volume's mirrored along u).
+  std::vector<Net> kept;
   for (size_t p = 0; p < nets.size(); ++p)
   {
-    // A reversed volume's extraction has the same supports, mirrored: its elements are named
-    // in the reversed order.
-    const std::string problem =
-      p < volumes ? netProblem(current.Set.volumes[p], *current.VolumeExtractions[p], nets[p])
-                  : netProblem(current.Set.surfaces[p - volumes],
-                      *current.SurfaceExtractions[p - volumes], nets[p]);
-    if (!problem.empty())
-    {
-      return "time " + std::to_string(time) + ", patch " + std::to_string(p) + ": " + problem;
-    }
-  }
-  // Copy on write: a shallow copy keeps seeing the old steps.
-  auto state = std::make_shared<State>(current);
-  state->Times.push_back(time);
-  state->Nets.emplace_back();
-  for (size_t p = 0; p < nets.size(); ++p)
-  {
+    const bool volume = p < volumes;
+    std::string problem = volume ? iga::checkControlNet(current.Set.volumes[p], nets[p])
+                                 : iga::checkControlNet(current.Set.surfaces[p - volumes], nets[p]);
     auto net = std::make_shared<std::vector<double>>(nets[p]);
-    if (p < volumes && current.ReversedVolumes[p])
+    if (problem.empty() && volume && current.ReversedVolumes[p])
     {
       iga::reverseNetDirection(
         net->data(), current.Set.volumes[p].netSize, 3, current.Set.channels(), 0);
     }
-    state->Nets.back().push_back(std::move(net));
+    if (problem.empty())
+    {
+      const int channels = current.Set.channels();
+      problem = volume ? iga::skewedElementProblem(*current.VolumeExtractions[p], *net, channels)
+                       : iga::skewedElementProblem(
+                           *current.SurfaceExtractions[p - volumes], *net, channels);
+    }
+    if (!problem.empty())
+    {
+      return "time " + std::to_string(time) + ", patch " + std::to_string(p) + ": " + problem;
+    }
+    kept.push_back(std::move(net));
   }
+  // Copy on write: a shallow copy keeps seeing the old steps.
+  auto state = std::make_shared<State>(current);
+  state->Times.push_back(time);
+  state->Nets.push_back(std::move(kept));
   this->Contents = state;
   this->Modified();
   return std::string();

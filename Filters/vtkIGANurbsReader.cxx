@@ -104,9 +104,13 @@ std::string vtkIGANurbsReader::ReadGuarded(std::istream& in)
   // ParaView must not take the application down.
   try
   {
-    std::ostringstream text;
-    text << in.rdbuf();
-    return this->ReadNurbs(text.str(), this->Data);
+    // Read at its length, not grown: the text is held once, within MemoryLimitMB.
+    in.seekg(0, std::ios::end);
+    std::string text(size_t(std::max<std::streamoff>(in.tellg(), 0)), '\0');
+    in.seekg(0);
+    in.read(&text[0], std::streamsize(text.size()));
+    text.resize(size_t(in.gcount()));
+    return this->ReadNurbs(text, this->Data);
   }
   catch (const std::bad_alloc&)
   {

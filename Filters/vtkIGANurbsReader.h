@@ -41,7 +41,8 @@ public:
   ///@{
   /// Most memory, in MiB, that the Bézier cells of one time step may take while they are built
   /// (a few kilobytes of high-degree NURBS can expand to gigabytes of cells); a file needing
-  /// more is refused with the size it would need. 0, the default: half the machine's memory.
+  /// more is refused with the size it would need, and so is a file larger than this (it is read
+  /// whole before it is parsed). 0, the default: half the machine's memory.
   vtkSetClampMacro(MemoryLimitMB, double, 0, VTK_DOUBLE_MAX);
   vtkGetMacro(MemoryLimitMB, double);
   ///@}

@@ -372,7 +372,8 @@ struct Driver
     ++this->Uploads;
   }
 
-  /// Over the world patches on the device: how many have an invalid control point, and the
+  /// Over the world patches on the device: how many have an invalid control point or too
+  /// widely ranging weights, and the
   /// surface attribute's range over the other volumes, as checkPatches computes it.
   PatchSummary summarizePatches(int surfaceAttribute)
   {

@@ -844,11 +844,12 @@ TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
       EXPECT_STREQ(e.what(), "volume 0: control point (2, 1, 0) has non-positive weight -1.000000");
     }
   }
-  // A corner weight 1e7 times the others': of the 3x3x3 elements only (2, 2, 2) draws on it.
+  // A corner weight 1e7 times the others': of the 3x3x3 elements only (2, 0, 0) draws on
+  // control point (4, 0, 0).
   ball.patch.net[5 * 7 + iga::kWeightChannel] =
     NurbsBall(1.0).patch.net[5 * 7 + iga::kWeightChannel];
   for (int c = 0; c < 5; ++c)
-    ball.patch.net[5 * 124 + c] *= 1e7;
+    ball.patch.net[5 * 4 + c] *= 1e7;
   for (auto backend : { iga::sst::Backend::Cpu, iga::sst::Backend::Cuda })
   {
     settings.backend = backend;
@@ -861,7 +862,7 @@ TEST(DeviceEngineCaps, BadNurbsNetIsRejected)
     catch (const std::invalid_argument& e)
     {
       const std::string message = e.what();
-      EXPECT_EQ(message.rfind("volume 0: element (2, 2, 2) draws on control points whose weights "
+      EXPECT_EQ(message.rfind("volume 0: element (2, 0, 0) draws on control points whose weights "
                               "range over ",
                   0),
         0u)

@@ -1,5 +1,6 @@
 // Checks of patch data before it reaches the numeric kernels. The messages are host strings; the
-// test of control point values also runs on the device (firstInvalidPoint).
+// tests of control point values and of the weights' range also run on the device
+// (firstInvalidPoint, weightsTooSkewed).
 #pragma once
 
 #include "iga/BezierPatch.h"
