@@ -1045,9 +1045,19 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
 
 } // namespace
 
+/// VTK's X window aborts the process when no X server answers: say so first where none is named.
+void checkDisplay(vtkRenderWindow* window)
+{
+  const char* display = std::getenv("DISPLAY");
+  if (window->IsA("vtkXOpenGLRenderWindow") && !(display && *display))
+    fail("no X display (DISPLAY is not set): run igaview under xvfb-run -a, or on a desktop");
+}
+
 int main(int argc, char** argv)
 {
   const Options options = parseArguments(argc, argv);
+  vtkNew<vtkRenderWindow> window;
+  checkDisplay(window);
   const Input input = loadInput(options);
   const Drawing drawing = chooseDrawing(options, input);
   vtkNew<vtkIGAIsosurfaceMapper> mapper;
@@ -1059,7 +1069,6 @@ int main(int argc, char** argv)
   vtkNew<vtkRenderer> renderer;
   renderer->AddActor(actor);
   configureRenderer(chooseCamera(options, input), renderer);
-  vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->AddRenderer(renderer);
   window->SetSize(options.size[0], options.size[1]);
