@@ -87,7 +87,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --clip a,b,c,d         keep the part a x + b y + c z + d >= 0, its cut face drawn (repeatable):
                          the volumes, or the --csg solid, intersected with the half-space, and
                          the slices cut by it
-  --iso V                isovalue (repeatable; default: the middle of the attribute's range)
+  --iso V                isovalue (repeatable; default: the middle of the attribute's values
+                         at the patches' corners and centres)
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour)
   --size WxH             image size in pixels (default 800x600)
@@ -582,6 +583,34 @@ void attributeRange(const Input& input, int attribute, bool surfaces, double* ra
   }
 }
 
+/// The volume attribute's values at the patches' corners and centres: values the field takes,
+/// so that the middle of their range has an isosurface. The Bernstein bounds may pass the field
+/// by far: the Marsden sphere's f = r^2 - 1 has bounds -4 .. 2, whose middle, its minimum -1,
+/// is a single point.
+void sampledAttributeRange(const Input& input, int attribute, double* range)
+{
+  range[0] = INFINITY;
+  range[1] = -INFINITY;
+  const iga::sst::Scene scene = sceneOf(input);
+  std::vector<double> values;
+  for (size_t p = 0; p < scene.volumeCount(); ++p)
+  {
+    const auto patch = scene[p];
+    values.resize(size_t(patch.channels));
+    for (int corner = 0; corner <= 8; ++corner) // 8: the centre
+    {
+      double u[3];
+      for (int d = 0; d < 3; ++d)
+        u[d] = corner == 8 ? 0.5 : double((corner >> d) & 1);
+      iga::evaluateHomogeneous<double, 3>(patch, u, values.data(), nullptr);
+      const double value =
+        values[size_t(iga::kFirstAttributeChannel + attribute)] / values[iga::kWeightChannel];
+      range[0] = std::min(range[0], value);
+      range[1] = std::max(range[1], value);
+    }
+  }
+}
+
 /// The bounds of the input's patches; with --series, of every time step's.
 void inputBounds(const Options& options, const Input& input, double* bounds)
 {
@@ -836,7 +865,11 @@ Drawing chooseDrawing(const Options& options, const Input& input)
     attributeRange(input, drawing.surface, false, drawing.surfaceRange);
     drawing.isovalues = options.isovalues;
     if (drawing.isovalues.empty())
-      drawing.isovalues.push_back(0.5 * (drawing.surfaceRange[0] + drawing.surfaceRange[1]));
+    {
+      double taken[2];
+      sampledAttributeRange(input, drawing.surface, taken);
+      drawing.isovalues.push_back(0.5 * (taken[0] + taken[1]));
+    }
   }
   drawing.colour =
     options.colorBy.empty() ? -1 : attributeIndex(input, options.colorBy, "--color-by");
