@@ -679,7 +679,16 @@ struct Viewer
   std::vector<double> times;
   size_t timeIndex = 0;
 
-  void setTime() { this->producer->UpdateTimeStep(this->times[this->timeIndex]); }
+  /// Reads the step; a bad one is said on one line and leaves nothing drawn, the viewer open.
+  void setTime()
+  {
+    const double time = this->times[this->timeIndex];
+    std::string message;
+    if (!vtkIGABezierFileReading::RunQuietly(
+          [&] { return this->producer->UpdateTimeStep(time) != 0; }, message))
+      std::fprintf(stderr, "igaview: time %g: %s\n", time,
+        message.empty() ? "the pipeline update failed" : message.c_str());
+  }
 
   /// Applies a key; false for keys it does not handle.
   bool press(const std::string& key)
