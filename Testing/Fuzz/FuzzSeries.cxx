@@ -9,7 +9,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
-  static const std::string directory = [] {
+  static const std::string directory = []
+  {
     const std::string d = "/dev/shm/igaview-fuzz-series-" + std::to_string(getpid());
     mkdir(d.c_str(), 0700);
     const std::string step = d + "/step.vtu";
