@@ -74,6 +74,10 @@ TEST(PatchValidation, NamesWeightsRangingOverMoreThanSubdivisionResolves)
     "weights range over 1 .. 1.01e+06, a ratio of 1.01e+06: more than the 1e+06 that "
     "subdivision resolves");
 
+  setWeight(volume.view(), 3, 1.0004 * iga::kMaxWeightRatio);
+  EXPECT_NE((iga::checkPatch<double, 3>(volume.view())).find("a ratio of 1.0004e+06: more"),
+    std::string::npos);
+
   const int surfaceDegree[2] = { 2, 1 };
   auto surface = randomPatch<double, 2>(rng, surfaceDegree);
   setWeight(surface.view(), 4, 1e300);

@@ -6,6 +6,7 @@
 #include "iga/BezierPatch.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace iga
@@ -109,11 +110,21 @@ std::string invalidPointProblem(const T* point, int channels)
 /// Weights from lo to hi, more than kMaxWeightRatio apart, in words.
 inline std::string weightRatioProblem(double lo, double hi)
 {
-  char text[160];
+  // The ratio with as many digits as show it above the limit (1.0004e+06, not 1e+06).
+  char ratio[32];
+  for (int digits = 3; digits <= 17; ++digits)
+  {
+    std::snprintf(ratio, sizeof ratio, "%.*g", digits, hi / lo);
+    if (std::strtod(ratio, nullptr) > kMaxWeightRatio)
+    {
+      break;
+    }
+  }
+  char text[192];
   std::snprintf(text, sizeof text,
-    "weights range over %.3g .. %.3g, a ratio of %.3g: more than the %.0e that subdivision "
+    "weights range over %.3g .. %.3g, a ratio of %s: more than the %.0e that subdivision "
     "resolves",
-    lo, hi, hi / lo, kMaxWeightRatio);
+    lo, hi, ratio, kMaxWeightRatio);
   return text;
 }
 
