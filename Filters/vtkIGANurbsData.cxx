@@ -219,6 +219,7 @@ std::string vtkIGANurbsData::AddTimeStep(double time, const std::vector<std::vec
            std::to_string(current.Set.patchCount()) + " patches";
   }
   const size_t volumes = current.Set.volumes.size();
+  const int channels = current.Set.channels();
   // The nets as kept (a reversed volume's reversed), checked: control points in the caller's
   // numbering, elements in the kept one (a reversed volume's mirrored along u).
   std::vector<Net> kept;
@@ -230,12 +231,10 @@ std::string vtkIGANurbsData::AddTimeStep(double time, const std::vector<std::vec
     auto net = std::make_shared<std::vector<double>>(nets[p]);
     if (problem.empty() && volume && current.ReversedVolumes[p])
     {
-      iga::reverseNetDirection(
-        net->data(), current.Set.volumes[p].netSize, 3, current.Set.channels(), 0);
+      iga::reverseNetDirection(net->data(), current.Set.volumes[p].netSize, 3, channels, 0);
     }
     if (problem.empty())
     {
-      const int channels = current.Set.channels();
       problem = volume ? iga::skewedElementProblem(*current.VolumeExtractions[p], *net, channels)
                        : iga::skewedElementProblem(
                            *current.SurfaceExtractions[p - volumes], *net, channels);

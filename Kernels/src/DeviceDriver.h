@@ -373,8 +373,8 @@ struct Driver
   }
 
   /// Over the world patches on the device: how many have an invalid control point or too
-  /// widely ranging weights, and the
-  /// surface attribute's range over the other volumes, as checkPatches computes it.
+  /// widely ranging weights, and the surface attribute's range over the other volumes, as
+  /// checkPatches computes it.
   PatchSummary summarizePatches(int surfaceAttribute)
   {
     const PatchShape* shapes = raw(this->Shapes);

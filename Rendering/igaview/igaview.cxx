@@ -585,8 +585,8 @@ void attributeRange(const Input& input, int attribute, bool surfaces, double* ra
 
 /// The volume attribute's values at the patches' corners and centres: values the field takes,
 /// so that the middle of their range has an isosurface. The Bernstein bounds may pass the field
-/// by far: the Marsden sphere's f = r^2 - 1 has bounds -4 .. 2, whose middle, its minimum -1,
-/// is a single point.
+/// by far: the Marsden sphere's f = r^2 - 1 over [-1.5, 1.5]^3 takes -1 .. 5.75 and has bounds
+/// -7.75 .. 5.75, whose middle, its minimum -1, is a single point.
 void sampledAttributeRange(const Input& input, int attribute, double* range)
 {
   range[0] = INFINITY;
@@ -1085,8 +1085,6 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
   }
 }
 
-} // namespace
-
 /// VTK's X window aborts the process when no X server answers: say so first where none is named.
 void checkDisplay(vtkRenderWindow* window)
 {
@@ -1094,6 +1092,8 @@ void checkDisplay(vtkRenderWindow* window)
   if (window->IsA("vtkXOpenGLRenderWindow") && !(display && *display))
     fail("no X display (DISPLAY is not set): run igaview under xvfb-run -a, or on a desktop");
 }
+
+} // namespace
 
 int main(int argc, char** argv)
 {
