@@ -123,6 +123,50 @@ TYPED_TEST(BezierPatchTest, RationalDerivativesMatchCentralDifferences)
   checkDerivatives<TypeParam, 2>(rng);
 }
 
+/// Asked for the leading channels only, the evaluation gives them as the full one does and
+/// leaves the others alone: what Newton on a surface (X, Y, Z, W of six) relies on.
+template<class T, int Dim>
+void checkLeadingChannels(std::mt19937& rng, const int* degree)
+{
+  constexpr int kLeading = 4;
+  const T untouched = T(-12345);
+  const auto patch = randomPatch<T, Dim>(rng, degree, 2);
+  const auto view = patch.view();
+  const T u[3] = { T(0.3), T(0.7), T(0.45) };
+  std::vector<T> values(view.channels), derivatives(Dim * view.channels);
+  std::vector<T> leading(view.channels, untouched),
+    leadingDerivatives(Dim * view.channels, untouched);
+  iga::evaluateHomogeneous<T, Dim>(view, u, values.data(), derivatives.data());
+  iga::evaluateHomogeneous<T, Dim>(view, u, leading.data(), leadingDerivatives.data(), kLeading);
+  for (int c = 0; c < view.channels; ++c)
+  {
+    const bool asked = c < kLeading;
+    EXPECT_EQ(leading[c], asked ? values[c] : untouched) << "channel " << c;
+    for (int d = 0; d < Dim; ++d)
+    {
+      const size_t k = size_t(d * view.channels + c);
+      EXPECT_EQ(leadingDerivatives[k], asked ? derivatives[k] : untouched)
+        << "channel " << c << " direction " << d;
+    }
+  }
+}
+
+TYPED_TEST(BezierPatchTest, EvaluatesOnlyTheLeadingChannelsAsked)
+{
+  std::mt19937 rng(5);
+  // Equal degrees (the unrolled shapes), unequal ones, and orders past the factorised scratch.
+  for (const int p : { 1, 3, 5, 7 })
+  {
+    const int equal[3] = { p, p, p }, unequal[3] = { p, p + 1, 2 };
+    checkLeadingChannels<TypeParam, 2>(rng, equal);
+    checkLeadingChannels<TypeParam, 3>(rng, equal);
+    checkLeadingChannels<TypeParam, 2>(rng, unequal);
+    checkLeadingChannels<TypeParam, 3>(rng, unequal);
+  }
+  const int high[3] = { 16, 16, 16 };
+  checkLeadingChannels<TypeParam, 3>(rng, high);
+}
+
 template<class T, int Dim>
 void checkSplit(std::mt19937& rng)
 {

@@ -142,11 +142,19 @@ using BezierVolume = BezierPatch<T, 3>;
 template<class T>
 using BezierSurface = BezierPatch<T, 2>;
 
-/// Bernstein basis B_i^n(t), i = 0..n, by the triangular (de Casteljau) recurrence, and
-/// optionally its derivative. `basis` and `derivative` hold n+1 values.
-template<class T>
-IGA_HD void bernsteinBasis(int n, T t, T* basis, T* derivative)
+namespace detail
 {
+/// A degree known at compile time, so that the recurrence below unrolls.
+template<int N>
+struct FixedDegree
+{
+  IGA_HD constexpr operator int() const { return N; }
+};
+
+template<class T, class Degree>
+IGA_HD void bernsteinBasis(Degree degree, T t, T* basis, T* derivative)
+{
+  const int n = degree;
   const T s = T(1) - t;
   basis[0] = T(1);
   for (int r = 1; r <= n; ++r)
@@ -173,28 +181,51 @@ IGA_HD void bernsteinBasis(int n, T t, T* basis, T* derivative)
     derivative[0] = T(0);
   }
 }
+} // namespace detail
 
-/// Evaluates all homogeneous channels at parameter u (Dim values in [0,1]) and, if `derivatives`
+/// Bernstein basis B_i^n(t), i = 0..n, by the triangular (de Casteljau) recurrence, and
+/// optionally its derivative. `basis` and `derivative` hold n+1 values.
+template<class T>
+IGA_HD void bernsteinBasis(int n, T t, T* basis, T* derivative)
+{
+  switch (n)
+  {
+    case 1:
+      return detail::bernsteinBasis(detail::FixedDegree<1>(), t, basis, derivative);
+    case 2:
+      return detail::bernsteinBasis(detail::FixedDegree<2>(), t, basis, derivative);
+    case 3:
+      return detail::bernsteinBasis(detail::FixedDegree<3>(), t, basis, derivative);
+    case 4:
+      return detail::bernsteinBasis(detail::FixedDegree<4>(), t, basis, derivative);
+    default:
+      return detail::bernsteinBasis(n, t, basis, derivative);
+  }
+}
+
+/// Evaluates the homogeneous channels at parameter u (Dim values in [0,1]) and, if `derivatives`
 /// is not null, their first partial derivatives: derivatives[d * channels + c] = dC_c/du_d.
+/// `leading` > 0 evaluates only the first `leading` channels (the layout stays that of all of
+/// them; the others are left unwritten): a solver whose rows read only those skips the rest.
 template<class T, int Dim>
 IGA_HD void evaluateHomogeneous(
-  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives);
+  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives, int leading = 0);
 
 namespace detail
 {
 /// Scratch limit of the sum-factorised trivariate evaluation (orders up to 6, 8 channels).
 constexpr int kFactorisedScratch = 6 * 6 * 8;
 
-/// Orders and channel count of a trivariate evaluation, known at run time...
+/// Orders, channel count and evaluated leading channels of an evaluation, known at run time...
 struct RuntimeShape
 {
-  int n0, n1, n2, channels;
+  int n0, n1, n2, channels, evaluated;
 };
 /// ... or at compile time (the common tri-degree cases), so that the loops below unroll.
-template<int N, int C>
+template<int N, int C, int E>
 struct FixedShape
 {
-  static constexpr int n0 = N, n1 = N, n2 = N, channels = C;
+  static constexpr int n0 = N, n1 = N, n2 = N, channels = C, evaluated = E;
 };
 
 /// Trivariate evaluation contracting one direction at a time (sum factorisation): about
@@ -203,11 +234,11 @@ template<class T, class Shape>
 IGA_HD void evaluateFactorised(const T* coeffs, const Shape& shape, const T (&basis)[3][kMaxOrder],
   const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
 {
-  const int n0 = shape.n0, n1 = shape.n1, n2 = shape.n2, C = shape.channels;
+  const int n0 = shape.n0, n1 = shape.n1, n2 = shape.n2, C = shape.channels, E = shape.evaluated;
   T line[kFactorisedScratch], dline[kFactorisedScratch]; // contracted along u: (j, k, c)
   for (int jk = 0; jk < n1 * n2; ++jk)
   {
-    for (int c = 0; c < C; ++c)
+    for (int c = 0; c < E; ++c)
     {
       T v = T(0), dv = T(0);
       const T* p = coeffs + (jk * n0) * C + c;
@@ -220,7 +251,7 @@ IGA_HD void evaluateFactorised(const T* coeffs, const Shape& shape, const T (&ba
       dline[jk * C + c] = dv;
     }
   }
-  for (int c = 0; c < C; ++c)
+  for (int c = 0; c < E; ++c)
   {
     T value = T(0), du = T(0), dv = T(0), dw = T(0);
     for (int k = 0; k < n2; ++k)
@@ -254,8 +285,8 @@ template<class T, class Shape>
 IGA_HD void evaluateFactorised2(const T* coeffs, const Shape& shape, const T (&basis)[2][kMaxOrder],
   const T (&dbasis)[2][kMaxOrder], T* values, T* derivatives)
 {
-  const int n0 = shape.n0, n1 = shape.n1, C = shape.channels;
-  for (int c = 0; c < C; ++c)
+  const int n0 = shape.n0, n1 = shape.n1, C = shape.channels, E = shape.evaluated;
+  for (int c = 0; c < E; ++c)
   {
     T value = T(0), du = T(0), dv = T(0);
     for (int j = 0; j < n1; ++j)
@@ -280,46 +311,57 @@ IGA_HD void evaluateFactorised2(const T* coeffs, const Shape& shape, const T (&b
   }
 }
 
-/// Calls fn(shape) with a compile-time shape for equal degrees 1..5 and 6 channels (the
+/// Calls fn(shape) with a compile-time shape for equal degrees 1..5 of a 6-channel patch (the
 /// engine's screen and shading patches, `fixed`), so that the loops unroll, else with `runtime`.
-template<class Fn>
-IGA_HD void withShape(bool fixed, int degree, const RuntimeShape& runtime, Fn fn)
+template<int E, class Fn>
+IGA_HD void withDegree(int degree, const RuntimeShape& runtime, Fn fn)
 {
-  switch (fixed ? degree : 0)
+  switch (degree)
   {
     case 1:
-      return fn(FixedShape<2, 6>());
+      return fn(FixedShape<2, 6, E>());
     case 2:
-      return fn(FixedShape<3, 6>());
+      return fn(FixedShape<3, 6, E>());
     case 3:
-      return fn(FixedShape<4, 6>());
+      return fn(FixedShape<4, 6, E>());
     case 4:
-      return fn(FixedShape<5, 6>());
+      return fn(FixedShape<5, 6, E>());
     case 5:
-      return fn(FixedShape<6, 6>());
+      return fn(FixedShape<6, 6, E>());
     default:
       return fn(runtime);
   }
 }
 
+/// The same, all six channels evaluated or the four of a surface's pixel problem (X, Y, Z, W).
+template<class Fn>
+IGA_HD void withShape(bool fixed, int degree, const RuntimeShape& runtime, Fn fn)
+{
+  if (fixed && runtime.evaluated == 4)
+  {
+    return withDegree<4>(degree, runtime, fn);
+  }
+  return withDegree<6>(fixed && runtime.evaluated == 6 ? degree : 0, runtime, fn);
+}
+
 template<class T>
 IGA_HD void evaluateFactorised(const PatchView<const T, 2>& patch, const T (&basis)[2][kMaxOrder],
-  const T (&dbasis)[2][kMaxOrder], T* values, T* derivatives)
+  const T (&dbasis)[2][kMaxOrder], T* values, T* derivatives, int leading)
 {
   const int p = patch.degree[0];
   withShape(patch.channels == 6 && patch.degree[1] == p, p,
-    RuntimeShape{ patch.order(0), patch.order(1), 1, patch.channels },
+    RuntimeShape{ patch.order(0), patch.order(1), 1, patch.channels, leading },
     [&](const auto& shape)
     { evaluateFactorised2(patch.coeffs, shape, basis, dbasis, values, derivatives); });
 }
 
 template<class T>
 IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&basis)[3][kMaxOrder],
-  const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
+  const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives, int leading)
 {
   const int p = patch.degree[0];
   withShape(patch.channels == 6 && patch.degree[1] == p && patch.degree[2] == p, p,
-    RuntimeShape{ patch.order(0), patch.order(1), patch.order(2), patch.channels },
+    RuntimeShape{ patch.order(0), patch.order(1), patch.order(2), patch.channels, leading },
     [&](const auto& shape)
     { evaluateFactorised(patch.coeffs, shape, basis, dbasis, values, derivatives); });
 }
@@ -330,18 +372,21 @@ namespace detail
 /// Evaluation point by point over the tensor product: for orders past the factorised scratch.
 template<class T, int Dim>
 IGA_HD void evaluateTensor(const PatchView<const T, Dim>& patch, const T (&basis)[Dim][kMaxOrder],
-  const T (&dbasis)[Dim][kMaxOrder], T* values, T* derivatives)
+  const T (&dbasis)[Dim][kMaxOrder], T* values, T* derivatives, int leading)
 {
   const int channels = patch.channels;
-  for (int c = 0; c < channels; ++c)
+  for (int c = 0; c < leading; ++c)
   {
     values[c] = T(0);
   }
   if (derivatives)
   {
-    for (int c = 0; c < Dim * channels; ++c)
+    for (int d = 0; d < Dim; ++d)
     {
-      derivatives[c] = T(0);
+      for (int c = 0; c < leading; ++c)
+      {
+        derivatives[d * channels + c] = T(0);
+      }
     }
   }
   const int count = patch.pointCount();
@@ -354,7 +399,7 @@ IGA_HD void evaluateTensor(const PatchView<const T, Dim>& patch, const T (&basis
       weight *= basis[d][index[d]];
     }
     const T* point = patch.point(p);
-    for (int c = 0; c < channels; ++c)
+    for (int c = 0; c < leading; ++c)
     {
       values[c] += weight * point[c];
     }
@@ -370,7 +415,7 @@ IGA_HD void evaluateTensor(const PatchView<const T, Dim>& patch, const T (&basis
             dweight *= basis[e][index[e]];
           }
         }
-        for (int c = 0; c < channels; ++c)
+        for (int c = 0; c < leading; ++c)
         {
           derivatives[d * channels + c] += dweight * point[c];
         }
@@ -390,8 +435,9 @@ IGA_HD void evaluateTensor(const PatchView<const T, Dim>& patch, const T (&basis
 
 template<class T, int Dim>
 IGA_HD void evaluateHomogeneous(
-  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives)
+  const PatchView<const T, Dim>& patch, const T* u, T* values, T* derivatives, int leading)
 {
+  leading = leading > 0 && leading < patch.channels ? leading : patch.channels;
   T basis[Dim][kMaxOrder];
   T dbasis[Dim][kMaxOrder];
   for (int d = 0; d < Dim; ++d)
@@ -400,15 +446,15 @@ IGA_HD void evaluateHomogeneous(
   }
   if constexpr (Dim == 2)
   {
-    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
+    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives, leading);
   }
   else if (patch.order(1) * patch.order(2) * patch.channels <= detail::kFactorisedScratch)
   {
-    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives);
+    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives, leading);
   }
   else
   {
-    detail::evaluateTensor(patch, basis, dbasis, values, derivatives);
+    detail::evaluateTensor(patch, basis, dbasis, values, derivatives, leading);
   }
 }
 
@@ -451,16 +497,15 @@ IGA_HD void forEachLine(const PatchView<T, Dim>& patch, int dir, Fn fn)
   }
 }
 
-/// Splits a patch at parameter t of direction dir into the parts [0,t] (coefficients `left`)
-/// and [t,1] (`right`), both reparametrised to [0,1] and laid out like `patch`. Either may be
-/// null (that part is not written) and either may alias `patch`: each line is read whole before
-/// it is written.
-template<class T, int Dim>
-IGA_HD void splitParts(const PatchView<const T, Dim>& patch, int dir, T t, T* left, T* right)
+namespace detail
 {
-  const int n = patch.degree[dir];
+template<class T, int Dim, class Degree, class Channels>
+IGA_HD void splitParts(const PatchView<const T, Dim>& patch, Degree degree, Channels channelCount,
+  int dir, T t, T* left, T* right)
+{
+  const int n = degree;
   const int stride = patch.stride(dir);
-  const int channels = patch.channels;
+  const int channels = channelCount;
   const T s = T(1) - t;
   // Whole control points at a time (channels innermost) while they fit the scratch; one
   // channel at a time otherwise.
@@ -507,6 +552,27 @@ IGA_HD void splitParts(const PatchView<const T, Dim>& patch, int dir, T t, T* le
         }
       }
     });
+}
+} // namespace detail
+
+/// Splits a patch at parameter t of direction dir into the parts [0,t] (coefficients `left`)
+/// and [t,1] (`right`), both reparametrised to [0,1] and laid out like `patch`. Either may be
+/// null (that part is not written) and either may alias `patch`: each line is read whole before
+/// it is written.
+template<class T, int Dim>
+IGA_HD void splitParts(const PatchView<const T, Dim>& patch, int dir, T t, T* left, T* right)
+{
+  using detail::FixedDegree;
+  const int n = patch.degree[dir];
+  switch (patch.channels == 6 ? n : 0) // the engine's screen patches unroll
+  {
+    case 2:
+      return detail::splitParts(patch, FixedDegree<2>(), FixedDegree<6>(), dir, t, left, right);
+    case 3:
+      return detail::splitParts(patch, FixedDegree<3>(), FixedDegree<6>(), dir, t, left, right);
+    default:
+      return detail::splitParts(patch, n, patch.channels, dir, t, left, right);
+  }
 }
 
 /// Both parts (see splitParts); `left` may alias `patch`. All three share degrees and channels.

@@ -128,6 +128,18 @@ struct RationalRow
   int denominator;
 };
 
+/// The leading channels that `Dim` rows read: one past the highest channel among them.
+template<int Dim>
+IGA_HD int leadingChannelsOf(const RationalRow* rows)
+{
+  int leading = 0;
+  for (int r = 0; r < Dim; ++r)
+  {
+    leading = maxValue(leading, 1 + maxValue(rows[r].numerator, rows[r].denominator));
+  }
+  return leading;
+}
+
 /// Closed interval.
 template<class T>
 struct Interval

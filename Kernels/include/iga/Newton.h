@@ -42,8 +42,9 @@ struct NewtonSettings
 /// residual is 1000 times smaller than the tolerance, so the root is accurate well beyond the
 /// acceptance window. A converged u lies in [0,1]^Dim widened by the domain slack: a root on a
 /// face shared by two patches is found in both, and callers that keep every hit merge them.
-/// On convergence `valuesAtRoot`, if given, receives the patch's homogeneous values at u (the
-/// last evaluation, so callers need not evaluate again).
+/// Only the channels up to the highest that a row reads are evaluated. On convergence
+/// `valuesAtRoot`, if given, receives those homogeneous values at u (the last evaluation, so
+/// callers need not evaluate again).
 template<class T, int Dim>
 IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
   const RationalRow* rows, const T* target, const T* tolerance, const T* u0,
@@ -61,13 +62,14 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
   {
     result.u[d] = u0[d];
   }
+  const int leading = leadingChannelsOf<Dim>(rows);
   T values[kMaxChannels];
   T derivatives[Dim * kMaxChannels];
   T lastStep = T(1);
   for (int iteration = 0; iteration <= settings.maxIterations; ++iteration)
   {
     result.iterations = iteration;
-    evaluateHomogeneous(patch, result.u, values, derivatives);
+    evaluateHomogeneous(patch, result.u, values, derivatives, leading);
     glm::mat<Dim, Dim, T> gradients; // column r: the gradient of row r (J transposed)
     bool small = true, tiny = true;
     for (int r = 0; r < Dim; ++r)
@@ -91,7 +93,7 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
     if (tiny || (small && lastStep <= settings.stepTolerance))
     {
       result.status = NewtonStatus::Converged;
-      for (int c = 0; valuesAtRoot && c < channels; ++c)
+      for (int c = 0; valuesAtRoot && c < leading; ++c)
       {
         valuesAtRoot[c] = values[c];
       }

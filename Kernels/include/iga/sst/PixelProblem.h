@@ -273,8 +273,9 @@ IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info
   const T centre[3] = { T(0.5), T(0.5), T(0.5) };
   T values[kScreenChannels], derivatives[Dim * kScreenChannels];
   glm::mat<Dim, Dim, T> gradients; // column r: the gradient of row r (J transposed)
-  evaluateHomogeneous<T, Dim>(patchOf<Dim>(node), centre, values, derivatives);
   const PixelRows rows = pixelRows();
+  evaluateHomogeneous<T, Dim>(
+    patchOf<Dim>(node), centre, values, derivatives, leadingChannelsOf<Dim>(rows.rows));
   info.centre[2] = T(0);
   for (int r = 0; r < Dim; ++r)
   {
@@ -282,8 +283,8 @@ IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info
       rows.rows[r].numerator, rows.rows[r].denominator, &gradients[r][0]);
   }
   info.centreWeights[0] = values[kScreenW];
-  info.centreWeights[1] = values[kScreenWeight];
-  glm::mat<Dim, Dim, T> inverse(T(0)); // kept only where hasCentre
+  info.centreWeights[1] = Dim == 3 ? values[kScreenWeight] : T(0); // a surface has no A/V row
+  glm::mat<Dim, Dim, T> inverse(T(0));                             // kept only where hasCentre
   info.hasCentre = invertMatrix<T, Dim>(glm::transpose(gradients), inverse);
   info.centreInverse = glm::mat<3, 3, T>(inverse);
 }
