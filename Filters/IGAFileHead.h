@@ -24,15 +24,28 @@ inline std::string igaNotRegularFileProblem(const std::string& name)
   return "'" + name + "' is " + kind + ", not a regular file";
 }
 
+/// Opens `name` (binary) into `in` where it is a regular file; otherwise, or where it cannot be
+/// opened, says why (igaNotRegularFileProblem, or "cannot open 'name'").
+inline std::string igaOpenRegularFile(const std::string& name, std::ifstream& in)
+{
+  const std::string problem = igaNotRegularFileProblem(name);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  in.open(name, std::ios::binary);
+  return in ? std::string() : "cannot open '" + name + "'";
+}
+
 /// The first `bytes` bytes of a regular file; empty when it cannot be opened or is not a
 /// regular file.
 inline std::string igaFileHead(const std::string& name, size_t bytes)
 {
-  if (!igaNotRegularFileProblem(name).empty())
+  std::ifstream in;
+  if (!igaOpenRegularFile(name, in).empty())
   {
     return std::string();
   }
-  std::ifstream in(name, std::ios::binary);
   std::string head(bytes, '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));

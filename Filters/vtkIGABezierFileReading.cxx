@@ -100,13 +100,9 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierFileReading::Read(const std::st
   std::vector<std::string>& warnings, double memoryLimitBytes)
 {
   patches = vtkIGABezierHexahedra::Patches();
-  if (!text && !(error = igaNotRegularFileProblem(name)).empty())
+  std::ifstream file;
+  if (!text && !(error = igaOpenRegularFile(name, file)).empty())
   {
-    return nullptr;
-  }
-  if (!text && !std::ifstream(name))
-  {
-    error = "cannot open '" + name + "'";
     return nullptr;
   }
   const double memory = memoryLimitBytes > 0

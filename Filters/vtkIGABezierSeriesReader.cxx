@@ -73,15 +73,10 @@ bool vtkIGABezierSeriesReader::ParseCollection(std::string& error)
   this->Files.clear();
   const std::string pvd = this->FileName ? this->FileName : "";
   const std::string name = "'" + pvd + "'";
-  const std::string notRegular = igaNotRegularFileProblem(pvd);
-  if (!notRegular.empty())
+  std::ifstream in;
+  if (pvd.empty() || !(error = igaOpenRegularFile(pvd, in)).empty())
   {
-    error = notRegular;
-    return false;
-  }
-  if (pvd.empty() || !vtksys::SystemTools::FileExists(pvd, true))
-  {
-    error = pvd.empty() ? "no FileName set" : name + ": no such file";
+    error = pvd.empty() ? "no FileName set" : error;
     return false;
   }
   if (vtksys::SystemTools::FileLength(pvd) > kMaximumCollectionBytes)
@@ -89,7 +84,6 @@ bool vtkIGABezierSeriesReader::ParseCollection(std::string& error)
     error = name + ": larger than 64 MiB, not a collection of files";
     return false;
   }
-  std::ifstream in(pvd, std::ios::binary);
   const std::string text{ std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
   std::string parseError;
   const auto parser = igaParseXML(text, parseError);

@@ -55,23 +55,11 @@ int vtkIGANurbsReader::RequestInformation(
   {
     this->ParsedFile = stamp;
     this->Data->SetPatches(iga::NurbsSet<double>());
-    const std::string notRegular = igaNotRegularFileProblem(file);
     std::ifstream in;
-    if (notRegular.empty())
+    const std::string openProblem = file.empty() ? "no FileName set" : igaOpenRegularFile(file, in);
+    if (!openProblem.empty())
     {
-      in.open(file, std::ios::binary);
-    }
-    if (file.empty())
-    {
-      this->Error = "no FileName set";
-    }
-    else if (!notRegular.empty())
-    {
-      this->Error = notRegular;
-    }
-    else if (!in)
-    {
-      this->Error = file + ": cannot open the file";
+      this->Error = openProblem;
     }
     else
     {

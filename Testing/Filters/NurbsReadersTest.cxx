@@ -380,9 +380,10 @@ TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
     deep += "</a>";
   expectError<R>("deep.xml", deep + "</xml>", "elements are nested more than 256 levels deep");
   std::vector<std::string> errors;
-  read<R>(testing::TempDir() + "/no_such_file.xml", &errors);
+  const std::string missing = testing::TempDir() + "/no_such_file.xml";
+  read<R>(missing, &errors);
   ASSERT_EQ(errors.size(), 1u);
-  EXPECT_NE(errors[0].find("no_such_file.xml: cannot open the file"), std::string::npos);
+  EXPECT_NE(errors[0].find("cannot open '" + missing + "'"), std::string::npos) << errors[0];
 }
 
 /// A GeoPDEs block of degree 16 in each direction, n control points each (open uniform knots).
