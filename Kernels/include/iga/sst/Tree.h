@@ -527,23 +527,28 @@ inline ShadingView shadingViewOf(const View& view, const Settings& settings)
 IGA_HD inline Hit shadeHit(
   const VolumeView<const double>& shading, const RawHit& raw, const ShadingView& viewer)
 {
+  // A surface reads no surface attribute, and its colour only when coloured by one.
+  const bool surface = isSurface(shading);
+  const int leading = surface && !viewer.hasColor ? kShadeSurface : kShadeChannels;
   double values[kShadeChannels], derivatives[3 * kShadeChannels] = {};
-  isSurface(shading)
-    ? evaluateHomogeneous<double, 2>(surfaceOf(shading), raw.u, values, derivatives)
-    : evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives);
+  surface ? evaluateHomogeneous<double, 2>(surfaceOf(shading), raw.u, values, derivatives, leading)
+          : evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives, leading);
   Hit hit;
   hit.ndcDepth = raw.ndcDepth;
   hit.patch = raw.patch;
   hit.isovalue = raw.iso;
-  glm::dvec3 J[3], gradient; // J[d]: the gradient of world coordinate d
+  glm::dvec3 J[3], gradient(0.0); // J[d]: the gradient of world coordinate d
   for (int d = 0; d < 3; ++d)
   {
     hit.uvw[d] = raw.u[d];
     hit.position[d] = rationalValue<double, 3>(
       values, derivatives, kShadeChannels, kShadeX + d, kShadeWeight, &J[d][0]);
   }
-  rationalValue<double, 3>(
-    values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, &gradient[0]);
+  if (!surface)
+  {
+    rationalValue<double, 3>(
+      values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, &gradient[0]);
+  }
   // Only the normal's direction and the determinant's sign matter: powers of two bring J and
   // the gradient near 1, exactly, so that their products neither overflow nor underflow.
   auto largest = [](const glm::dvec3& v)
@@ -554,7 +559,10 @@ IGA_HD inline Hit shadeHit(
   {
     row *= unitJ;
   }
-  gradient *= unitPowerOfTwo(largest(gradient));
+  if (!surface)
+  {
+    gradient *= unitPowerOfTwo(largest(gradient));
+  }
   // A volume's isosurface: the attribute's world gradient J^-T grad_u = cof(J) grad_u / det(J),
   // the rows of cof(J) cross products of J's. The cofactor form stays defined where J is
   // singular (collapsed faces); the orientation is fixed below. A surface: x_u x x_v.
@@ -562,7 +570,6 @@ IGA_HD inline Hit shadeHit(
     glm::cross(J[0], J[1]) };
   const double determinant = glm::dot(J[0], cofactors[0]);
   const glm::dvec3 toEye = viewer.parallel ? -viewer.forward : viewer.eye - hit.position;
-  const bool surface = isSurface(shading);
   glm::dvec3 normal = normalizedOrZero(
     surface
       ? glm::cross(glm::dvec3(J[0][0], J[1][0], J[2][0]), glm::dvec3(J[0][1], J[1][1], J[2][1]))
