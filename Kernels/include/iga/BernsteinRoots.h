@@ -1,0 +1,249 @@
+// All roots in [0, 1] of a univariate Bernstein polynomial of degree up to 16, sorted, by a
+// chosen finder: the ray equations of algebraic and ABS surfaces (Reimers and Seland; Wei and
+// Feng). Roots at the ends are divided out first; roots of even multiplicity, which change no
+// sign, are the critical points (roots of the derivative, found by the same finder) where the
+// polynomial is zero to rounding.
+#pragma once
+
+#include "iga/roots/BezierClipping.h"
+#include "iga/roots/KnotInsertion.h"
+#include "iga/roots/PointInsertion.h"
+#include "iga/roots/PolarNewton.h"
+#include "iga/roots/Subdivision.h"
+
+namespace iga
+{
+
+enum class RootFinder
+{
+  Subdivision,    ///< de Casteljau at the midpoint (Lane-Riesenfeld, Schneider)
+  KnotInsertion,  ///< Mørken-Reimers
+  BezierClipping, ///< Nishita-Sederberg-Kakimoto
+  PointInsertion, ///< Wei-Feng's Bézier point insertion (BPI)
+  PolarNewton,    ///< Wei-Feng's Newton and regula falsi, isolated by the polar surface
+};
+constexpr int kRootFinderCount = 5;
+
+/// The finder's name on command lines and in benchmarks.
+inline const char* rootFinderName(RootFinder finder)
+{
+  switch (finder)
+  {
+    case RootFinder::Subdivision:
+      return "subdivision";
+    case RootFinder::KnotInsertion:
+      return "knot-insertion";
+    case RootFinder::BezierClipping:
+      return "bezier-clipping";
+    case RootFinder::PointInsertion:
+      return "point-insertion";
+    case RootFinder::PolarNewton:
+      return "polar-newton";
+  }
+  return "unknown";
+}
+
+struct RootSettings
+{
+  double tolerance = 1e-12; ///< parametric width that ends a root's search
+  double merge = 1e-9;      ///< roots closer than this are one
+  bool evenRoots = true;    ///< also the roots where the polynomial touches zero
+  int maxSplits = 4096;     ///< splits or clips of one search (then the result is capped)
+};
+
+/// Roots found, sorted; `identicallyZero` when every coefficient is zero (every t is a root,
+/// none listed); `invalid` when the degree is outside 0..16 or a coefficient is not finite.
+struct BernsteinRoots : roots::RootList
+{
+  bool identicallyZero = false;
+  bool invalid = false;
+};
+
+namespace detail
+{
+/// Appends the interior roots of odd multiplicity of `piece` found by `finder`.
+IGA_HD inline void oddRoots(const roots::Piece& piece, RootFinder finder,
+  const roots::RootContext& context, roots::RootList& out)
+{
+  switch (finder)
+  {
+    case RootFinder::Subdivision:
+      return roots::subdivisionRoots(piece, context, out);
+    case RootFinder::KnotInsertion:
+      return roots::knotInsertionRoots(piece, context, out);
+    case RootFinder::BezierClipping:
+      return roots::bezierClippingRoots(piece, context, out);
+    case RootFinder::PointInsertion:
+      return roots::pointInsertionRoots(piece, context, out);
+    case RootFinder::PolarNewton:
+      return roots::polarNewtonRoots(piece, context, false, out);
+  }
+}
+
+/// Merges even roots into the odd ones, sorted: odd roots within cluster[j] of even root j are
+/// the rounding's split of it and give way.
+IGA_HD inline void mergeEvenRoots(
+  roots::RootList& odd, const roots::RootList& even, const double* cluster, double merge)
+{
+  roots::RootList merged;
+  merged.cost = odd.cost;
+  int i = 0, j = 0;
+  while (i < odd.count || j < even.count)
+  {
+    const bool takeEven = j < even.count && (i >= odd.count || even.t[j] <= odd.t[i]);
+    if (takeEven)
+    {
+      while (merged.count > 0 && even.t[j] - merged.t[merged.count - 1] <= cluster[j])
+      {
+        --merged.count; // odd roots just left of it
+      }
+      merged.add(even.t[j], merge);
+      while (i < odd.count && odd.t[i] - even.t[j] <= cluster[j])
+      {
+        ++i; // and just right of it
+      }
+      ++j;
+    }
+    else
+    {
+      merged.add(odd.t[i++], merge);
+    }
+  }
+  odd = merged;
+}
+/// A root found to the finder's tolerance, polished by Newton's method on `piece` while the
+/// steps stay within `limit` (beyond that the root is not simple enough to trust it).
+IGA_HD inline double polishRoot(
+  const roots::Piece& piece, double t, double limit, long& evaluations)
+{
+  for (int k = 0; k < 4; ++k)
+  {
+    double f, slope;
+    roots::valueAndSlope(piece, t, f, slope);
+    ++evaluations;
+    const double step = slope != 0 ? f / slope : 0;
+    if (!(absValue(step) <= limit) || step == 0)
+    {
+      break;
+    }
+    t = minValue(maxValue(t - step, 0.0), 1.0);
+  }
+  return t;
+}
+
+} // namespace detail
+
+/// The roots in [0, 1] of sum c_i B_i^degree(t).
+IGA_HD inline BernsteinRoots findBernsteinRoots(
+  const double* c, int degree, RootFinder finder, const RootSettings& settings = {})
+{
+  BernsteinRoots result;
+  if (degree < 0 || degree > kMaxDegree)
+  {
+    result.invalid = true;
+    return result;
+  }
+  roots::Piece piece;
+  piece.degree = degree;
+  double largest = 0;
+  for (int i = 0; i <= degree; ++i)
+  {
+    result.invalid = result.invalid || !isFinite(c[i]);
+    largest = maxValue(largest, absValue(c[i]));
+    piece.c[i] = c[i];
+  }
+  result.identicallyZero = !result.invalid && largest == 0;
+  if (result.invalid || result.identicallyZero)
+  {
+    return result;
+  }
+  roots::RootContext context;
+  context.tolerance = settings.tolerance;
+  context.merge = settings.merge;
+  context.maxSplits = settings.maxSplits;
+  context.zero = 32.0 * (degree + 1) * Epsilon<double>::value;
+  // Roots at the ends, divided out: t g(t) has c_{i+1} = g_i (i + 1) / d, (1 - t) h(t) has
+  // c_i = h_i (d - i) / d. Each division leaves the polynomial's other roots in place.
+  bool atZero = false, atOne = false;
+  piece = roots::normalised(piece);
+  while (piece.degree > 0 && roots::signOf(piece.c[0], context.zero) == 0)
+  {
+    atZero = true;
+    for (int i = 0; i < piece.degree; ++i)
+    {
+      piece.c[i] = piece.c[i + 1] * piece.degree / (i + 1);
+    }
+    --piece.degree;
+    piece = roots::normalised(piece);
+  }
+  while (piece.degree > 0 && roots::signOf(piece.c[piece.degree], context.zero) == 0)
+  {
+    atOne = true;
+    for (int i = 0; i < piece.degree; ++i)
+    {
+      piece.c[i] = piece.c[i] * piece.degree / (piece.degree - i);
+    }
+    --piece.degree;
+    piece = roots::normalised(piece);
+  }
+  if (atZero)
+  {
+    result.add(0.0, context.merge);
+  }
+  if (piece.degree > 0)
+  {
+    roots::RootList inside;
+    if (finder == RootFinder::PolarNewton)
+    {
+      roots::polarNewtonRoots(piece, context, settings.evenRoots, inside);
+    }
+    else
+    {
+      detail::oddRoots(piece, finder, context, inside);
+    }
+    for (int k = 0; finder != RootFinder::PolarNewton && k < inside.count; ++k)
+    {
+      inside.t[k] = detail::polishRoot(piece, inside.t[k], 1e-6, inside.cost.evaluations);
+    }
+    if (settings.evenRoots && finder != RootFinder::PolarNewton && piece.degree > 1)
+    {
+      // Critical points: the derivative's roots of odd multiplicity, inside (0, 1).
+      roots::RootList critical, even;
+      const roots::Piece slope = roots::normalised(roots::derivativeOf(piece));
+      const roots::Piece curvature = roots::derivativeOf(roots::derivativeOf(piece));
+      detail::oddRoots(slope, finder, context, critical);
+      double cluster[roots::kMaxRoots];
+      for (int k = 0; k < critical.count; ++k)
+      {
+        const double p = detail::polishRoot(slope, critical.t[k], 1e-6, inside.cost.evaluations);
+        if (roots::signOf(roots::evaluatePiece(piece, p), context.zero) == 0 &&
+            even.count < roots::kMaxRoots)
+        {
+          // Where |f| <= zero about p: the rounding may show two roots anywhere in it.
+          const double a = 0.5 * absValue(roots::evaluatePiece(curvature, p));
+          cluster[even.count] = a > 0 ? minValue(2 * squareRoot(context.zero / a), 1e-3) : 1e-3;
+          even.add(p, context.merge);
+        }
+      }
+      inside.cost.insertions += critical.cost.insertions;
+      inside.cost.evaluations += critical.cost.evaluations + critical.count;
+      inside.cost.capped = inside.cost.capped || critical.cost.capped;
+      detail::mergeEvenRoots(inside, even, cluster, context.merge);
+    }
+    for (int k = 0; k < inside.count; ++k)
+    {
+      if (inside.t[k] > 0 && inside.t[k] < 1)
+      {
+        result.add(inside.t[k], context.merge);
+      }
+    }
+    result.cost = inside.cost;
+  }
+  if (atOne)
+  {
+    result.add(1.0, context.merge);
+  }
+  return result;
+}
+
+} // namespace iga
