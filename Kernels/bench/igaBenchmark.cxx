@@ -3,6 +3,7 @@
 //
 //   igaBenchmark [--quick] [--json FILE]
 //   igaBenchmark --csg [--quick] [--json FILE]
+//   igaBenchmark --algebraic [--quick] [--json FILE]
 //   igaBenchmark --gpu [--quick] [--only NAME] [--json FILE]
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
@@ -14,15 +15,21 @@
 // against the cube's isosurface alone in first-hit mode (--csg: this study alone). Ratios
 // compare runs of the same process.
 //
+// --algebraic: the gallery's algebraic surfaces (AlgebraicGallery.h), each one polynomial volume
+// over its box, SST against ray composition with each root finder at 512^2 (256^2 quick), with
+// the finders' knot insertions and evaluations per composed ray.
+//
 // --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
 // every frame), a deforming NURBS ball, and the 800k-patch blade (camera moves, and at 1080p
 // deforming), with stage times and peak device memory, next to the CPU engine at 1080p. Without a
 // usable device it says why and measures nothing. --only NAME keeps the datasets whose names
 // contain NAME (a profiler's run: one dataset, not the whole study).
+#include "iga/AlgebraicGallery.h"
 #include "iga/Boundary.h"
 #include "iga/Csg.h"
 #include "iga/Datasets.h"
+#include "iga/PolynomialExpression.h"
 #include "iga/sst/Csg.h"
 #include "iga/sst/Engine.h"
 
@@ -256,6 +263,8 @@ std::string json(
         << ", \"subdividedPatches\": " << m.subdivided << ", \"unresolvedPixels\": " << m.unresolved
         << ", \"bands\": " << r.bands << ", \"uploadedMB\": " << r.uploadedBytes / 1048576.0
         << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
+        << ", \"composedRays\": " << r.composedRays << ", \"rootFinderStepsPerRay\": "
+        << (r.composedRays ? double(r.rootFinderSteps) / double(r.composedRays) : 0.0)
         << ", \"stagesMs\": {\"setup\": " << r.msSetup << ", \"input\": " << r.msInput
         << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution
         << ", \"overlap\": " << r.msOverlap << ", \"subdivision\": " << r.msSubdivision
@@ -270,6 +279,50 @@ std::string json(
   }
   out << "  }\n}\n";
   return out.str();
+}
+
+/// The algebraic study: each gallery surface over its box as one polynomial volume, the SST
+/// against ray composition with each root finder (ratio `sstOverComposition_NAME_FINDER`).
+void algebraicStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  using iga::sst::Method;
+  int count = 0;
+  const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
+  const int size = quick ? 256 : 512;
+  for (int s = 0; s < count; ++s)
+  {
+    const auto field = iga::parsePolynomial(gallery[s].expression);
+    const double* box = gallery[s].box;
+    const double lo[3] = { box[0], box[2], box[4] }, hi[3] = { box[1], box[3], box[5] };
+    int degree[3];
+    for (int d = 0; d < 3; ++d)
+      degree[d] = std::max(1, field.degree[d]);
+    iga::VolumeSet<double> set;
+    set.patches.push_back(iga::makePolynomialVolume(field, lo, hi, degree));
+    const int total = iga::detail::totalDegree(field);
+    const auto sst = measure("algebraic", gallery[s].name, set, 0.0, total, size, size, threads,
+      Method::SharedSubdivisionTree, quick ? 1 : reps);
+    all.push_back(sst);
+    for (int f = 0; f < iga::kRootFinderCount; ++f)
+    {
+      const auto finder = iga::RootFinder(f);
+      const iga::Camera camera = frame(set.patches);
+      auto composed = measureFrames("algebraic",
+        std::string(gallery[s].name) + "/" + iga::rootFinderName(finder), 0.0, total, size, size,
+        threads, Method::RayComposition, reps, iga::sst::Backend::Cpu, false,
+        [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
+        {
+          iga::sst::Settings withFinder = settings;
+          withFinder.rootFinder = finder;
+          return iga::sst::render(set.patches, camera, withFinder, m, out);
+        });
+      ratios.emplace_back(
+        std::string("sstOverComposition_") + gallery[s].name + "_" + iga::rootFinderName(finder),
+        sst.ms / composed.ms);
+      all.push_back(std::move(composed));
+    }
+  }
 }
 
 /// The CUDA engine's study (see the header). Returns false, with the reason, without a GPU.
@@ -401,7 +454,7 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
 
 int main(int argc, char** argv)
 {
-  bool quick = false, gpu = false, csgOnly = false;
+  bool quick = false, gpu = false, csgOnly = false, algebraicOnly = false;
   std::string jsonFile, only;
   for (int i = 1; i < argc; ++i)
   {
@@ -409,6 +462,8 @@ int main(int argc, char** argv)
       quick = true;
     else if (!std::strcmp(argv[i], "--csg"))
       csgOnly = true;
+    else if (!std::strcmp(argv[i], "--algebraic"))
+      algebraicOnly = true;
     else if (!std::strcmp(argv[i], "--gpu"))
       gpu = true;
     else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
@@ -417,8 +472,9 @@ int main(int argc, char** argv)
       only = argv[++i];
     else
     {
-      std::fprintf(
-        stderr, "usage: igaBenchmark [--gpu [--only NAME] | --csg] [--quick] [--json FILE]\n");
+      std::fprintf(stderr,
+        "usage: igaBenchmark [--gpu [--only NAME] | --csg | --algebraic] [--quick] "
+        "[--json FILE]\n");
       return 1;
     }
   }
@@ -465,6 +521,11 @@ int main(int argc, char** argv)
   if (csgOnly)
   {
     csgStudy(quick, threads, reps, all, ratios);
+    return emit(json(all, ratios));
+  }
+  if (algebraicOnly)
+  {
+    algebraicStudy(quick, threads, reps, all, ratios);
     return emit(json(all, ratios));
   }
 

@@ -7,6 +7,7 @@
 #include "CudaEngine.h"
 #include "FramePlan.h"
 #include "ParallelFor.h"
+#include "RayCompositionPass.h"
 #include "sst/CpuExec.h"
 #include "sst/Loop.h"
 
@@ -44,6 +45,8 @@ const char* methodName(Method method)
       return "brute-force";
     case Method::BezierClipping:
       return "bezier-clipping";
+    case Method::RayComposition:
+      return "ray-composition";
   }
   return "unknown";
 }
@@ -123,6 +126,10 @@ public:
                                       std::to_string(this->Patches.volumeCount()) + " volumes");
         }
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::bezierClipping); });
+        break;
+      case Method::RayComposition:
+        this->Affine = affinePatches(this->Patches, this->Config);
+        drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::rayComposition); });
         break;
     }
     const Clock::time_point stage = Clock::now();
@@ -430,6 +437,16 @@ private:
     this->appendPixelHits(perPixel);
   }
 
+  // ---- ray composition ---------------------------------------------------------------------
+
+  void rayComposition()
+  {
+    std::vector<std::vector<RawHit>> perPixel;
+    rayCompositionPass(this->TheView, this->Config, this->Affine, this->Loop,
+      this->Plan.initialNodes.data(), this->Plan.threads, perPixel, this->Report);
+    this->appendPixelHits(perPixel);
+  }
+
   // ---- Bézier clipping ---------------------------------------------------------------------
 
   /// Every initial node covering a pixel clipped against its ray (bezierClip), each root kept
@@ -489,6 +506,7 @@ private:
   FrameReport& Report;
   FramePlan Plan;
   std::vector<PatchShape> Shapes;
+  std::vector<AffinePatch> Affine; // ray composition: each patch's affine form
   LoopState<CpuExec> Loop;
   std::vector<Node> Leaves; ///< brute force
   std::vector<double> LeafPool;

@@ -166,6 +166,18 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
   // c_i = h_i (d - i) / d. Each division leaves the polynomial's other roots in place.
   bool atZero = false, atOne = false;
   piece = roots::normalised(piece);
+  // Coefficients of one sign beyond rounding bound the polynomial away from zero: no root at
+  // all (most rays through a patch's box miss its surface).
+  bool positive = true, negative = true;
+  for (int i = 0; i <= degree; ++i)
+  {
+    positive = positive && piece.c[i] > context.zero;
+    negative = negative && piece.c[i] < -context.zero;
+  }
+  if (positive || negative)
+  {
+    return result;
+  }
   while (piece.degree > 0 && roots::signOf(piece.c[0], context.zero) == 0)
   {
     atZero = true;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "iga/BSpline.h"
+#include "iga/BernsteinRoots.h"
 #include "iga/BezierPatch.h"
 #include "iga/Camera.h"
 #include "iga/sst/GBuffer.h"
@@ -26,6 +27,9 @@ enum class Method
   BasicScheme,           ///< one subdivision tree per pixel (the paper's comparison baseline)
   BruteForce,            ///< uniform subdivision and multi-start Newton: slow, for tests only
   BezierClipping,        ///< per pixel, Nishita et al.'s Bézier clipping: surfaces only
+  /// Per pixel and patch the ray's univariate polynomial and its roots (Settings::rootFinder):
+  /// volumes with affine geometry only (algebraic surfaces over a box, ABS patches).
+  RayComposition,
 };
 
 /// Where the shared-subdivision-tree engine runs. Automatic picks CUDA when the library was
@@ -81,6 +85,8 @@ struct Settings
   /// found and leaves the pixels with work left unresolved (FrameReport::unresolvedAtDeadline),
   /// so that an interactive view never waits long for a frame.
   double deadlineMs = 0;
+  /// Ray composition only: the roots' finder.
+  RootFinder rootFinder = RootFinder::PointInsertion;
   /// Brute force only: uniform subdivision levels per patch.
   int bruteForceLevels = 4;
   /// Called after every SST iteration with its number and the (pixel, patch) pairs left.
@@ -122,6 +128,9 @@ struct FrameReport
   double attributeRange[2] = { 0, 0 };
   size_t newtonSolves = 0;
   size_t subdividedPatches = 0;
+  size_t composedRays = 0;    ///< ray composition: (pixel, patch) polynomials composed
+  size_t rootFinderSteps = 0; ///< their finders' knot insertions and evaluations
+  size_t cappedRays = 0;      ///< rays whose finder ran out of splits (roots may be missing)
   size_t maxTuples = 0;
   size_t maxPatches = 0;
   size_t peakBytes = 0; ///< largest engine-owned working set

@@ -1,0 +1,284 @@
+// Ray composition for patches whose geometry is affine (algebraic surfaces over a box, ABS
+// patches): along a ray the attribute is a univariate polynomial of the patch's total degree,
+// whose Bernstein coefficients on the ray's segment inside the patch come from its values at
+// Chebyshev points (Reimers and Seland; Wei and Feng) through a precomputed inverse collocation
+// matrix. Its roots are the ray's hits (BernsteinRoots.h).
+#pragma once
+
+#include "iga/BernsteinRoots.h"
+#include "iga/BezierPatch.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace iga
+{
+
+/// Channels a patch may have for ray composition.
+constexpr int kMaxChannels = 16;
+
+/// A patch's affine geometry x(u) = origin + axes u (axes' columns: the images of the unit
+/// directions), its attribute divided by the common weight (one value a control point), and the
+/// ray polynomial's degree.
+struct AffinePatch
+{
+  glm::dvec3 origin;
+  glm::dmat3 axes, inverse;
+  int degree[3] = {};
+  std::vector<double> field;
+  int rayDegree = 0;
+};
+
+namespace detail
+{
+inline glm::dvec3 euclideanPoint(const VolumeView<const double>& patch, int p)
+{
+  const double* cp = patch.point(p);
+  return glm::dvec3(cp[0], cp[1], cp[2]) / cp[kWeightChannel];
+}
+
+/// The total degree of one channel (divided by the common weight) as a polynomial in (u, v, w):
+/// the highest a + b + c of its power form whose coefficient stands above the conversion's
+/// rounding (bounded by the same sums of magnitudes). Direction by direction, with
+/// B_i^n = sum_{a >= i} (-1)^(a - i) C(n, a) C(a, i) t^a.
+inline int totalDegreeOf(const VolumeView<const double>& patch, int channel)
+{
+  const int n[3] = { patch.degree[0], patch.degree[1], patch.degree[2] };
+  const size_t count = size_t(patch.pointCount());
+  std::vector<double> value(count), bound(count);
+  for (size_t p = 0; p < count; ++p)
+  {
+    value[p] = patch.point(int(p))[channel] / patch.point(int(p))[kWeightChannel];
+    bound[p] = std::fabs(value[p]);
+  }
+  int stride = 1;
+  for (int d = 0; d < 3; ++d)
+  {
+    std::vector<double> nextValue(count, 0.0), nextBound(count, 0.0);
+    for (size_t p = 0; p < count; ++p)
+    {
+      const int i = int(p / size_t(stride)) % (n[d] + 1); // this direction's index of p
+      const size_t base = p - size_t(i * stride);
+      for (int a = i; a <= n[d]; ++a)
+      {
+        const double m = ((a - i) % 2 ? -1.0 : 1.0) * binomial(n[d], a) * binomial(a, i);
+        nextValue[base + size_t(a * stride)] += m * value[p];
+        nextBound[base + size_t(a * stride)] += std::fabs(m) * bound[p];
+      }
+    }
+    value.swap(nextValue);
+    bound.swap(nextBound);
+    stride *= n[d] + 1;
+  }
+  const double rounding = 16.0 * (n[0] + n[1] + n[2] + 3) * Epsilon<double>::value;
+  int degree = 0;
+  for (size_t p = 0; p < count; ++p)
+  {
+    const int a = int(p) % (n[0] + 1), b = int(p) / (n[0] + 1) % (n[1] + 1),
+              c = int(p) / ((n[0] + 1) * (n[1] + 1));
+    if (std::fabs(value[p]) > rounding * bound[p])
+    {
+      degree = std::max(degree, a + b + c);
+    }
+  }
+  return degree;
+}
+} // namespace detail
+
+/// Whether the patch's geometry is affine (equal weights, control points on the affine map of
+/// their Greville points), its attribute's degree along rays at most kMaxDegree and its channels
+/// at most kMaxChannels; fills `affine` if so.
+inline bool affineGeometry(
+  const VolumeView<const double>& patch, int attributeChannel, AffinePatch& affine)
+{
+  if (patch.channels > kMaxChannels || attributeChannel >= patch.channels)
+  {
+    return false;
+  }
+  const int n[3] = { patch.degree[0], patch.degree[1], patch.degree[2] };
+  const double w = patch.point(0)[kWeightChannel];
+  for (int p = 0; p < patch.pointCount(); ++p)
+  {
+    if (!(std::fabs(patch.point(p)[kWeightChannel] - w) <= 1e-14 * std::fabs(w)))
+    {
+      return false;
+    }
+  }
+  affine.origin = detail::euclideanPoint(patch, 0);
+  const int corner[3] = { n[0], (n[0] + 1) * n[1], (n[0] + 1) * (n[1] + 1) * n[2] };
+  double size = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    affine.axes[d] = detail::euclideanPoint(patch, corner[d]) - affine.origin;
+    size = std::max(size, glm::length(affine.axes[d]));
+  }
+  if (!(std::fabs(glm::determinant(affine.axes)) > 1e-12 * size * size * size))
+  {
+    return false;
+  }
+  for (int p = 0; p < patch.pointCount(); ++p)
+  {
+    const int i = p % (n[0] + 1), j = p / (n[0] + 1) % (n[1] + 1),
+              k = p / ((n[0] + 1) * (n[1] + 1));
+    const glm::dvec3 greville(double(i) / n[0], double(j) / n[1], double(k) / n[2]);
+    if (!(glm::length(detail::euclideanPoint(patch, p) -
+                      (affine.origin + affine.axes * greville)) <= 1e-12 * size))
+    {
+      return false;
+    }
+  }
+  affine.inverse = glm::inverse(affine.axes);
+  affine.rayDegree = detail::totalDegreeOf(patch, attributeChannel);
+  std::copy(n, n + 3, affine.degree);
+  affine.field.resize(size_t(patch.pointCount()));
+  for (int p = 0; p < patch.pointCount(); ++p)
+  {
+    affine.field[size_t(p)] = patch.point(p)[attributeChannel] / patch.point(p)[kWeightChannel];
+  }
+  return affine.rayDegree <= kMaxDegree;
+}
+
+/// Chebyshev points on [0, 1] and, per degree, the inverse of the Bernstein collocation matrix
+/// there: coefficient i = sum_k inverse[i][k] value_k.
+struct ChebyshevInterpolation
+{
+  int degree = 0;
+  double point[kMaxOrder] = {};
+  double inverse[kMaxOrder][kMaxOrder] = {};
+};
+
+inline ChebyshevInterpolation chebyshevInterpolation(int degree)
+{
+  ChebyshevInterpolation c;
+  c.degree = degree;
+  const int n = degree + 1;
+  double m[kMaxOrder][2 * kMaxOrder] = {};
+  for (int k = 0; k < n; ++k)
+  {
+    c.point[k] = 0.5 * (1 - std::cos((k + 0.5) / n * M_PI));
+    double basis[kMaxOrder], unused[kMaxOrder];
+    bernsteinBasis(degree, c.point[k], basis, unused);
+    for (int i = 0; i < n; ++i)
+    {
+      m[k][i] = basis[i];
+      m[k][n + i] = i == k ? 1 : 0;
+    }
+  }
+  for (int col = 0; col < n; ++col) // Gauss-Jordan with partial pivoting
+  {
+    int pivot = col;
+    for (int r = col + 1; r < n; ++r)
+    {
+      pivot = std::fabs(m[r][col]) > std::fabs(m[pivot][col]) ? r : pivot;
+    }
+    for (int k = 0; k < 2 * n; ++k)
+    {
+      std::swap(m[col][k], m[pivot][k]);
+    }
+    const double scale = m[col][col];
+    for (int k = 0; k < 2 * n; ++k)
+    {
+      m[col][k] /= scale;
+    }
+    for (int r = 0; r < n; ++r)
+    {
+      const double factor = r == col ? 0 : m[r][col];
+      for (int k = 0; k < 2 * n && factor != 0; ++k)
+      {
+        m[r][k] -= factor * m[col][k];
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    for (int k = 0; k < n; ++k)
+    {
+      c.inverse[i][k] = m[i][n + k];
+    }
+  }
+  return c;
+}
+
+/// The parameters where the ray origin + t direction is inside the unit cube of u = inverse
+/// (x - origin): [t0, t1] within [lo, hi], false if empty.
+inline bool rayInPatch(const AffinePatch& affine, const glm::dvec3& origin,
+  const glm::dvec3& direction, double lo, double hi, double& t0, double& t1)
+{
+  const glm::dvec3 u0 = affine.inverse * (origin - affine.origin);
+  const glm::dvec3 du = affine.inverse * direction;
+  t0 = lo;
+  t1 = hi;
+  for (int d = 0; d < 3; ++d)
+  {
+    if (du[d] == 0)
+    {
+      if (u0[d] < 0 || u0[d] > 1)
+      {
+        return false;
+      }
+      continue;
+    }
+    const double a = (0 - u0[d]) / du[d], b = (1 - u0[d]) / du[d];
+    t0 = std::max(t0, std::min(a, b));
+    t1 = std::min(t1, std::max(a, b));
+  }
+  return t0 < t1;
+}
+
+/// The patch's field at u (sum factorised, values only).
+inline double fieldAt(const AffinePatch& patch, const double* u)
+{
+  double basis[3][kMaxOrder];
+  for (int d = 0; d < 3; ++d)
+  {
+    bernsteinBasis(patch.degree[d], u[d], basis[d], static_cast<double*>(nullptr));
+  }
+  const int n0 = patch.degree[0] + 1, n1 = patch.degree[1] + 1, n2 = patch.degree[2] + 1;
+  const double* c = patch.field.data();
+  double sum = 0;
+  for (int k = 0; k < n2; ++k)
+  {
+    double plane = 0;
+    for (int j = 0; j < n1; ++j, c += n0)
+    {
+      double line = 0;
+      for (int i = 0; i < n0; ++i)
+      {
+        line += basis[0][i] * c[i];
+      }
+      plane += basis[1][j] * line;
+    }
+    sum += basis[2][k] * plane;
+  }
+  return sum;
+}
+
+/// The Bernstein coefficients (degree interpolation.degree) on s in [0, 1] of the field minus
+/// `isovalue` along u(s) = u0 + s du.
+inline void composeRay(const AffinePatch& patch, double isovalue, const glm::dvec3& u0,
+  const glm::dvec3& du, const ChebyshevInterpolation& interpolation, double* coefficients)
+{
+  const int n = interpolation.degree + 1;
+  double values[kMaxOrder];
+  for (int k = 0; k < n; ++k)
+  {
+    const glm::dvec3 u = u0 + interpolation.point[k] * du;
+    const double at[3] = { std::min(std::max(u.x, 0.0), 1.0), std::min(std::max(u.y, 0.0), 1.0),
+      std::min(std::max(u.z, 0.0), 1.0) };
+    values[k] = fieldAt(patch, at) - isovalue;
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    double sum = 0;
+    for (int k = 0; k < n; ++k)
+    {
+      sum += interpolation.inverse[i][k] * values[k];
+    }
+    coefficients[i] = sum;
+  }
+}
+
+} // namespace iga

@@ -1,0 +1,144 @@
+// The ray-composition method's pass: per pixel, each patch its work items name (affine, checked
+// before the frame) composed with the pixel's ray into a univariate Bernstein polynomial whose
+// roots, by the chosen finder, are the pixel's hits. The sweep, the hit policy and the G-buffer
+// stage are the other methods'.
+#pragma once
+
+#include "ParallelFor.h"
+#include "iga/RayComposition.h"
+#include "iga/sst/Engine.h"
+#include "sst/CpuExec.h"
+#include "sst/LoopState.h"
+
+#include <atomic>
+#include <stdexcept>
+
+namespace iga
+{
+namespace sst
+{
+
+/// Every volume's affine form; throws std::invalid_argument naming a patch that has none (or
+/// a surface, which ray composition does not draw).
+inline std::vector<AffinePatch> affinePatches(const Scene& scene, const Settings& settings)
+{
+  if (scene.surfaceCount() > 0)
+  {
+    throw std::invalid_argument("ray composition draws volumes only, the scene has " +
+                                std::to_string(scene.surfaceCount()) + " surfaces");
+  }
+  std::vector<AffinePatch> affine(scene.size());
+  for (size_t p = 0; p < scene.size(); ++p)
+  {
+    if (!affineGeometry(scene[p], kFirstAttributeChannel + settings.surfaceAttribute, affine[p]))
+    {
+      throw std::invalid_argument("ray composition needs affine geometry and a degree along rays "
+                                  "of at most 16: " +
+                                  scene.name(p) + " has not");
+    }
+  }
+  return affine;
+}
+
+/// The hits of the band's pixels (s.frame's), per pixel.
+inline void rayCompositionPass(const View& view, const Settings& settings,
+  const std::vector<AffinePatch>& affine, const LoopState<CpuExec>& s, const Node* initialNodes,
+  int threads, std::vector<std::vector<RawHit>>& perPixel, FrameReport& report)
+{
+  static const std::vector<ChebyshevInterpolation> interpolation = []
+  {
+    std::vector<ChebyshevInterpolation> table;
+    for (int d = 0; d <= kMaxDegree; ++d)
+    {
+      table.push_back(chebyshevInterpolation(d));
+    }
+    return table;
+  }();
+  const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
+  const size_t first = passFirstPixel(s.frame), count = passPixelCount(s.frame);
+  perPixel.assign(count, {});
+  std::atomic<size_t> rays{ 0 }, steps{ 0 }, capped{ 0 };
+  parallelFor(count, threads,
+    [&](size_t begin, size_t end)
+    {
+      size_t localRays = 0, localSteps = 0, localCapped = 0;
+      for (size_t k = begin; k < end; ++k)
+      {
+        const size_t p = first + k;
+        const double x = 2 * (double(p % settings.width) + 0.5) / settings.width - 1;
+        const double y = 2 * (double(p / settings.width) + 0.5) / settings.height - 1;
+        const glm::dvec4 nearPoint = clipToWorld * glm::dvec4(x, y, -1, 1);
+        const glm::dvec4 farPoint = clipToWorld * glm::dvec4(x, y, 1, 1);
+        const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
+        const glm::dvec3 direction = glm::dvec3(farPoint) / farPoint.w - origin;
+        int done[64][2], doneCount = 0; // (patch, isovalue) pairs met in earlier items
+        for (uint32_t item = s.ItemOffsets[p]; item < s.ItemOffsets[p + 1]; ++item)
+        {
+          const Node& node = initialNodes[s.ItemNodes[item]];
+          bool seen = false;
+          for (int d = 0; d < doneCount; ++d)
+          {
+            seen = seen || (done[d][0] == node.patch && done[d][1] == node.iso);
+          }
+          double t0, t1;
+          const AffinePatch& patch = affine[size_t(node.patch)];
+          if (seen || !rayInPatch(patch, origin, direction, 0, 1, t0, t1))
+          {
+            continue;
+          }
+          if (doneCount < 64)
+          {
+            done[doneCount][0] = node.patch;
+            done[doneCount++][1] = node.iso;
+          }
+          const glm::dvec3 u0 = patch.inverse * (origin + t0 * direction - patch.origin);
+          const glm::dvec3 du = patch.inverse * ((t1 - t0) * direction);
+          double coefficients[kMaxOrder];
+          composeRay(patch, settings.isovalues[size_t(node.iso)], u0, du,
+            interpolation[size_t(patch.rayDegree)], coefficients);
+          RootSettings rootSettings;
+          const BernsteinRoots roots =
+            findBernsteinRoots(coefficients, patch.rayDegree, settings.rootFinder, rootSettings);
+          ++localRays;
+          localSteps += size_t(roots.cost.insertions + roots.cost.evaluations);
+          localCapped += roots.cost.capped ? 1 : 0;
+          for (int r = 0; r < roots.count; ++r)
+          {
+            const glm::dvec3 position = origin + (t0 + roots.t[r] * (t1 - t0)) * direction;
+            const glm::dvec4 clip = view.worldToClip * glm::dvec4(position, 1);
+            bool kept = true;
+            for (const auto& plane : settings.clipPlanes)
+            {
+              kept = kept && plane[0] * position.x + plane[1] * position.y + plane[2] * position.z +
+                                 plane[3] >=
+                               0;
+            }
+            if (!kept)
+            {
+              continue;
+            }
+            RawHit hit;
+            hit.pixel = uint32_t(p);
+            hit.patch = node.patch;
+            hit.iso = node.iso;
+            hit.ndcDepth = clip.z / clip.w;
+            const glm::dvec3 u = u0 + roots.t[r] * du;
+            for (int d = 0; d < 3; ++d)
+            {
+              hit.u[d] = std::min(std::max(u[d], 0.0), 1.0);
+            }
+            perPixel[k].push_back(hit);
+          }
+        }
+      }
+      rays += localRays;
+      steps += localSteps;
+      capped += localCapped;
+    });
+  report.composedRays += rays;
+  report.rootFinderSteps += steps;
+  report.cappedRays += capped;
+}
+
+} // namespace sst
+} // namespace iga

@@ -1,0 +1,211 @@
+// Ray composition against the shared subdivision tree on the same volumes: the unit sphere (hits
+// on it to 1e-9), and the gallery's algebraic surfaces over their boxes, every root finder, hits
+// within 1e-6 of the SST's and |f(hit)| / K (Reimers and Seland's error metric) below their
+// Table 1; patches without affine geometry refused.
+#include "iga/AlgebraicGallery.h"
+#include "iga/Camera.h"
+#include "iga/Deformation.h"
+#include "iga/PolynomialExpression.h"
+#include "iga/sst/Engine.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+
+namespace
+{
+
+using iga::sst::GBuffer;
+using iga::sst::Method;
+
+struct Volume
+{
+  iga::Polynomial3<double> field;
+  std::vector<iga::BezierVolume<double>> patches;
+};
+
+/// The surface's polynomial as one Bézier volume over its box.
+Volume algebraicVolume(const std::string& expression, const double* box)
+{
+  Volume v;
+  v.field = iga::parsePolynomial(expression);
+  const double lo[3] = { box[0], box[2], box[4] }, hi[3] = { box[1], box[3], box[5] };
+  int degree[3];
+  for (int d = 0; d < 3; ++d)
+    degree[d] = std::max(1, v.field.degree[d]);
+  v.patches.push_back(iga::makePolynomialVolume(v.field, lo, hi, degree));
+  return v;
+}
+
+iga::Camera cameraOf(const Volume& v)
+{
+  double bounds[6];
+  iga::sst::patchBounds(iga::sst::Scene(v.patches), bounds);
+  return iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+}
+
+GBuffer draw(const Volume& v, int size, Method method,
+  iga::RootFinder finder = iga::RootFinder::PointInsertion, iga::sst::FrameReport* report = nullptr)
+{
+  const iga::Camera camera = cameraOf(v);
+  iga::sst::Settings settings;
+  settings.width = settings.height = size;
+  settings.isovalues = { 0.0 };
+  settings.threads = 2;
+  settings.rootFinder = finder;
+  settings.isoTolerance = 1e-12; // the tree's Newton to double precision, as ray composition's
+  GBuffer out;
+  const auto r = iga::sst::render(iga::sst::Scene(v.patches), camera, settings, method, out);
+  if (report)
+    *report = r;
+  return out;
+}
+
+/// How two G-buffers' first hits compare: pixels covered by one only; the largest distance
+/// between hits where `trusted(position)` (the surface there is well conditioned); pixels where
+/// `a` is nearer by more than that (a hit `b` missed).
+struct Comparison
+{
+  size_t onlyInA = 0, onlyInB = 0, untrusted = 0, nearerInA = 0;
+  double farthest = 0;
+};
+
+template<class Trusted>
+Comparison compare(const GBuffer& a, const GBuffer& b, Trusted trusted)
+{
+  Comparison c;
+  for (int j = 0; j < a.height; ++j)
+  {
+    for (int i = 0; i < a.width; ++i)
+    {
+      const auto* ha = a.firstHit(i, j);
+      const auto* hb = b.firstHit(i, j);
+      if (!ha || !hb)
+      {
+        c.onlyInA += ha && !hb ? 1 : 0;
+        c.onlyInB += hb && !ha ? 1 : 0;
+      }
+      else if (!trusted(*ha))
+      {
+        ++c.untrusted;
+      }
+      else if (glm::length(ha->position - hb->position) > 1e-6 && ha->ndcDepth < hb->ndcDepth)
+      {
+        ++c.nearerInA;
+      }
+      else
+      {
+        c.farthest = std::max(c.farthest, glm::length(ha->position - hb->position));
+      }
+    }
+  }
+  return c;
+}
+
+TEST(RayComposition, SphereHitsLieOnTheSphere)
+{
+  const double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
+  const Volume sphere = algebraicVolume("x^2 + y^2 + z^2 - 1", box);
+  iga::sst::FrameReport report;
+  const GBuffer composed =
+    draw(sphere, 96, Method::RayComposition, iga::RootFinder::PointInsertion, &report);
+  EXPECT_EQ(report.method, "ray-composition");
+  EXPECT_GT(report.composedRays, 0u);
+  EXPECT_EQ(report.cappedRays, 0u);
+  ASSERT_GT(composed.coveredPixels(), 1000u);
+  for (const auto& hit : composed.hits)
+  {
+    EXPECT_NEAR(glm::length(hit.position), 1.0, 1e-9);
+    EXPECT_NEAR(std::fabs(glm::dot(hit.normal, hit.position)), 1.0, 1e-9);
+  }
+  const Comparison c = compare(composed, draw(sphere, 96, Method::SharedSubdivisionTree),
+    [](const iga::sst::Hit&) { return true; });
+  EXPECT_EQ(c.onlyInA + c.onlyInB, 0u);
+  EXPECT_EQ(c.nearerInA, 0u);
+  EXPECT_LT(c.farthest, 1e-6);
+}
+
+TEST(RayComposition, GallerySurfacesAgreeWithTheTreeForEveryFinder)
+{
+  // Reimers and Seland's Table 1 (mean, max of |f(hit)| / K) where they list the surface; ours
+  // in double precision must be lower. Elsewhere 1e-9 and 1e-7. The tree misses hits near the
+  // super-sphere's sharp edges (degree 16: 122 of 1 300 pixels at 64x64) that ray composition
+  // finds nearer, on the surface; there only ray composition's own misses are counted.
+  const std::pair<const char*, std::array<double, 2>> table[] = { { "sphere", { 1e-9, 1e-7 } },
+    { "cayley", { 1.2e-7, 1.5e-6 } }, { "clebsch", { 2.3e-7, 4.7e-6 } },
+    { "kummer", { 1e-9, 1e-7 } }, { "dervish", { 1e-9, 1e-7 } }, { "kiss", { 2.7e-7, 1.2e-5 } },
+    { "heart", { 4.3e-9, 5.6e-8 } }, { "klein", { 2.4e-6, 1.9e-5 } },
+    { "linked-tori", { 3.4e-8, 2.9e-7 } }, { "tangle", { 2.3e-7, 4.7e-6 } },
+    { "barth-decic", { 3.5e-9, 7.3e-7 } }, { "super-sphere", { 7.2e-9, 2.9e-7 } } };
+  for (const auto& [name, paper] : table)
+  {
+    const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
+    const Volume v = algebraicVolume(surface->expression, surface->box);
+    const GBuffer tree = draw(v, 64, Method::SharedSubdivisionTree);
+    double largest = 0; // K: the largest Bernstein coefficient
+    for (int p = 0; p < v.patches[0].view().pointCount(); ++p)
+      largest =
+        std::max(largest, std::fabs(v.patches[0].view().point(p)[iga::kFirstAttributeChannel]));
+    // Positions are trusted to 1e-6 where rounding's 1e-13 K moves the root along the ray by
+    // less than 1e-7: not at nodes, self-intersections, flat (triple) roots or grazing rays,
+    // where no method does better.
+    const double h = 1e-6 * (surface->box[1] - surface->box[0]);
+    const glm::dvec3 eye = cameraOf(v).position;
+    const auto trusted = [&](const iga::sst::Hit& hit)
+    {
+      const glm::dvec3 x = hit.position, ray = glm::normalize(x - eye);
+      const glm::dvec3 up = x + h * ray, down = x - h * ray;
+      const double slope =
+        (v.field.evaluate(up.x, up.y, up.z) - v.field.evaluate(down.x, down.y, down.z)) / (2 * h);
+      return 1e-13 * largest <= 1e-7 * std::fabs(slope);
+    };
+    for (int f = 0; f < iga::kRootFinderCount; ++f)
+    {
+      const auto finder = iga::RootFinder(f);
+      iga::sst::FrameReport report;
+      const GBuffer composed = draw(v, 64, Method::RayComposition, finder, &report);
+      const Comparison c = compare(composed, tree, trusted);
+      const std::string what = std::string(name) + " " + iga::rootFinderName(finder);
+      EXPECT_LE(c.onlyInB, composed.coveredPixels() / 200) << what;
+      EXPECT_LE(c.untrusted, composed.coveredPixels() / 20) << what;
+      if (name != std::string("super-sphere")) // where the tree misses hits (see above)
+      {
+        EXPECT_LE(c.onlyInA, composed.coveredPixels() / 200) << what;
+        EXPECT_EQ(c.nearerInA, 0u) << what;
+      }
+      EXPECT_LT(c.farthest, 1e-6) << what;
+      EXPECT_EQ(report.cappedRays, 0u) << name << " " << iga::rootFinderName(finder);
+      double sum = 0, worst = 0;
+      for (const auto& hit : composed.hits)
+      {
+        const double error =
+          std::fabs(v.field.evaluate(hit.position.x, hit.position.y, hit.position.z)) / largest;
+        sum += error;
+        worst = std::max(worst, error);
+      }
+      ASSERT_GT(composed.hits.size(), 100u) << name;
+      EXPECT_LT(sum / composed.hits.size(), paper[0]) << name << " " << iga::rootFinderName(finder);
+      EXPECT_LT(worst, paper[1]) << name << " " << iga::rootFinderName(finder);
+    }
+  }
+}
+
+TEST(RayComposition, PatchesWithoutAffineGeometryAreRefused)
+{
+  const double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
+  Volume v = algebraicVolume("x^2 + y^2 + z^2 - 1", box);
+  v.patches[0].view().point(13)[0] += 0.1; // the middle control point moved
+  try
+  {
+    draw(v, 16, Method::RayComposition);
+    ADD_FAILURE() << "a curved patch was drawn by ray composition";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("patch 0"), std::string::npos) << e.what();
+  }
+}
+
+} // namespace
