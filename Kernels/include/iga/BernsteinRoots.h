@@ -68,13 +68,13 @@ IGA_HD inline void oddRoots(const roots::Piece& piece, RootFinder finder,
   switch (finder)
   {
     case RootFinder::Subdivision:
-      return roots::subdivisionRoots(piece, context, out);
+      return roots::splitSearch(piece, context, roots::MidpointCut(), out);
     case RootFinder::KnotInsertion:
-      return roots::knotInsertionRoots(piece, context, out);
+      return roots::splitSearch(piece, context, roots::KnotInsertionCut(), out);
     case RootFinder::BezierClipping:
-      return roots::bezierClippingRoots(piece, context, out);
+      return roots::splitSearch(piece, context, roots::HullCut(), out);
     case RootFinder::PointInsertion:
-      return roots::pointInsertionRoots(piece, context, out);
+      return roots::splitSearch(piece, context, roots::PolygonZeroCut(), out);
     case RootFinder::PolarNewton:
       return roots::polarNewtonRoots(piece, context, false, out);
   }

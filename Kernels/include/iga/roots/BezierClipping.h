@@ -40,19 +40,14 @@ IGA_HD inline Cut hullCut(const Piece& piece, double zero)
   return Cut{ true, maxValue(a, 0.0), minValue(b, 1.0) };
 }
 
-IGA_HD inline void bezierClippingRoots(
-  const Piece& whole, const RootContext& context, RootList& roots)
+struct HullCut
 {
-  const double zero = context.zero;
-  splitSearch(
-    whole, context,
-    [zero](const Piece& piece)
-    {
-      const Cut hull = hullCut(piece, zero);
-      return hull.b - hull.a > 0.8 ? Cut{ false, 0.5 * (hull.a + hull.b), 0.0 } : hull;
-    },
-    roots);
-}
+  IGA_HD Cut operator()(const Piece& piece, const RootContext& context, RootCost&) const
+  {
+    const Cut hull = hullCut(piece, context.zero);
+    return hull.b - hull.a > 0.8 ? Cut{ false, 0.5 * (hull.a + hull.b), 0.0 } : hull;
+  }
+};
 
 } // namespace roots
 } // namespace iga

@@ -116,21 +116,17 @@ IGA_HD inline double smallestRoot(const Piece& piece, double step, double zero, 
 }
 } // namespace detail
 
-IGA_HD inline void knotInsertionRoots(
-  const Piece& whole, const RootContext& context, RootList& roots)
+/// Splits a piece where its spline's search for the smallest root stopped; none without one.
+struct KnotInsertionCut
 {
-  RootCost* cost = &roots.cost;
-  splitSearch(
-    whole, context,
-    [context, cost](const Piece& piece)
-    {
-      const double s =
-        detail::smallestRoot(piece, context.tolerance / (piece.hi - piece.lo), context.zero, *cost);
-      return s < 0 ? Cut{ true, 1.0, 0.0 } // none
-                   : Cut{ false, minValue(maxValue(s, 1e-12), 1 - 1e-12), 0.0 };
-    },
-    roots);
-}
+  IGA_HD Cut operator()(const Piece& piece, const RootContext& context, RootCost& cost) const
+  {
+    const double s =
+      detail::smallestRoot(piece, context.tolerance / (piece.hi - piece.lo), context.zero, cost);
+    return s < 0 ? Cut{ true, 1.0, 0.0 }
+                 : Cut{ false, minValue(maxValue(s, 1e-12), 1 - 1e-12), 0.0 };
+  }
+};
 
 } // namespace roots
 } // namespace iga

@@ -11,20 +11,15 @@ namespace iga
 namespace roots
 {
 
-IGA_HD inline void pointInsertionRoots(
-  const Piece& whole, const RootContext& context, RootList& roots)
+struct PolygonZeroCut
 {
-  const double zero = context.zero;
-  splitSearch(
-    whole, context,
-    [zero](const Piece& piece)
-    {
-      // Strictly inside, so that both parts are smaller than the piece.
-      const double s = firstPolygonZero(piece, zero);
-      return Cut{ false, minValue(maxValue(s, 1e-12), 1 - 1e-12), 0.0 };
-    },
-    roots);
-}
+  IGA_HD Cut operator()(const Piece& piece, const RootContext& context, RootCost&) const
+  {
+    // Strictly inside, so that both parts are smaller than the piece.
+    const double s = firstPolygonZero(piece, context.zero);
+    return Cut{ false, minValue(maxValue(s, 1e-12), 1 - 1e-12), 0.0 };
+  }
+};
 
 } // namespace roots
 } // namespace iga

@@ -2,7 +2,8 @@
 // pieces on a stack, the left one first so that roots come out sorted; a piece whose nonzero
 // coefficients keep one sign holds no root of odd multiplicity and is dropped; one narrower than
 // the tolerance holds one, at its control polygon's zero. What differs is where a piece is cut:
-// the finder's `choose(piece)` says split at a local parameter or clip to a local interval.
+// the finder's `choose(piece, context, cost)` says split at a local parameter or clip to a local
+// interval.
 #pragma once
 
 #include "iga/roots/RootTools.h"
@@ -65,7 +66,7 @@ IGA_HD void splitSearch(
       roots.add(globalOf(piece, zero < 0 ? 0.5 : zero), context.merge);
       continue;
     }
-    const Cut cut = choose(piece);
+    const Cut cut = choose(piece, context, roots.cost);
     ++splits;
     if (cut.clip && (cut.b - cut.a) * (piece.hi - piece.lo) <= context.tolerance)
     {

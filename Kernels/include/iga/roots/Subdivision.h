@@ -9,15 +9,13 @@ namespace iga
 namespace roots
 {
 
-IGA_HD inline void subdivisionRoots(const Piece& whole, const RootContext& context, RootList& roots)
+struct MidpointCut
 {
-  splitSearch(
-    whole, context,
-    [](const Piece&) {
-      return Cut{ false, 0.5, 0.0 };
-    },
-    roots);
-}
+  IGA_HD Cut operator()(const Piece&, const RootContext&, RootCost&) const
+  {
+    return Cut{ false, 0.5, 0.0 };
+  }
+};
 
 } // namespace roots
 } // namespace iga
