@@ -11,7 +11,8 @@ flags="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-omit-
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DBUILD_TESTING=OFF -DIGAVIEW_FUZZ=ON -DIGAVIEW_ENABLE_CUDA=OFF \
   "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_C_FLAGS=$flags" >/dev/null
-targets=(igaFuzzVTU igaFuzzGismo igaFuzzGeoPDEs igaFuzzSeries igaFuzzEngine igaFuzzCsg)
+targets=(igaFuzzVTU igaFuzzGismo igaFuzzGeoPDEs igaFuzzSeries igaFuzzEngine igaFuzzCsg
+  igaFuzzAlgebraic)
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 
 shared="$root/../shared/data"
@@ -29,6 +30,7 @@ seed "$build/corpus/geopdes" "$root"/Data/geopdes_*.txt "$shared"/geopdes/*.txt
 seed "$build/corpus/series" "$root"/Testing/Fuzz/series/*.pvd
 seed "$build/corpus/engine" "$root"/Testing/Fuzz/engine/*
 seed "$build/corpus/csg" "$root"/Testing/Fuzz/csg/*.txt
+seed "$build/corpus/algebraic" "$root"/Testing/Fuzz/algebraic/*.txt
 
 # UBSan findings are errors; leaks of VTK's singletons at exit are not ours to judge.
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
@@ -57,3 +59,4 @@ run igaFuzzGeoPDEs "$build/corpus/geopdes" "$root/Testing/Fuzz/geopdes.dict"
 run igaFuzzSeries "$build/corpus/series" "$root/Testing/Fuzz/xml.dict"
 run igaFuzzEngine "$build/corpus/engine"
 run igaFuzzCsg "$build/corpus/csg" "$root/Testing/Fuzz/csg.dict"
+run igaFuzzAlgebraic "$build/corpus/algebraic"
