@@ -579,9 +579,16 @@ std::string offsetsProblem(const Input& input, const std::string& head, size_t a
               size_t(size), encoding.bigEndian, attributeOf(tag, "type=\"")[0] == 'I')
           : lastAsciiValue(input, head, at);
   char text[320];
-  if (std::isnan(last))
+  if (std::isnan(last) && array)
   {
     return std::string(); // unreadable: VTK's reader says so
+  }
+  if (std::isnan(last)) // VTK would read no ASCII values and take its unset last one
+  {
+    std::snprintf(text, sizeof text,
+      "'%s': its cell offsets (format '%s', read as ASCII) hold no readable last value",
+      input.name.c_str(), attributeOf(tag, "format=\"").c_str());
+    return text;
   }
   if (!(last >= 0 && last * 8 < memory))
   {
