@@ -87,30 +87,29 @@ TEST(BezierVTU, BinaryHeadersClaimingMoreThanTheirDataAreRefused)
     std::string::npos);
   // What the fuzzer found (with its 256 MiB limit), each once a crash, a buffer overflow or an
   // allocation of gigabytes in VTK's reader.
-  for (const auto& [file, expected] :
-    std::vector<std::pair<std::string, std::string>>{
-      { "zero-blocks-with-data.vtu", "inconsistent block sizes" },
-      { "block-size-zero.vtu", "inconsistent block sizes" },
-      { "partial-block-3gb.vtu", "where the array holds" },
-      { "block-larger-than-array.vtu", "inconsistent block sizes" },
-      // Appended and ASCII data, made by hand: a division by zero, an allocation of 17 GB
-      // and two aborts.
-      { "appended-block-size-zero.vtu", "inconsistent block sizes" },
-      { "appended-block-table-4e9.vtu", "claims a table of blocks" },
-      { "appended-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
-      { "ascii-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
-      // Found by the fuzzer once appended data was checked: without the '_' VTK reads the
-      // appended data from their first character, whose header claims 4 GB.
-      { "appended-data-without-marker.vtu", "claims data of 4.281e+09 bytes" },
-      // ... and by CI's 30 s run: offsets with a mistyped format attribute, which VTK reads
-      // as ASCII.
-      { "offsets-without-format.vtu", "its cell offsets end at 1e+12" },
-      // ... and by CI's run after the checks' review: compressed offsets without a readable
-      // header (a block size of 0 divided), now left to VTK's reader, which says so.
-      { "compressed-offsets-without-header.vtu", "is not a readable VTK XML unstructured grid" },
-      // ... and by CI's run of 2026-12-04: a misspelt format and no text, which VTK reads as
-      // ASCII without a value, taking an unset one as the end of 1e12 ids (8 TB).
-      { "offsets-format-misspelt.vtu", "hold no readable last value" } })
+  for (const auto& [file, expected] : std::vector<std::pair<std::string, std::string>>{
+         { "zero-blocks-with-data.vtu", "inconsistent block sizes" },
+         { "block-size-zero.vtu", "inconsistent block sizes" },
+         { "partial-block-3gb.vtu", "where the array holds" },
+         { "block-larger-than-array.vtu", "inconsistent block sizes" },
+         // Appended and ASCII data, made by hand: a division by zero, an allocation of 17 GB
+         // and two aborts.
+         { "appended-block-size-zero.vtu", "inconsistent block sizes" },
+         { "appended-block-table-4e9.vtu", "claims a table of blocks" },
+         { "appended-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
+         { "ascii-offsets-past-memory.vtu", "its cell offsets end at 1e+12" },
+         // Found by the fuzzer once appended data was checked: without the '_' VTK reads the
+         // appended data from their first character, whose header claims 4 GB.
+         { "appended-data-without-marker.vtu", "claims data of 4.281e+09 bytes" },
+         // ... and by CI's 30 s run: offsets with a mistyped format attribute, which VTK reads
+         // as ASCII.
+         { "offsets-without-format.vtu", "its cell offsets end at 1e+12" },
+         // ... and by CI's run after the checks' review: compressed offsets without a readable
+         // header (a block size of 0 divided), now left to VTK's reader, which says so.
+         { "compressed-offsets-without-header.vtu", "is not a readable VTK XML unstructured grid" },
+         // ... and by CI's run of 2026-12-04: a misspelt format and no text, which VTK reads as
+         // ASCII without a value, taking an unset one as the end of 1e12 ids (8 TB).
+         { "offsets-format-misspelt.vtu", "hold no readable last value" } })
   {
     const std::string error =
       readingError(fileText(IGAVIEW_SOURCE_DIR "/Testing/Fuzz/regressions/" + file), 256e6);
