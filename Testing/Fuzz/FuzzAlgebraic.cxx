@@ -4,8 +4,8 @@
 // the root finder the input's length picks: finite hits, or a refusal. The same bytes, read as
 // up to 17 doubles, are a Bernstein polynomial for every finder: sorted roots in [0, 1], or
 // the input named invalid.
+#include "FuzzFrame.h"
 #include "iga/BernsteinRoots.h"
-#include "iga/Camera.h"
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Engine.h"
 
@@ -66,17 +66,9 @@ void drawExpression(const std::string& text, size_t size)
   {
     return;
   }
-  iga::Camera camera;
-  camera.position = { 3, -4, 2.5 };
-  camera.viewUp = { 0, 0, 1 };
-  const double bounds[6] = { -1, 1, -1, 1, -1, 1 };
-  iga::fitClippingRange(camera, bounds);
-  iga::sst::Settings settings;
-  settings.width = 12;
-  settings.height = 10;
-  settings.threads = 1;
+  const iga::Camera camera = fuzzBoxCamera();
+  iga::sst::Settings settings = fuzzFrameSettings(size);
   settings.isovalues = { 0.0 };
-  settings.firstHitOnly = size % 2 == 0;
   settings.rootFinder = iga::RootFinder(size % iga::kRootFinderCount);
   iga::sst::GBuffer out;
   try

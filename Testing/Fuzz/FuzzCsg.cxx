@@ -4,6 +4,7 @@
 // sphere fields (attributes a and b), by the input's length once or twice (overlapping), with a
 // slice and a clipping plane or not: the frame draws finite hits or throws
 // std::invalid_argument (an attribute the box lacks).
+#include "FuzzFrame.h"
 #include "iga/Csg.h"
 #include "iga/Datasets.h"
 #include "iga/sst/Csg.h"
@@ -76,16 +77,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     scene.slices.push_back({ 0.3, 1, 0, -0.1 });
   scene.expression = expression;
   scene.colorAttribute = "a";
-  iga::Camera camera;
-  camera.position = { 3, -4, 2.5 };
-  camera.viewUp = { 0, 0, 1 };
-  const double bounds[6] = { -1, 1, -1, 1, -1, 1 };
-  iga::fitClippingRange(camera, bounds);
-  iga::sst::Settings settings;
-  settings.width = 12;
-  settings.height = 10;
-  settings.threads = 1;
-  settings.firstHitOnly = size % 2 == 0;
+  const iga::Camera camera = fuzzBoxCamera();
+  iga::sst::Settings settings = fuzzFrameSettings(size);
   settings.backend = iga::sst::Backend::Cpu;
   if (size % 7 < 3)
     settings.clipPlanes.push_back({ 0, 0, -1, 0.4 });
