@@ -293,13 +293,8 @@ void algebraicStudy(bool quick, int threads, int reps, std::vector<Measurement>&
   for (int s = 0; s < count; ++s)
   {
     const auto field = iga::parsePolynomial(gallery[s].expression);
-    const double* box = gallery[s].box;
-    const double lo[3] = { box[0], box[2], box[4] }, hi[3] = { box[1], box[3], box[5] };
-    int degree[3];
-    for (int d = 0; d < 3; ++d)
-      degree[d] = std::max(1, field.degree[d]);
     iga::VolumeSet<double> set;
-    set.patches.push_back(iga::makePolynomialVolume(field, lo, hi, degree));
+    set.patches.push_back(iga::makeAlgebraicVolume(field, gallery[s].box));
     const int total = iga::detail::totalDegree(field);
     const auto sst = measure("algebraic", gallery[s].name, set, 0.0, total, size, size, threads,
       Method::SharedSubdivisionTree, quick ? 1 : reps);

@@ -47,8 +47,25 @@ const char* methodName(Method method)
       return "bezier-clipping";
     case Method::RayComposition:
       return "ray-composition";
+    case Method::Automatic:
+      return "auto";
   }
   return "unknown";
+}
+
+Method parseMethod(const std::string& name)
+{
+  std::string names;
+  for (Method method : { Method::Automatic, Method::SharedSubdivisionTree, Method::RayComposition,
+         Method::BasicScheme, Method::BezierClipping, Method::BruteForce })
+  {
+    if (name == methodName(method))
+    {
+      return method;
+    }
+    names += std::string(names.empty() ? "" : ", ") + methodName(method);
+  }
+  throw std::invalid_argument("method '" + name + "' is none of " + names);
 }
 
 void patchBounds(const Scene& scene, double* bounds)
@@ -110,6 +127,7 @@ public:
     switch (method)
     {
       case Method::SharedSubdivisionTree:
+        this->Report.sstPatches = this->Patches.size();
         drawFrame(s, this->Config, [&] { drawPass(s); });
         break;
       case Method::BasicScheme:
@@ -128,8 +146,12 @@ public:
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::bezierClipping); });
         break;
       case Method::RayComposition:
-        this->Affine = affinePatches(this->Patches, this->Config);
+        this->Affine = affinePatches(this->Patches, this->Config, this->Report);
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::rayComposition); });
+        break;
+      case Method::Automatic:
+        this->Affine = affineWherePossible(this->Patches, this->Config, this->Report);
+        drawFrame(s, this->Config, [&] { this->automaticPass(); });
         break;
     }
     const Clock::time_point stage = Clock::now();
@@ -187,7 +209,24 @@ private:
     this->Loop.stages.end(this->Report.msSolution);
   }
 
-  /// Appends a reference method's hits, pixel by pixel.
+  /// A band of the automatic method: the sweep, ray composition on the affine patches' items,
+  /// then the SST's rounds on the others, bounded by the hits found (first-hit mode).
+  void automaticPass()
+  {
+    LoopState<CpuExec>& s = this->Loop;
+    sweepAndGroup(s);
+    s.stages.end(this->Report.msSweepAndGroup);
+    if (this->Report.rayCompositionPatches > 0)
+    {
+      this->rayComposition();
+      dropAffineItems(s, this->Affine, this->Plan.initialNodes.data());
+      s.stages.end(this->Report.msSolution);
+    }
+    solveRounds(s);
+  }
+
+  /// Appends a reference method's hits, pixel by pixel, each kept one bounding its pixel as
+  /// the hit policy says.
   void appendPixelHits(const std::vector<std::vector<RawHit>>& perPixel)
   {
     LoopState<CpuExec>& s = this->Loop;
@@ -203,8 +242,14 @@ private:
     { return s.frame.hits.keeps(hit.ndcDepth, s.BestDepth[hit.pixel]); };
     for (const auto& hits : perPixel)
     {
-      s.HitCount = size_t(
-        std::copy_if(hits.begin(), hits.end(), s.Hits.begin() + s.HitCount, kept) - s.Hits.begin());
+      for (const RawHit& hit : hits)
+      {
+        if (kept(hit))
+        {
+          s.Hits[s.HitCount++] = hit;
+          s.BestDepth[hit.pixel] = s.frame.hits.afterHit(s.BestDepth[hit.pixel], hit.ndcDepth);
+        }
+      }
     }
   }
 
@@ -584,7 +629,8 @@ FrameReport dispatch(const Settings& settings, Method method,
   FrameReport report;
   report.method = methodName(method);
   const Backend wanted = requestedBackend(settings.backend);
-  if (method == Method::SharedSubdivisionTree && wanted != Backend::Cpu)
+  if ((method == Method::SharedSubdivisionTree || method == Method::Automatic) &&
+      wanted != Backend::Cpu)
   {
     std::string why;
     if (cuda::usable(why))
@@ -637,7 +683,11 @@ FrameReport render(
 {
   return dispatch(
     settings, method,
-    [&](FrameReport& report) { cuda::render(scene, view, settings, out, report); },
+    [&](FrameReport& report)
+    {
+      cuda::render(scene, view, settings, out, report);
+      report.sstPatches = scene.size();
+    },
     [&](FrameReport& report) { Renderer(scene, view, settings, report).run(method, out); });
 }
 
@@ -680,7 +730,14 @@ FrameReport render(const NurbsVolumes& volumes, const View& view, const Settings
   checkNurbsVolumes(volumes);
   return dispatch(
     settings, method,
-    [&](FrameReport& report) { cuda::renderNurbs(volumes, view, settings, out, report); },
+    [&](FrameReport& report)
+    {
+      cuda::renderNurbs(volumes, view, settings, out, report);
+      for (const auto& extraction : volumes.extractions)
+      {
+        report.sstPatches += size_t(extraction->elementCount());
+      }
+    },
     [&](FrameReport& report)
     {
       const auto patches = extractElements(volumes);

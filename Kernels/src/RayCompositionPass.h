@@ -18,19 +18,40 @@ namespace iga
 namespace sst
 {
 
+/// Each patch's affine form, rayDegree -1 for the surfaces and the volumes without one (which
+/// the SST draws); sets the report's counts of patches per path.
+inline std::vector<AffinePatch> affineWherePossible(
+  const Scene& scene, const Settings& settings, FrameReport& report)
+{
+  std::vector<AffinePatch> affine(scene.size());
+  for (size_t p = 0; p < scene.size(); ++p)
+  {
+    if (p >= scene.volumeCount() ||
+        !affineGeometry(scene[p], kFirstAttributeChannel + settings.surfaceAttribute, affine[p]))
+    {
+      affine[p] = AffinePatch();
+      affine[p].rayDegree = -1;
+    }
+    report.rayCompositionPatches += affine[p].rayDegree >= 0 ? 1 : 0;
+  }
+  report.sstPatches = scene.size() - report.rayCompositionPatches;
+  return affine;
+}
+
 /// Every volume's affine form; throws std::invalid_argument naming a patch that has none (or
 /// a surface, which ray composition does not draw).
-inline std::vector<AffinePatch> affinePatches(const Scene& scene, const Settings& settings)
+inline std::vector<AffinePatch> affinePatches(
+  const Scene& scene, const Settings& settings, FrameReport& report)
 {
   if (scene.surfaceCount() > 0)
   {
     throw std::invalid_argument("ray composition draws volumes only, the scene has " +
                                 std::to_string(scene.surfaceCount()) + " surfaces");
   }
-  std::vector<AffinePatch> affine(scene.size());
+  std::vector<AffinePatch> affine = affineWherePossible(scene, settings, report);
   for (size_t p = 0; p < scene.size(); ++p)
   {
-    if (!affineGeometry(scene[p], kFirstAttributeChannel + settings.surfaceAttribute, affine[p]))
+    if (affine[p].rayDegree < 0)
     {
       throw std::invalid_argument("ray composition needs affine geometry and a degree along rays "
                                   "of at most 16: " +
@@ -40,7 +61,32 @@ inline std::vector<AffinePatch> affinePatches(const Scene& scene, const Settings
   return affine;
 }
 
-/// The hits of the band's pixels (s.frame's), per pixel.
+/// Removes the work items of affine patches (ray composition's) from the band's lists, so that
+/// the SST's rounds see the others only.
+inline void dropAffineItems(
+  LoopState<CpuExec>& s, const std::vector<AffinePatch>& affine, const Node* initialNodes)
+{
+  const size_t first = passFirstPixel(s.frame), count = passPixelCount(s.frame);
+  uint32_t kept = s.ItemOffsets[first];
+  for (size_t p = first; p < first + count; ++p)
+  {
+    const uint32_t begin = s.ItemOffsets[p], end = s.ItemOffsets[p + 1];
+    s.ItemOffsets[p] = kept;
+    s.GroupBegin[p] = s.GroupEnd[p] = kept;
+    for (uint32_t item = begin; item < end; ++item)
+    {
+      if (affine[size_t(initialNodes[s.ItemNodes[item]].patch)].rayDegree < 0)
+      {
+        s.ItemNodes[kept++] = s.ItemNodes[item];
+      }
+    }
+  }
+  s.ItemOffsets[first + count] = kept;
+  s.ItemNodes.resize(kept);
+}
+
+/// The hits of the band's pixels (s.frame's), per pixel, on the affine patches (rayDegree >= 0);
+/// in first-hit mode a pixel's items beyond its nearest hit so far are skipped.
 inline void rayCompositionPass(const View& view, const Settings& settings,
   const std::vector<AffinePatch>& affine, const LoopState<CpuExec>& s, const Node* initialNodes,
   int threads, std::vector<std::vector<RawHit>>& perPixel, FrameReport& report)
@@ -72,10 +118,15 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
         const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
         const glm::dvec3 direction = glm::dvec3(farPoint) / farPoint.w - origin;
         int done[64][2], doneCount = 0; // (patch, isovalue) pairs met in earlier items
+        double best = s.BestDepth[p];
         for (uint32_t item = s.ItemOffsets[p]; item < s.ItemOffsets[p + 1]; ++item)
         {
           const Node& node = initialNodes[s.ItemNodes[item]];
-          bool seen = false;
+          if (!s.frame.hits.mayMatter(node.info.box.lo[2], best))
+          {
+            break; // the items are sorted by nearest depth
+          }
+          bool seen = affine[size_t(node.patch)].rayDegree < 0;
           for (int d = 0; d < doneCount; ++d)
           {
             seen = seen || (done[d][0] == node.patch && done[d][1] == node.iso);
@@ -128,6 +179,7 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
               hit.u[d] = std::min(std::max(u[d], 0.0), 1.0);
             }
             perPixel[k].push_back(hit);
+            best = s.frame.hits.afterHit(best, hit.ndcDepth);
           }
         }
       }

@@ -53,18 +53,15 @@ void drawExpression(const std::string& text, size_t size)
       std::abort(); // an error must point into the text (or just past its end)
     return;
   }
-  const double lo[3] = { -1, -1, -1 }, hi[3] = { 1, 1, 1 };
-  int degree[3];
-  for (int d = 0; d < 3; ++d)
-    degree[d] = std::max(1, field.degree[d]);
+  const double box[6] = { -1, 1, -1, 1, -1, 1 };
   std::vector<iga::BezierVolume<double>> patches;
   try
   {
-    patches.push_back(iga::makePolynomialVolume(field, lo, hi, degree));
+    patches.push_back(iga::makeAlgebraicVolume(field, box));
   }
   catch (const std::invalid_argument&)
   {
-    return;
+    return; // coefficients that overflow
   }
   const iga::Camera camera = fuzzBoxCamera();
   iga::sst::Settings settings = fuzzFrameSettings(size);

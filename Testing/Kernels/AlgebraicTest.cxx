@@ -10,6 +10,8 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 namespace
 {
@@ -72,6 +74,51 @@ TEST(PolynomialExpression, ErrorsNameTheirPosition)
   expectError("1e400*x", "expression, position 1: bad number");
   expectError("", "expression, position 1: unexpected end of the expression");
   expectError("x + ", "expression, position 5: unexpected end of the expression");
+}
+
+TEST(PolynomialExpression, AlgebraicVolumesHoldThePolynomialOverTheirBox)
+{
+  const auto field = iga::parsePolynomial("x^3*y - 2*z^2 + 0.5");
+  const double box[6] = { -1, 2, 0.5, 1.5, -3, -1 };
+  const iga::BezierVolume<double> volume = iga::makeAlgebraicVolume(field, box);
+  EXPECT_EQ(volume.view().degree[0], 3);
+  EXPECT_EQ(volume.view().degree[1], 1);
+  EXPECT_EQ(volume.view().degree[2], 2);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    const double u[3] = { unit(rng), unit(rng), unit(rng) };
+    double values[iga::kFirstAttributeChannel + 1];
+    iga::evaluateHomogeneous<double, 3>(volume.view(), u, values, nullptr);
+    double x[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      x[d] = box[2 * d] + u[d] * (box[2 * d + 1] - box[2 * d]);
+      EXPECT_NEAR(values[d] / values[iga::kWeightChannel], x[d], 1e-13);
+    }
+    EXPECT_NEAR(values[iga::kFirstAttributeChannel] / values[iga::kWeightChannel],
+      field.evaluate(x[0], x[1], x[2]), 1e-12);
+  }
+  const auto refused =
+    [&](const iga::Polynomial3<double>& p, std::array<double, 6> b, const std::string& message)
+  {
+    try
+    {
+      iga::makeAlgebraicVolume(p, b.data());
+      ADD_FAILURE() << message << " was accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_EQ(std::string(e.what()), message);
+    }
+  };
+  refused(
+    field, { -1, 1, 2, 2, -1, 1 }, "box: y from 2.000000 to 2.000000 is not a finite interval");
+  refused(field, { -1, 1, -1, 1, std::nan(""), 1 },
+    "box: z from nan to 1.000000 is not a finite interval");
+  refused(iga::parsePolynomial("(1e300*x)^2"), { -1, 1, -1, 1, -1, 1 },
+    "expression: its Bernstein coefficients over the box overflow");
 }
 
 /// Partial derivative in direction d, in power form.

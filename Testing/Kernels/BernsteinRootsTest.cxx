@@ -258,3 +258,20 @@ TEST(BernsteinRoots, BadInputIsNamed)
 }
 
 } // namespace
+
+TEST(BernsteinRoots, FinderNamesParseBackAndUnknownNamesAreListed)
+{
+  for (int f = 0; f < iga::kRootFinderCount; ++f)
+    EXPECT_EQ(int(iga::parseRootFinder(iga::rootFinderName(iga::RootFinder(f)))), f);
+  try
+  {
+    iga::parseRootFinder("newton");
+    ADD_FAILURE() << "an unknown finder was accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("'newton' is none of subdivision, knot-insertion"),
+      std::string::npos)
+      << e.what();
+  }
+}

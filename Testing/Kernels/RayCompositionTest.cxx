@@ -1,7 +1,8 @@
 // Ray composition against the shared subdivision tree on the same volumes: the unit sphere (hits
 // on it to 1e-9), and the gallery's algebraic surfaces over their boxes, every root finder, hits
 // within 1e-6 of the SST's and |f(hit)| / K (Reimers and Seland's error metric) below their
-// Table 1; patches without affine geometry refused.
+// Table 1; patches without affine geometry refused, and drawn by the tree in the automatic
+// method's frames.
 #include "iga/AlgebraicGallery.h"
 #include "iga/Camera.h"
 #include "iga/Deformation.h"
@@ -31,11 +32,7 @@ Volume algebraicVolume(const std::string& expression, const double* box)
 {
   Volume v;
   v.field = iga::parsePolynomial(expression);
-  const double lo[3] = { box[0], box[2], box[4] }, hi[3] = { box[1], box[3], box[5] };
-  int degree[3];
-  for (int d = 0; d < 3; ++d)
-    degree[d] = std::max(1, v.field.degree[d]);
-  v.patches.push_back(iga::makePolynomialVolume(v.field, lo, hi, degree));
+  v.patches.push_back(iga::makeAlgebraicVolume(v.field, box));
   return v;
 }
 
@@ -191,6 +188,68 @@ TEST(RayComposition, GallerySurfacesAgreeWithTheTreeForEveryFinder)
       EXPECT_LT(worst, paper[1]) << name << " " << iga::rootFinderName(finder);
     }
   }
+}
+
+/// The G-buffers' hits pixel by pixel: counts equal, positions within 1e-6, same patch.
+void expectSameHits(const GBuffer& a, const GBuffer& b)
+{
+  ASSERT_EQ(a.offsets, b.offsets);
+  for (size_t h = 0; h < a.hits.size(); ++h)
+  {
+    EXPECT_LT(glm::length(a.hits[h].position - b.hits[h].position), 1e-6) << "hit " << h;
+    EXPECT_EQ(a.hits[h].patch, b.hits[h].patch) << "hit " << h;
+  }
+}
+
+TEST(RayComposition, AutomaticMethodComposesAffinePatchesWithTheTreesOthersInOneFrame)
+{
+  // Two overlapping spheres, one affine and one curved (a control point moved, then shifted):
+  // each occludes the other somewhere, so the paths' hits meet in the same pixels.
+  const double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
+  Volume v = algebraicVolume("x^2 + y^2 + z^2 - 1", box);
+  v.patches.push_back(v.patches[0]);
+  auto curved = v.patches[1].view();
+  curved.point(13)[1] += 0.3;
+  for (int p = 0; p < curved.pointCount(); ++p)
+    curved.point(p)[0] += 0.9 * curved.point(p)[iga::kWeightChannel];
+  for (bool firstHitOnly : { true, false })
+  {
+    SCOPED_TRACE(firstHitOnly ? "first hit" : "all hits");
+    const iga::Camera camera = cameraOf(v);
+    iga::sst::Settings settings;
+    settings.width = settings.height = 80;
+    settings.isovalues = { 0.0 };
+    settings.threads = 2;
+    settings.isoTolerance = 1e-12;
+    settings.firstHitOnly = firstHitOnly;
+    GBuffer automatic, tree;
+    const auto report =
+      iga::sst::render(iga::sst::Scene(v.patches), camera, settings, Method::Automatic, automatic);
+    const auto treeReport = iga::sst::render(
+      iga::sst::Scene(v.patches), camera, settings, Method::SharedSubdivisionTree, tree);
+    EXPECT_EQ(report.method, "auto");
+    EXPECT_EQ(report.rayCompositionPatches, 1u);
+    EXPECT_EQ(report.sstPatches, 1u);
+    EXPECT_EQ(treeReport.sstPatches, 2u);
+    EXPECT_GT(report.composedRays, 0u);
+    EXPECT_GT(report.newtonSolves, 0u);
+    EXPECT_LT(report.newtonSolves, treeReport.newtonSolves);
+    EXPECT_EQ(report.unresolvedPixels + treeReport.unresolvedPixels, 0u);
+    size_t fromEach[2] = { 0, 0 };
+    for (const auto& hit : automatic.hits)
+      ++fromEach[hit.patch];
+    EXPECT_GT(fromEach[0], 300u);
+    EXPECT_GT(fromEach[1], 300u);
+    expectSameHits(automatic, tree);
+  }
+}
+
+TEST(RayComposition, MethodNamesParseBack)
+{
+  for (Method m : { Method::Automatic, Method::SharedSubdivisionTree, Method::RayComposition,
+         Method::BasicScheme, Method::BezierClipping, Method::BruteForce })
+    EXPECT_EQ(iga::sst::parseMethod(iga::sst::methodName(m)), m);
+  EXPECT_THROW(iga::sst::parseMethod("fast"), std::invalid_argument);
 }
 
 TEST(RayComposition, PatchesWithoutAffineGeometryAreRefused)

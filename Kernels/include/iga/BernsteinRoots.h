@@ -11,6 +11,9 @@
 #include "iga/roots/PolarNewton.h"
 #include "iga/roots/Subdivision.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace iga
 {
 
@@ -41,6 +44,22 @@ inline const char* rootFinderName(RootFinder finder)
       return "polar-newton";
   }
   return "unknown";
+}
+
+/// The finder of that name (rootFinderName's inverse); std::invalid_argument listing the names
+/// otherwise.
+inline RootFinder parseRootFinder(const std::string& name)
+{
+  std::string names;
+  for (int f = 0; f < kRootFinderCount; ++f)
+  {
+    if (name == rootFinderName(RootFinder(f)))
+    {
+      return RootFinder(f);
+    }
+    names += std::string(f ? ", " : "") + rootFinderName(RootFinder(f));
+  }
+  throw std::invalid_argument("root finder '" + name + "' is none of " + names);
 }
 
 struct RootSettings

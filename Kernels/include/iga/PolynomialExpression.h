@@ -305,4 +305,36 @@ inline Polynomial3<double> parsePolynomial(const std::string& text)
   return p;
 }
 
+/// The Bernstein volume of the polynomial over the box (x0, x1, y0, y1, z0, z1), its degree per
+/// direction the polynomial's (at least 1), with one attribute, the polynomial: the exact
+/// volume whose zero set is the algebraic surface, with affine geometry. std::invalid_argument
+/// for a box that is not finite or empty in a direction, and for coefficients that overflow.
+inline BezierVolume<double> makeAlgebraicVolume(const Polynomial3<double>& field, const double* box)
+{
+  const char axis[] = "xyz";
+  double lo[3], hi[3];
+  int degree[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    lo[d] = box[2 * d];
+    hi[d] = box[2 * d + 1];
+    if (!std::isfinite(lo[d]) || !std::isfinite(hi[d]) || !(lo[d] < hi[d]))
+    {
+      throw std::invalid_argument(std::string("box: ") + axis[d] + " from " +
+                                  std::to_string(lo[d]) + " to " + std::to_string(hi[d]) +
+                                  " is not a finite interval");
+    }
+    degree[d] = std::max(1, field.degree[d]);
+  }
+  BezierVolume<double> volume = makePolynomialVolume(field, lo, hi, degree);
+  for (double c : volume.coeffs())
+  {
+    if (!std::isfinite(c))
+    {
+      throw std::invalid_argument("expression: its Bernstein coefficients over the box overflow");
+    }
+  }
+  return volume;
+}
+
 } // namespace iga

@@ -121,13 +121,11 @@ void solveRound(LoopState<Exec>& s)
   s.exec.forEach(s.Active.size(), [=] IGA_HD(size_t k) { solves[active[k]] = 0; });
 }
 
-/// The sweep and the rounds of one band of rows (s.frame's); after the deadline, its pixels
-/// with work are given up.
+/// The rounds over the band's work items (the sweep's); after the deadline, its pixels with
+/// work are given up.
 template<class Exec>
-void drawPass(LoopState<Exec>& s)
+void solveRounds(LoopState<Exec>& s)
 {
-  sweepAndGroup(s);
-  s.stages.end(s.report->msSweepAndGroup);
   for (;;)
   {
     const size_t work = nextGroups(s);
@@ -146,6 +144,15 @@ void drawPass(LoopState<Exec>& s)
       break;
     }
   }
+}
+
+/// The sweep and the rounds of one band of rows (s.frame's).
+template<class Exec>
+void drawPass(LoopState<Exec>& s)
+{
+  sweepAndGroup(s);
+  s.stages.end(s.report->msSweepAndGroup);
+  solveRounds(s);
 }
 
 /// The report's counts of the frame, once its bands are drawn.

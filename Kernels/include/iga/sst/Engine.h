@@ -30,6 +30,10 @@ enum class Method
   /// Per pixel and patch the ray's univariate polynomial and its roots (Settings::rootFinder):
   /// volumes with affine geometry only (algebraic surfaces over a box, ABS patches).
   RayComposition,
+  /// Per patch: affine geometry (with a degree along rays of at most 16) by ray composition,
+  /// the rest by the SST, both into the frame's one G-buffer. On CPU threads; a CUDA frame
+  /// draws every patch by the SST (FrameReport::sstPatches, rayCompositionPatches).
+  Automatic,
 };
 
 /// Where the shared-subdivision-tree engine runs. Automatic picks CUDA when the library was
@@ -128,9 +132,11 @@ struct FrameReport
   double attributeRange[2] = { 0, 0 };
   size_t newtonSolves = 0;
   size_t subdividedPatches = 0;
-  size_t composedRays = 0;    ///< ray composition: (pixel, patch) polynomials composed
-  size_t rootFinderSteps = 0; ///< their finders' knot insertions and evaluations
-  size_t cappedRays = 0;      ///< rays whose finder ran out of splits (roots may be missing)
+  size_t sstPatches = 0;            ///< patches the SST drew
+  size_t rayCompositionPatches = 0; ///< patches ray composition drew
+  size_t composedRays = 0;          ///< ray composition: (pixel, patch) polynomials composed
+  size_t rootFinderSteps = 0;       ///< their finders' knot insertions and evaluations
+  size_t cappedRays = 0;            ///< rays whose finder ran out of splits (roots may be missing)
   size_t maxTuples = 0;
   size_t maxPatches = 0;
   size_t peakBytes = 0; ///< largest engine-owned working set
@@ -228,6 +234,10 @@ FrameReport render(
 void patchBounds(const Scene& scene, double* bounds);
 
 const char* methodName(Method method);
+
+/// The method of that name (methodName's inverse); std::invalid_argument listing the names
+/// otherwise.
+Method parseMethod(const std::string& name);
 
 /// "auto", "cpu" or "cuda"; parseBackend is its inverse and throws std::invalid_argument.
 const char* backendName(Backend backend);

@@ -1,0 +1,115 @@
+#include "vtkIGAAlgebraicSource.h"
+
+#include "vtkIGABezierHexahedra.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "iga/AlgebraicGallery.h"
+#include "iga/Datasets.h"
+#include "iga/PolynomialExpression.h"
+
+#include <stdexcept>
+
+vtkStandardNewMacro(vtkIGAAlgebraicSource);
+
+vtkIGAAlgebraicSource::vtkIGAAlgebraicSource()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+void vtkIGAAlgebraicSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Expression: " << this->Expression << "\n";
+  os << indent << "Box: " << this->Box[0] << " " << this->Box[1] << " " << this->Box[2] << " "
+     << this->Box[3] << " " << this->Box[4] << " " << this->Box[5] << "\n";
+  os << indent << "GallerySurface: " << this->GallerySurface << "\n";
+}
+
+void vtkIGAAlgebraicSource::SetExpression(const char* expression)
+{
+  const std::string text = expression ? expression : "";
+  if (text != this->Expression)
+  {
+    this->Expression = text;
+    this->Modified();
+  }
+}
+
+int vtkIGAAlgebraicSource::GetNumberOfGallerySurfaces()
+{
+  int count = 0;
+  iga::algebraicGallery(count);
+  return count;
+}
+
+const char* vtkIGAAlgebraicSource::GetGallerySurfaceName(int index)
+{
+  int count = 0;
+  const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
+  return index >= 0 && index < count ? gallery[index].name : nullptr;
+}
+
+void vtkIGAAlgebraicSource::SetGallerySurfaceByName(const char* name)
+{
+  int count = 0;
+  const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
+  const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name ? name : "");
+  if (!surface)
+  {
+    std::string names;
+    for (int k = 0; k < count; ++k)
+    {
+      names += std::string(k ? ", " : "") + gallery[k].name;
+    }
+    vtkErrorMacro(<< "no gallery surface '" << (name ? name : "") << "' (have: " << names << ")");
+    return;
+  }
+  this->SetGallerySurface(int(surface - gallery));
+}
+
+int vtkIGAAlgebraicSource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+int vtkIGAAlgebraicSource::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int count = 0;
+  const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
+  if (this->GallerySurface >= count)
+  {
+    vtkErrorMacro(<< "GallerySurface " << this->GallerySurface << " is not below the gallery's "
+                  << count << " surfaces");
+    return 0;
+  }
+  const bool fromGallery = this->GallerySurface >= 0;
+  iga::VolumeSet<double> set;
+  set.attributeNames = { "f" };
+  try
+  {
+    const auto field = iga::parsePolynomial(
+      fromGallery ? gallery[this->GallerySurface].expression : this->Expression);
+    const auto volume =
+      iga::makeAlgebraicVolume(field, fromGallery ? gallery[this->GallerySurface].box : this->Box);
+    if (outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) <= 0)
+    {
+      set.patches.push_back(volume);
+    }
+  }
+  catch (const std::invalid_argument& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  vtkUnstructuredGrid::GetData(outInfo)->ShallowCopy(
+    vtkIGABezierHexahedra::ToUnstructuredGrid(set));
+  return 1;
+}

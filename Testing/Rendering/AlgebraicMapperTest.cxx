@@ -1,0 +1,162 @@
+// Algebraic surfaces through the VTK pipeline: vtkIGAAlgebraicSource's volume drawn by the
+// mapper, which takes the ray-composition path for it (affine geometry) and the tree for curved
+// patches; hits on the surface (|f| / K, Reimers and Seland's metric), the same hits as the
+// tree's, every root finder by name, and a clear error where ray composition is forced on
+// curved patches.
+#include "RenderingTestUtilities.h"
+#include "vtkIGAAlgebraicSource.h"
+#include "vtkIGABezierHexahedra.h"
+#include "vtkIGAIsosurfaceMapper.h"
+
+#include "iga/AlgebraicGallery.h"
+#include "iga/BernsteinRoots.h"
+#include "iga/Datasets.h"
+#include "iga/PolynomialExpression.h"
+#include "iga/sst/Engine.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+struct AlgebraicScene : igatest::MapperScene
+{
+  vtkNew<vtkIGAAlgebraicSource> source;
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> onError;
+
+  explicit AlgebraicScene(const char* surface)
+    : MapperScene(120, 120)
+  {
+    source->SetGallerySurfaceByName(surface);
+    mapper->SetInputConnection(source->GetOutputPort());
+    mapper->SetSurfaceArrayName("f");
+    mapper->SetIsovalue(0, 0.0);
+    mapper->SetNumberOfThreads(2);
+    onError->SetClientData(&errors);
+    onError->SetCallback(
+      [](vtkObject*, unsigned long, void* client, void* call) {
+        static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call));
+      });
+    mapper->AddObserver(vtkCommand::ErrorEvent, onError);
+    const double* box = iga::findAlgebraicSurface(surface)->box;
+    const double centre[3] = { (box[0] + box[1]) / 2, (box[2] + box[3]) / 2,
+      (box[4] + box[5]) / 2 };
+    const double size = box[1] - box[0];
+    look(centre[0] - 1.6 * size, centre[1] - 2.0 * size, centre[2] + 1.2 * size, centre[0],
+      centre[1], centre[2]);
+  }
+
+  iga::sst::GBuffer draw()
+  {
+    window->Render();
+    return mapper->GetLastGBuffer();
+  }
+
+  /// K: the largest Bernstein coefficient of f.
+  double largestCoefficient()
+  {
+    source->Update();
+    double range[2];
+    source->GetOutput()->GetPointData()->GetArray("f")->GetRange(range);
+    return std::max(std::fabs(range[0]), std::fabs(range[1]));
+  }
+};
+
+TEST(AlgebraicMapper, GallerySurfacesTakeRayCompositionAndAgreeWithTheTree)
+{
+  for (const char* name : { "sphere", "tangle" })
+  {
+    SCOPED_TRACE(name);
+    AlgebraicScene scene(name);
+    const auto f = iga::parsePolynomial(iga::findAlgebraicSurface(name)->expression);
+    const iga::sst::GBuffer composed = scene.draw();
+    EXPECT_EQ(scene.mapper->GetLastRayCompositionPatches(), 1);
+    EXPECT_EQ(scene.mapper->GetLastSstPatches(), 0);
+    EXPECT_EQ(scene.mapper->GetLastUnresolvedPixels(), 0);
+    ASSERT_GT(composed.coveredPixels(), 2000u);
+    const double largest = scene.largestCoefficient();
+    for (const auto& hit : composed.hits)
+    {
+      EXPECT_LT(
+        std::fabs(f.evaluate(hit.position.x, hit.position.y, hit.position.z)) / largest, 1e-9);
+      if (std::string(name) == "sphere")
+        EXPECT_NEAR(glm::length(hit.position), 1.0, 1e-9);
+    }
+    scene.mapper->SetMethodToSharedSubdivisionTree();
+    const iga::sst::GBuffer tree = scene.draw();
+    EXPECT_EQ(scene.mapper->GetLastRayCompositionPatches(), 0);
+    EXPECT_EQ(scene.mapper->GetLastSstPatches(), 1);
+    // The same first hits, to 1e-6, but for pixels grazing the silhouette (the tree and ray
+    // composition decide a tangent ray's touch differently).
+    size_t differing = 0;
+    for (int j = 0; j < composed.height; ++j)
+      for (int i = 0; i < composed.width; ++i)
+      {
+        const auto* a = composed.firstHit(i, j);
+        const auto* b = tree.firstHit(i, j);
+        differing += (!a != !b) || (a && b && glm::length(a->position - b->position) > 1e-6);
+      }
+    EXPECT_LE(differing, composed.coveredPixels() / 200);
+    EXPECT_TRUE(scene.errors.empty());
+  }
+}
+
+TEST(AlgebraicMapper, EveryRootFinderByNameDrawsTheSameSurface)
+{
+  AlgebraicScene scene("tangle");
+  const iga::sst::GBuffer reference = scene.draw();
+  for (int f = 0; f < iga::kRootFinderCount; ++f)
+  {
+    const char* name = iga::rootFinderName(iga::RootFinder(f));
+    scene.mapper->SetRootFinderByName(name);
+    EXPECT_EQ(scene.mapper->GetRootFinder(), f) << name;
+    const iga::sst::GBuffer composed = scene.draw();
+    ASSERT_EQ(composed.offsets, reference.offsets) << name;
+    for (size_t h = 0; h < composed.hits.size(); ++h)
+      EXPECT_LT(glm::length(composed.hits[h].position - reference.hits[h].position), 1e-9) << name;
+  }
+  scene.mapper->SetRootFinderByName("secant");
+  ASSERT_EQ(scene.errors.size(), 1u);
+  EXPECT_NE(scene.errors[0].find("root finder 'secant' is none of"), std::string::npos)
+    << scene.errors[0];
+  EXPECT_EQ(scene.mapper->GetRootFinder(), vtkIGAIsosurfaceMapper::ROOT_FINDER_POLAR_NEWTON);
+}
+
+TEST(AlgebraicMapper, CurvedPatchesTakeTheTreeAndForcedRayCompositionIsRefused)
+{
+  igatest::MapperScene scene(120, 100);
+  scene.mapper->SetInputData(
+    vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5)));
+  scene.mapper->SetSurfaceArrayName("temperature");
+  scene.mapper->SetIsovalue(0, 0.0);
+  scene.look(2.4, -3.0, 2.6, 0.2, 0.0, 1.0);
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&errors);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call)
+    { static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call)); });
+  scene.mapper->AddObserver(vtkCommand::ErrorEvent, onError);
+  scene.window->Render();
+  EXPECT_EQ(scene.mapper->GetLastSstPatches(), 8);
+  EXPECT_EQ(scene.mapper->GetLastRayCompositionPatches(), 0);
+  EXPECT_GT(scene.mapper->GetLastGBuffer().coveredPixels(), 1000u);
+  scene.mapper->SetMethodToRayComposition();
+  scene.window->Render();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find("ray composition needs affine geometry"), std::string::npos)
+    << errors[0];
+  EXPECT_NE(errors[0].find("patch 0 has not"), std::string::npos) << errors[0];
+}
+
+} // namespace
