@@ -194,6 +194,8 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CappedClips: " << this->CappedClips.size() << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "Backend: " << this->Backend << "\n";
+  os << indent << "Method: " << this->Method << "\n";
+  os << indent << "RootFinder: " << iga::rootFinderName(iga::RootFinder(this->RootFinder)) << "\n";
   os << indent << "MaximumSubdivisionDepth: " << this->MaximumSubdivisionDepth << "\n";
   os << indent << "MemoryBudgetMB: " << this->MemoryBudgetMB << "\n";
   os << indent << "FrameDeadline: " << this->FrameDeadline << "\n";
@@ -901,7 +903,8 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
     double(actor->GetProperty()->GetMTime()), double(this->GetLookupTable()->GetMTime()),
     double(frame.Width), double(frame.Height), double(this->Backend),
     double(this->MaximumSubdivisionDepth), double(this->MemoryBudgetMB),
-    double(this->NumberOfThreads), this->FrameDeadline };
+    double(this->NumberOfThreads), this->FrameDeadline, double(this->Method),
+    double(this->RootFinder) };
   frame.Key.insert(frame.Key.end(), worldToClip->GetData(), worldToClip->GetData() + 16);
   frame.Key.insert(
     frame.Key.end(), actor->GetMatrix()->GetData(), actor->GetMatrix()->GetData() + 16);
@@ -964,6 +967,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   settings.backend = this->Backend == BACKEND_CPU    ? iga::sst::Backend::Cpu
                      : this->Backend == BACKEND_CUDA ? iga::sst::Backend::Cuda
                                                      : iga::sst::Backend::Automatic;
+  settings.rootFinder = iga::RootFinder(this->RootFinder);
   // Progress after every subdivision round (on this thread): the share of the most (pixel,
   // sub-patch) pairs seen in this frame that is done, never decreasing, below 1 until the frame
   // is over.
@@ -1091,6 +1095,30 @@ void vtkIGAIsosurfaceMapper::UpdateDataVersion(vtkMatrix4x4* matrix)
   }
 }
 
+void vtkIGAIsosurfaceMapper::SetRootFinderByName(const char* name)
+{
+  try
+  {
+    this->SetRootFinder(int(iga::parseRootFinder(name ? name : "")));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    vtkErrorMacro(<< e.what());
+  }
+}
+
+namespace
+{
+iga::sst::Method engineMethod(int method)
+{
+  return method == vtkIGAIsosurfaceMapper::METHOD_SHARED_SUBDIVISION_TREE
+           ? iga::sst::Method::SharedSubdivisionTree
+         : method == vtkIGAIsosurfaceMapper::METHOD_RAY_COMPOSITION
+           ? iga::sst::Method::RayComposition
+           : iga::sst::Method::Automatic;
+}
+} // namespace
+
 bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
 {
   Internals& in = *this->Internal;
@@ -1109,7 +1137,7 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
       this->UpdateNurbs(matrix);
     in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
     in.LastExtractionVersion = nurbs ? in.Nurbs.ExtractionVersion : 0;
-    const auto method = iga::sst::Method::SharedSubdivisionTree;
+    const auto method = engineMethod(this->Method);
     const auto report =
       this->DrawMode == DRAW_CSG ? this->ComputeCsgFrame(matrix->IsIdentity() != 0, frame)
       : nurbs ? iga::sst::render(in.Nurbs.Volumes(matrix->IsIdentity() ? nullptr : &in.NurbsWorld),
@@ -1164,7 +1192,7 @@ iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, con
   scene.slices = this->Slices;
   scene.colorAttribute = frame.ByScalars ? this->ArrayName : "";
   return iga::sst::renderCsg(
-    scene, frame.View, frame.Settings, iga::sst::Method::SharedSubdivisionTree, in.GBuffer);
+    scene, frame.View, frame.Settings, engineMethod(this->Method), in.GBuffer);
 }
 
 bool vtkIGAIsosurfaceMapper::UpdateNurbs(vtkMatrix4x4* matrix)
@@ -1193,6 +1221,8 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
   Internals& in = *this->Internal;
   this->LastEngineTime = report.msTotal;
   this->LastUnresolvedPixels = vtkIdType(report.unresolvedPixels);
+  this->LastRayCompositionPatches = vtkIdType(report.rayCompositionPatches);
+  this->LastSstPatches = vtkIdType(report.sstPatches);
   in.LastBackend = report.backend;
   in.LastNotice = report.notice;
   if (!report.notice.empty() && in.Notices.insert(report.notice).second)

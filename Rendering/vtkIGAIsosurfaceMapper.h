@@ -47,11 +47,15 @@
  * is usable, else CPU threads; CPU; CUDA, which falls back to CPU threads when it cannot run),
  * NumberOfThreads (CPU), MaximumSubdivisionDepth and MemoryBudgetMB (the caps at which a pixel
  * with work left is given up and counted as unresolved), FrameDeadline (seconds after which a
- * frame stops with what it has found). Changing any of them re-runs the engine. GetLastBackend()
- * says where the last frame ran; when that is not where it was asked to run, the engine's one-line
- * notice is printed once per mapper and notice: a warning when CUDA was asked for (Backend CUDA, or
- * IGAVIEW_BACKEND=cuda) or a CUDA frame failed, a plain message (vtkOutputWindow text) when the
- * automatic choice fell back to CPU threads.
+ * frame stops with what it has found), Method (automatic: patches with affine geometry, as
+ * algebraic surfaces over a box, by ray composition, the rest by the shared subdivision tree,
+ * composited in one frame; one of them for all) and RootFinder (ray composition's).
+ * GetLastRayCompositionPatches() and GetLastSstPatches() say how many patches took each path
+ * (a CUDA frame draws every patch by the tree). Changing any of them re-runs the engine.
+ * GetLastBackend() says where the last frame ran; when that is not where it was asked to run, the
+ * engine's one-line notice is printed once per mapper and notice: a warning when CUDA was asked for
+ * (Backend CUDA, or IGAVIEW_BACKEND=cuda) or a CUDA frame failed, a plain message (vtkOutputWindow
+ * text) when the automatic choice fell back to CPU threads.
  *
  * NURBS input on a GPU: when a frame is tried on a GPU and the input is one grid that carries
  * the NURBS description vtkIGANurbsData writes (the readers' and sources' output), the mapper
@@ -218,6 +222,40 @@ public:
   void SetBackendToCUDA() { this->SetBackend(BACKEND_CUDA); }
   ///@}
 
+  enum MethodType
+  {
+    METHOD_AUTOMATIC = 0, ///< per patch: affine geometry by ray composition, the rest by the SST
+    METHOD_SHARED_SUBDIVISION_TREE = 1,
+    METHOD_RAY_COMPOSITION = 2, ///< every patch; one without affine geometry is an error
+  };
+
+  ///@{
+  /// How the engine draws the patches (MethodType); default automatic.
+  vtkSetClampMacro(Method, int, METHOD_AUTOMATIC, METHOD_RAY_COMPOSITION);
+  vtkGetMacro(Method, int);
+  void SetMethodToAutomatic() { this->SetMethod(METHOD_AUTOMATIC); }
+  void SetMethodToSharedSubdivisionTree() { this->SetMethod(METHOD_SHARED_SUBDIVISION_TREE); }
+  void SetMethodToRayComposition() { this->SetMethod(METHOD_RAY_COMPOSITION); }
+  ///@}
+
+  enum RootFinderType
+  {
+    ROOT_FINDER_SUBDIVISION = 0,     ///< de Casteljau at the midpoint (Lane-Riesenfeld)
+    ROOT_FINDER_KNOT_INSERTION = 1,  ///< Mørken-Reimers
+    ROOT_FINDER_BEZIER_CLIPPING = 2, ///< Nishita-Sederberg-Kakimoto
+    ROOT_FINDER_POINT_INSERTION = 3, ///< Wei-Feng's Bézier point insertion
+    ROOT_FINDER_POLAR_NEWTON = 4,    ///< Wei-Feng's Newton and regula falsi, polar isolation
+  };
+
+  ///@{
+  /// Ray composition's root finder (RootFinderType, iga::RootFinder's order); default point
+  /// insertion. SetRootFinderByName takes iga::rootFinderName's names and reports an unknown
+  /// one as an error, keeping the finder.
+  vtkSetClampMacro(RootFinder, int, ROOT_FINDER_SUBDIVISION, ROOT_FINDER_POLAR_NEWTON);
+  vtkGetMacro(RootFinder, int);
+  void SetRootFinderByName(const char* name);
+  ///@}
+
   ///@{
   /// Subdivision levels below an input patch before a pixel is given up (default 22).
   vtkSetClampMacro(MaximumSubdivisionDepth, int, 0, 40);
@@ -272,6 +310,10 @@ public:
   /// Names the knot vectors, degrees and net sizes of the last frame's NURBS input (0 when it
   /// used the cells): unchanged over time steps that only move the control nets.
   vtkTypeUInt64 GetLastExtractionVersion() const;
+
+  /// Patches the last frame computed drew by ray composition and by the SST.
+  vtkIdType GetLastRayCompositionPatches() const { return this->LastRayCompositionPatches; }
+  vtkIdType GetLastSstPatches() const { return this->LastSstPatches; }
 
   /// Pixels of the last frame computed that still had work left at a cap.
   vtkIdType GetLastUnresolvedPixels() const { return this->LastUnresolvedPixels; }
@@ -371,11 +413,14 @@ private:
   bool AllLayers = false;
   int NumberOfThreads = 0;
   int Backend = BACKEND_AUTOMATIC;
+  int Method = METHOD_AUTOMATIC;
+  int RootFinder = ROOT_FINDER_POINT_INSERTION;
   int MaximumSubdivisionDepth = 22;
   double FrameDeadline = 0;
   int MemoryBudgetMB = 4096;
   double LastEngineTime = 0;
   vtkIdType LastUnresolvedPixels = 0;
+  vtkIdType LastRayCompositionPatches = 0, LastSstPatches = 0;
 };
 
 #endif
