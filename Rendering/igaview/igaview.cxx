@@ -3,6 +3,7 @@
 // vtkIGAIsosurfaceMapper in an offscreen VTK render window and writes a PNG and, on request, the
 // engine's OpenEXR G-buffer of the same frame. `igaview view` shows them in an interactive
 // window (trackball camera, keys for the isovalue and time, frame-time readout).
+#include "vtkIGAAlgebraicSource.h"
 #include "vtkIGABezierFileReading.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGABezierSeriesReader.h"
@@ -34,6 +35,8 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkWindowToImageFilter.h"
 
+#include "iga/AlgebraicGallery.h"
+#include "iga/BernsteinRoots.h"
 #include "iga/Bounds.h"
 #include "iga/Csg.h"
 #include "iga/sst/Engine.h"
@@ -59,8 +62,9 @@ const char* const kUsage = R"(usage: igaview render [INPUT] [options]
        igaview view [INPUT] [options]
 
 render: draws isosurfaces of rational Bezier volumes, or the surfaces of a geometry (the
-boundary of its volumes and its surface patches), pixel-exactly (Shared Subdivision Trees) to a
-PNG image and optionally an OpenEXR G-buffer.
+boundary of its volumes and its surface patches), pixel-exactly (Shared Subdivision Trees; ray
+composition for patches with affine geometry) to a PNG image and optionally an OpenEXR
+G-buffer; or an algebraic surface f(x, y, z) = 0 (--algebraic, --gallery).
 view: shows them in an interactive window: drag to rotate (trackball), right-drag or wheel to
 zoom, middle-drag to pan; Up/Down raise/lower the isovalue by 2% of the attribute's range,
 Right/Left step the time (inputs with time steps: the default dataset, a .pvd series), r resets
@@ -74,6 +78,20 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
                          HigherOrderDegrees where a cell's degrees differ), a .pvd collection of
                          such files (a time series: one file a time step), or a G+Smo XML or
                          GeoPDEs text geometry (geometry only: drawn as surfaces by default)
+  --algebraic EXPR       instead of INPUT, the algebraic surface EXPR = 0: a polynomial in x, y,
+                         z (+ - * ^ by whole exponents, / by constants, parentheses, decimal
+                         constants; total degree up to 16) over --box, as the exact Bernstein
+                         volume of attribute f (isovalue 0 unless --iso says otherwise)
+  --box x0,x1,y0,y1,z0,z1
+                         the box --algebraic draws over (default -1.2,1.2,-1.2,1.2,-1.2,1.2)
+  --gallery NAME         instead of INPUT, a surface of the papers' gallery over its own box:
+                         sphere, cayley, clebsch, kummer, dervish, kiss, heart, klein,
+                         linked-tori, tangle, barth-decic, super-sphere
+  --method M             auto (default: patches with affine geometry by ray composition, the
+                         others by the SST), sst, or ray-composition (every patch; curved ones
+                         are refused)
+  --root-finder NAME     ray composition's root finder: subdivision, knot-insertion,
+                         bezier-clipping, point-insertion (default) or polar-newton
   --surface              draw the surfaces (volumes' boundaries, surface patches), not
                          isosurfaces; the default for geometry files and for input without volumes
   --edges                draw the element edges (every knot line of NURBS input) over the surface
@@ -138,6 +156,11 @@ struct Options
   int memoryBudgetMB = 4096;
   double deadline = -1; ///< seconds; -1: the command's default
   iga::sst::Backend backend = iga::sst::Backend::Automatic;
+  std::string algebraic, gallery; ///< --algebraic, --gallery
+  bool hasBox = false;
+  double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
+  int method = vtkIGAIsosurfaceMapper::METHOD_AUTOMATIC;
+  iga::RootFinder rootFinder = iga::RootFinder::PointInsertion;
   double time = 0.5;
   bool hasPosition = false, hasFocal = false, hasViewUp = false;
   double position[3], focal[3], viewUp[3], viewAngle = 30;
@@ -268,6 +291,39 @@ void checkOutputs(const Options& options)
     checkOutputPath("--deep-exr", options.deepExr);
 }
 
+/// --method's value as the mapper's MethodType.
+int parseMethodOption(const std::string& name)
+{
+  const char* names[] = { "auto", "sst", "ray-composition" };
+  for (int m = 0; m < 3; ++m)
+  {
+    if (name == names[m])
+      return m; // the mapper's METHOD_ order
+  }
+  fail("--method: '" + name + "' is none of auto, sst, ray-composition");
+}
+
+/// --algebraic, --gallery and --box stand instead of an input, one of them, the box with the
+/// expression; a gallery name must be known.
+void checkAlgebraic(const Options& options)
+{
+  const bool algebraic = !options.algebraic.empty(), gallery = !options.gallery.empty();
+  if (algebraic && gallery)
+    fail("--algebraic and --gallery each give the surface: take one");
+  if ((algebraic || gallery) && !options.input.empty())
+    fail(std::string(algebraic ? "--algebraic" : "--gallery") + " stands instead of an input, '" +
+         options.input + "' given too");
+  if (options.hasBox && !algebraic)
+    fail("--box is the box of --algebraic's expression (gallery surfaces bring their own)");
+  if (gallery && !iga::findAlgebraicSurface(options.gallery))
+  {
+    std::string names;
+    for (int k = 0; k < vtkIGAAlgebraicSource::GetNumberOfGallerySurfaces(); ++k)
+      names += std::string(k ? ", " : "") + vtkIGAAlgebraicSource::GetGallerySurfaceName(k);
+    fail("--gallery: no surface '" + options.gallery + "' (have: " + names + ")");
+  }
+}
+
 Options parseArguments(int argc, char** argv)
 {
   if (argc < 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")
@@ -366,6 +422,25 @@ Options parseArguments(int argc, char** argv)
         fail(std::string("--backend: ") + e.what());
       }
     }
+    else if (arg == "--algebraic")
+      options.algebraic = value();
+    else if (arg == "--box")
+      parseNumbers(value(), arg, 6, "x0,x1,y0,y1,z0,z1", options.box), options.hasBox = true;
+    else if (arg == "--gallery")
+      options.gallery = value();
+    else if (arg == "--method")
+      options.method = parseMethodOption(value());
+    else if (arg == "--root-finder")
+    {
+      try
+      {
+        options.rootFinder = iga::parseRootFinder(value());
+      }
+      catch (const std::invalid_argument& e)
+      {
+        fail(std::string("--root-finder: ") + e.what());
+      }
+    }
     else if (arg == "--size")
     {
       const std::string text = value();
@@ -396,6 +471,7 @@ Options parseArguments(int argc, char** argv)
     else
       fail("more than one input given: '" + options.input + "' and '" + arg + "'");
   }
+  checkAlgebraic(options);
   checkImageBudget(options);
   checkOutputs(options);
   return options;
@@ -408,6 +484,7 @@ struct Input
   vtkSmartPointer<vtkAlgorithm> producer;
   vtkIGABezierHexahedra::Patches patches;
   bool geometry = false;
+  bool algebraic = false; ///< an algebraic surface: attribute f, drawn at 0
 };
 
 /// Runs `request` (a pipeline update returning whether it succeeded), failing with the first
@@ -499,7 +576,20 @@ Input loadInput(const Options& options)
   std::string name = options.input;
   vtkNew<vtkIGAGismoReader> gismo;
   vtkNew<vtkIGAGeoPDEsReader> geopdes;
-  if (options.input.empty())
+  if (!options.algebraic.empty() || !options.gallery.empty())
+  {
+    auto source = vtkSmartPointer<vtkIGAAlgebraicSource>::New();
+    source->SetExpression(options.algebraic.c_str());
+    source->SetBox(options.box);
+    if (!options.gallery.empty())
+      source->SetGallerySurfaceByName(options.gallery.c_str());
+    name = options.gallery.empty() ? "--algebraic" : "--gallery " + options.gallery;
+    requestOrFail(name, [&] { return source->GetExecutive()->Update() != 0; });
+    input.producer = source;
+    input.algebraic = true;
+    convertOutput(source, name, input.patches, warnings);
+  }
+  else if (options.input.empty())
   {
     if (!(options.time >= 0 && options.time <= 1))
       fail("--time must lie in 0..1 for the default dataset");
@@ -873,6 +963,8 @@ Drawing chooseDrawing(const Options& options, const Input& input)
       options.surfaceBy.empty() ? 0 : attributeIndex(input, options.surfaceBy, "--surface-by");
     attributeRange(input, drawing.surface, false, drawing.surfaceRange);
     drawing.isovalues = options.isovalues;
+    if (drawing.isovalues.empty() && input.algebraic)
+      drawing.isovalues.push_back(0.0);
     if (drawing.isovalues.empty())
     {
       double taken[2];
@@ -920,6 +1012,8 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
   mapper->SetFrameDeadline(options.deadline >= 0 ? options.deadline : options.view ? 2.0 : 0.0);
   // The mapper's BackendType follows the engine's Backend order (auto, CPU, CUDA).
   mapper->SetBackend(int(options.backend));
+  mapper->SetMethod(options.method);
+  mapper->SetRootFinder(int(options.rootFinder)); // RootFinderType follows iga::RootFinder
   for (size_t k = 0; k < drawing.isovalues.size(); ++k)
     mapper->SetIsovalue(int(k), drawing.isovalues[k]);
   mapper->ScalarVisibilityOff();
@@ -991,6 +1085,43 @@ void describe(const Options& options, const Input& input, const Drawing& drawing
     options.size[0], options.size[1]);
 }
 
+/// The mapper's first error message, on one line without VTK's "ERROR: In FILE ... (ADDRESS): "
+/// (set by the observer watchErrors installs, which also keeps VTK from printing it).
+std::string mapperError;
+
+vtkSmartPointer<vtkCallbackCommand> watchErrors(vtkIGAIsosurfaceMapper* mapper)
+{
+  auto onError = vtkSmartPointer<vtkCallbackCommand>::New();
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void*, void* text)
+    {
+      std::string message = static_cast<const char*>(text);
+      const size_t at = message.find("): ");
+      message = message.substr(at == std::string::npos ? 0 : at + 3);
+      if (mapperError.empty())
+        mapperError = message.substr(0, message.find_last_not_of('\n') + 1);
+    });
+  mapper->AddObserver(vtkCommand::ErrorEvent, onError);
+  return onError;
+}
+
+/// The paths the last frame's patches took: "SST engine", "ray composition (FINDER)", or both
+/// with their patch counts.
+std::string enginePaths(vtkIGAIsosurfaceMapper* mapper)
+{
+  const std::string composition = std::string("ray composition (") +
+                                  iga::rootFinderName(iga::RootFinder(mapper->GetRootFinder())) +
+                                  ")";
+  const vtkIdType composed = mapper->GetLastRayCompositionPatches();
+  const vtkIdType tree = mapper->GetLastSstPatches();
+  if (composed == 0)
+    return "SST engine";
+  if (tree == 0)
+    return composition;
+  return "SST engine for " + std::to_string(tree) + " patches, " + composition + " for " +
+         std::to_string(composed);
+}
+
 /// The PNG of the window and, for --exr, the G-buffer.
 void writeOutputs(const Options& options, const Input& input, const Drawing& drawing,
   vtkRenderWindow* window, vtkIGAIsosurfaceMapper* mapper)
@@ -999,10 +1130,10 @@ void writeOutputs(const Options& options, const Input& input, const Drawing& dra
   const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
   if (gbuffer.width != options.size[0] || gbuffer.height != options.size[1])
   {
-    fail("the isosurface could not be rendered (see the message above)");
+    fail(mapperError.empty() ? "the isosurface could not be rendered" : mapperError);
   }
-  std::printf("igaview: %zu pixels covered in %.1f ms (SST engine, %s)\n", gbuffer.coveredPixels(),
-    mapper->GetLastEngineTime(), mapper->GetLastBackend());
+  std::printf("igaview: %zu pixels covered in %.1f ms (%s, %s)\n", gbuffer.coveredPixels(),
+    mapper->GetLastEngineTime(), enginePaths(mapper).c_str(), mapper->GetLastBackend());
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->ReadFrontBufferOff();
@@ -1055,19 +1186,7 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
     fail("--series: '" + options.input +
          "' has no time steps (a .pvd series and the default dataset have)");
   // A step the mapper refuses (an attribute it lacks) leaves the last frame's G-buffer: fail.
-  std::string refused;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&refused);
-  onError->SetCallback(
-    [](vtkObject*, unsigned long, void* data, void* text)
-    {
-      auto& first = *static_cast<std::string*>(data);
-      const std::string message = static_cast<const char*>(text);
-      const size_t at = message.find("): "); // after VTK's "ERROR: In FILE ... (ADDRESS)"
-      if (first.empty())
-        first = message.substr(at == std::string::npos ? 0 : at + 3);
-    });
-  mapper->AddObserver(vtkCommand::ErrorEvent, onError);
+  const std::string& refused = mapperError;
   for (size_t k = 0; k < steps.size(); ++k)
   {
     requestOrFail("time " + std::to_string(steps[k]),
@@ -1075,7 +1194,7 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
     window->Render();
     if (!refused.empty())
       fail("time step " + std::to_string(k + 1) + " of " + std::to_string(steps.size()) + ": " +
-           refused.substr(0, refused.find_last_not_of('\n') + 1));
+           refused);
     std::printf("igaview: time step %zu of %zu, time %g\n", k + 1, steps.size(), steps[k]);
     Options frame = options;
     frame.output = numbered(options.output, k);
@@ -1105,6 +1224,7 @@ int main(int argc, char** argv)
   vtkNew<vtkIGAIsosurfaceMapper> mapper;
   vtkNew<vtkColorTransferFunction> coolToWarm;
   configureMapper(options, input, drawing, mapper, coolToWarm);
+  const auto errorWatch = watchErrors(mapper);
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   configureActor(options, actor);
