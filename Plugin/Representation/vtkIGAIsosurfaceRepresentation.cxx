@@ -203,6 +203,26 @@ void vtkIGAIsosurfaceRepresentation::SetBackend(int backend)
   this->Mapper->SetBackend(backend);
 }
 
+void vtkIGAIsosurfaceRepresentation::SetMethod(int method)
+{
+  this->Mapper->SetMethod(method);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetRootFinder(int finder)
+{
+  this->Mapper->SetRootFinder(finder);
+}
+
+int vtkIGAIsosurfaceRepresentation::GetLastRayCompositionPatches()
+{
+  return int(this->Mapper->GetLastRayCompositionPatches());
+}
+
+int vtkIGAIsosurfaceRepresentation::GetLastSstPatches()
+{
+  return int(this->Mapper->GetLastSstPatches());
+}
+
 void vtkIGAIsosurfaceRepresentation::SetMaximumSubdivisionDepth(int depth)
 {
   this->Mapper->SetMaximumSubdivisionDepth(depth);

@@ -76,6 +76,13 @@ public:
   void SetNumberOfThreads(int threads);
   /// 0 automatic, 1 CPU, 2 CUDA (vtkIGAIsosurfaceMapper::BackendType).
   void SetBackend(int backend);
+  /// 0 automatic, 1 SST, 2 ray composition (vtkIGAIsosurfaceMapper::MethodType).
+  void SetMethod(int method);
+  /// Ray composition's root finder (vtkIGAIsosurfaceMapper::RootFinderType).
+  void SetRootFinder(int finder);
+  /// The patches the last frame drew by ray composition and by the SST (the mapper's).
+  int GetLastRayCompositionPatches();
+  int GetLastSstPatches();
   void SetMaximumSubdivisionDepth(int depth);
   /// The engine's memory budget in MiB.
   void SetMemoryBudget(int megabytes);

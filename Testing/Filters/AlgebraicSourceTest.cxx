@@ -18,6 +18,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 namespace
@@ -88,6 +90,22 @@ TEST(AlgebraicSource, GallerySurfacesComeWithTheirBoxes)
       << name;
     if (std::string(name) != "super-sphere") // VTK's cells evaluate up to degree 10
       EXPECT_LT(fieldError(grid, surface->expression), 1e-10) << name;
+  }
+}
+
+TEST(AlgebraicSource, ThePluginsMenuListsTheGallery)
+{
+  std::ifstream file(std::string(IGAVIEW_SOURCE_DIR) + "/Plugin/IGAViewSources.xml");
+  ASSERT_TRUE(file) << "Plugin/IGAViewSources.xml";
+  const std::string xml((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const size_t proxy = xml.find("class=\"vtkIGAAlgebraicSource\"");
+  ASSERT_NE(proxy, std::string::npos);
+  const std::string entries = xml.substr(proxy, xml.find("</EnumerationDomain>", proxy) - proxy);
+  for (int k = 0; k < vtkIGAAlgebraicSource::GetNumberOfGallerySurfaces(); ++k)
+  {
+    const std::string entry = "<Entry value=\"" + std::to_string(k) + "\" text=\"" +
+                              vtkIGAAlgebraicSource::GetGallerySurfaceName(k) + "\" />";
+    EXPECT_NE(entries.find(entry), std::string::npos) << entry;
   }
 }
 
