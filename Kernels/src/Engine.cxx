@@ -147,10 +147,14 @@ public:
         break;
       case Method::RayComposition:
         this->Affine = affinePatches(this->Patches, this->Config, this->Report);
+        this->Forms =
+          frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::rayComposition); });
         break;
       case Method::Automatic:
         this->Affine = affineWherePossible(this->Patches, this->Config, this->Report);
+        this->Forms =
+          frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
         drawFrame(s, this->Config, [&] { this->automaticPass(); });
         break;
     }
@@ -487,7 +491,7 @@ private:
   void rayComposition()
   {
     std::vector<std::vector<RawHit>> perPixel;
-    rayCompositionPass(this->TheView, this->Config, this->Affine, this->Loop,
+    rayCompositionPass(this->TheView, this->Config, this->Affine, this->Forms, this->Loop,
       this->Plan.initialNodes.data(), this->Plan.threads, perPixel, this->Report);
     this->appendPixelHits(perPixel);
   }
@@ -552,6 +556,7 @@ private:
   FramePlan Plan;
   std::vector<PatchShape> Shapes;
   std::vector<AffinePatch> Affine; // ray composition: each patch's affine form
+  std::vector<FrustumForm> Forms;  // and its frustum form where one pays
   LoopState<CpuExec> Loop;
   std::vector<Node> Leaves; ///< brute force
   std::vector<double> LeafPool;

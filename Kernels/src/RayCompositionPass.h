@@ -5,6 +5,7 @@
 #pragma once
 
 #include "ParallelFor.h"
+#include "iga/FrustumForm.h"
 #include "iga/RayComposition.h"
 #include "iga/sst/Engine.h"
 #include "sst/CpuExec.h"
@@ -61,6 +62,24 @@ inline std::vector<AffinePatch> affinePatches(
   return affine;
 }
 
+/// Each affine patch's frustum form for the view, where it pays (makeFrustumForm); counted in
+/// the report.
+inline std::vector<FrustumForm> frustumForms(const std::vector<AffinePatch>& affine,
+  const View& view, const Settings& settings, int threads, FrameReport& report)
+{
+  const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
+  std::vector<FrustumForm> forms(affine.size());
+  for (size_t p = 0; p < affine.size(); ++p)
+  {
+    report.frustumPatches +=
+      makeFrustumForm(affine[p], view.worldToClip, clipToWorld, settings.width, settings.height,
+        forms[p], [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); })
+        ? 1
+        : 0;
+  }
+  return forms;
+}
+
 /// Removes the work items of affine patches (ray composition's) from the band's lists, so that
 /// the SST's rounds see the others only.
 inline void dropAffineItems(
@@ -88,8 +107,9 @@ inline void dropAffineItems(
 /// The hits of the band's pixels (s.frame's), per pixel, on the affine patches (rayDegree >= 0);
 /// in first-hit mode a pixel's items beyond its nearest hit so far are skipped.
 inline void rayCompositionPass(const View& view, const Settings& settings,
-  const std::vector<AffinePatch>& affine, const LoopState<CpuExec>& s, const Node* initialNodes,
-  int threads, std::vector<std::vector<RawHit>>& perPixel, FrameReport& report)
+  const std::vector<AffinePatch>& affine, const std::vector<FrustumForm>& forms,
+  const LoopState<CpuExec>& s, const Node* initialNodes, int threads,
+  std::vector<std::vector<RawHit>>& perPixel, FrameReport& report)
 {
   static const std::vector<ChebyshevInterpolation> interpolation = []
   {
@@ -145,8 +165,17 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
           const glm::dvec3 u0 = patch.inverse * (origin + t0 * direction - patch.origin);
           const glm::dvec3 du = patch.inverse * ((t1 - t0) * direction);
           double coefficients[kMaxOrder];
-          composeRay(patch, settings.isovalues[size_t(node.iso)], u0, du,
-            interpolation[size_t(patch.rayDegree)], coefficients);
+          const FrustumForm& form = forms[size_t(node.patch)];
+          if (form.degree >= 0)
+          {
+            composeFrustumRay(form, settings.isovalues[size_t(node.iso)], x, y, t0, t1,
+              interpolation[size_t(patch.rayDegree)], coefficients);
+          }
+          else
+          {
+            composeRay(patch, settings.isovalues[size_t(node.iso)], u0, du,
+              interpolation[size_t(patch.rayDegree)], coefficients);
+          }
           RootSettings rootSettings;
           const BernsteinRoots roots =
             findBernsteinRoots(coefficients, patch.rayDegree, settings.rootFinder, rootSettings);

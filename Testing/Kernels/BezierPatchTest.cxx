@@ -4,6 +4,9 @@
 
 #include "iga/BezierPatch.h"
 
+#include <algorithm>
+#include <array>
+
 using namespace igatest;
 
 namespace
@@ -165,6 +168,63 @@ TYPED_TEST(BezierPatchTest, EvaluatesOnlyTheLeadingChannelsAsked)
   }
   const int high[3] = { 16, 16, 16 };
   checkLeadingChannels<TypeParam, 3>(rng, high);
+}
+
+/// Value and gradient of one channel as the sum over every control point of its basis product.
+template<class T>
+void pointByPoint(const iga::VolumeView<const T>& patch, const double* u, int c, double* out)
+{
+  double basis[3][iga::kMaxOrder], dbasis[3][iga::kMaxOrder];
+  for (int d = 0; d < 3; ++d)
+    iga::bernsteinBasis(patch.degree[d], u[d], basis[d], dbasis[d]);
+  std::fill(out, out + 4, 0.0);
+  for (int p = 0; p < patch.pointCount(); ++p)
+  {
+    const int index[3] = { p % patch.order(0), p / patch.order(0) % patch.order(1),
+      p / (patch.order(0) * patch.order(1)) };
+    const double value = double(patch.point(p)[c]);
+    out[0] += basis[0][index[0]] * basis[1][index[1]] * basis[2][index[2]] * value;
+    for (int d = 0; d < 3; ++d)
+    {
+      double product = value;
+      for (int e = 0; e < 3; ++e)
+        product *= e == d ? dbasis[e][index[e]] : basis[e][index[e]];
+      out[1 + d] += product;
+    }
+  }
+}
+
+TYPED_TEST(BezierPatchTest, EvaluationMatchesTheSumOverEveryControlPoint)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> param(0.0, 1.0);
+  // The unrolled shapes, the scratch-factorised ones and the channel-by-channel ones.
+  for (const auto& degree : { std::array<int, 3>{ 3, 3, 3 }, std::array<int, 3>{ 4, 2, 5 },
+         std::array<int, 3>{ 7, 8, 2 }, std::array<int, 3>{ 16, 16, 16 } })
+  {
+    const auto patch = randomPatch<TypeParam, 3>(rng, degree.data(), 2);
+    const iga::VolumeView<const TypeParam> view = patch.view();
+    for (int sample = 0; sample < 5; ++sample)
+    {
+      const TypeParam u[3] = { TypeParam(param(rng)), TypeParam(param(rng)),
+        TypeParam(param(rng)) };
+      const double ud[3] = { double(u[0]), double(u[1]), double(u[2]) };
+      std::vector<TypeParam> values(size_t(view.channels)), derivatives(size_t(3 * view.channels));
+      iga::evaluateHomogeneous<TypeParam, 3>(view, u, values.data(), derivatives.data());
+      for (int c = 0; c < view.channels; ++c)
+      {
+        double reference[4];
+        pointByPoint(view, ud, c, reference);
+        const double scale = 1 + std::fabs(reference[0]);
+        EXPECT_NEAR(double(values[size_t(c)]), reference[0], Tolerance<TypeParam>::relative * scale)
+          << degree[0] << " " << degree[1] << " " << degree[2] << " channel " << c;
+        for (int d = 0; d < 3; ++d)
+          EXPECT_NEAR(double(derivatives[size_t(d * view.channels + c)]), reference[1 + d],
+            Tolerance<TypeParam>::relative * 20 * scale * (1 + degree[size_t(d)]))
+            << degree[0] << " " << degree[1] << " " << degree[2] << " channel " << c;
+      }
+    }
+  }
 }
 
 template<class T, int Dim>

@@ -6,6 +6,7 @@
 #include "iga/AlgebraicGallery.h"
 #include "iga/Camera.h"
 #include "iga/Deformation.h"
+#include "iga/FrustumForm.h"
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Engine.h"
 
@@ -14,6 +15,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <random>
 
 namespace
 {
@@ -109,6 +111,7 @@ TEST(RayComposition, SphereHitsLieOnTheSphere)
   const GBuffer composed =
     draw(sphere, 96, Method::RayComposition, iga::RootFinder::PointInsertion, &report);
   EXPECT_EQ(report.method, "ray-composition");
+  EXPECT_EQ(report.frustumPatches, 1u);
   EXPECT_GT(report.composedRays, 0u);
   EXPECT_EQ(report.cappedRays, 0u);
   ASSERT_GT(composed.coveredPixels(), 1000u);
@@ -122,6 +125,91 @@ TEST(RayComposition, SphereHitsLieOnTheSphere)
   EXPECT_EQ(c.onlyInA + c.onlyInB, 0u);
   EXPECT_EQ(c.nearerInA, 0u);
   EXPECT_LT(c.farthest, 1e-6);
+}
+
+/// Every gallery surface's rays through its frustum form against the same rays composed
+/// directly, for a perspective and a parallel view: Bernstein coefficients within 1e-11 of K
+/// (the largest coefficient of the patch). The super-sphere's x^16 grows a million-fold in the
+/// frustum's box beyond the patch, where rounding would reach every ray's coefficients: it has
+/// no form, and its rays are composed directly.
+TEST(RayComposition, FrustumFormComposesTheRaysComposeRayDoes)
+{
+  int count = 0;
+  const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int g = 0; g < count; ++g)
+  {
+    const Volume v = algebraicVolume(gallery[g].expression, gallery[g].box);
+    iga::AffinePatch patch;
+    ASSERT_TRUE(iga::affineGeometry(v.patches[0].view(), iga::kFirstAttributeChannel, patch));
+    const iga::ChebyshevInterpolation interpolation = iga::chebyshevInterpolation(patch.rayDegree);
+    double largest = 0;
+    for (double c : patch.field)
+      largest = std::max(largest, std::fabs(c));
+    for (bool parallel : { false, true })
+    {
+      iga::Camera camera = cameraOf(v);
+      camera.parallelProjection = parallel;
+      const iga::sst::View view = iga::sst::makeView(camera, 256, 256);
+      const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
+      iga::FrustumForm form;
+      const auto serial = [](size_t n, const auto& fn) { fn(size_t(0), n); };
+      const bool made =
+        iga::makeFrustumForm(patch, view.worldToClip, clipToWorld, 256, 256, form, serial);
+      ASSERT_EQ(made, g != count - 1) << gallery[g].name;
+      if (!made)
+        continue;
+      int composed = 0;
+      for (int trial = 0; trial < 400 && composed < 40; ++trial)
+      {
+        const double x = form.a[0] + form.a[1] * (2 * unit(rng) - 1);
+        const double y = form.b[0] + form.b[1] * (2 * unit(rng) - 1);
+        const glm::dvec4 nearPoint = clipToWorld * glm::dvec4(x, y, -1, 1);
+        const glm::dvec4 farPoint = clipToWorld * glm::dvec4(x, y, 1, 1);
+        const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
+        const glm::dvec3 direction = glm::dvec3(farPoint) / farPoint.w - origin;
+        double t0, t1;
+        if (!iga::rayInPatch(patch, origin, direction, 0, 1, t0, t1))
+          continue;
+        ++composed;
+        const glm::dvec3 u0 = patch.inverse * (origin + t0 * direction - patch.origin);
+        const glm::dvec3 du = patch.inverse * ((t1 - t0) * direction);
+        double direct[iga::kMaxOrder], frustum[iga::kMaxOrder];
+        iga::composeRay(patch, 0.25, u0, du, interpolation, direct);
+        iga::composeFrustumRay(form, 0.25, x, y, t0, t1, interpolation, frustum);
+        for (int k = 0; k <= patch.rayDegree; ++k)
+          EXPECT_NEAR(frustum[k], direct[k], 1e-11 * largest)
+            << gallery[g].name << (parallel ? " parallel" : " perspective") << " coefficient " << k;
+      }
+      EXPECT_EQ(composed, 40) << gallery[g].name;
+    }
+  }
+}
+
+TEST(RayComposition, AnEyeInsideThePatchComposesEveryRayDirectly)
+{
+  // A corner behind the eye leaves no screen box: no frustum form, the same surface.
+  const double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
+  const Volume sphere = algebraicVolume("x^2 + y^2 + z^2 - 1", box);
+  iga::Camera camera;
+  camera.position = { 0.1, -0.2, 0.05 };
+  camera.focalPoint = { 0.1, 1, 0.05 };
+  camera.viewUp = { 0, 0, 1 };
+  camera.viewAngle = 60;
+  camera.clippingRange[0] = 0.01;
+  camera.clippingRange[1] = 10;
+  iga::sst::Settings settings;
+  settings.width = settings.height = 64;
+  settings.isovalues = { 0.0 };
+  settings.threads = 2;
+  GBuffer out;
+  const auto report = iga::sst::render(
+    iga::sst::Scene(sphere.patches), camera, settings, Method::RayComposition, out);
+  EXPECT_EQ(report.frustumPatches, 0u);
+  EXPECT_EQ(out.coveredPixels(), 64u * 64u);
+  for (const auto& hit : out.hits)
+    EXPECT_NEAR(glm::length(hit.position), 1.0, 1e-9);
 }
 
 TEST(RayComposition, GallerySurfacesAgreeWithTheTreeForEveryFinder)

@@ -369,65 +369,43 @@ IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&bas
 
 namespace detail
 {
-/// Evaluation point by point over the tensor product: for orders past the factorised scratch.
-template<class T, int Dim>
-IGA_HD void evaluateTensor(const PatchView<const T, Dim>& patch, const T (&basis)[Dim][kMaxOrder],
-  const T (&dbasis)[Dim][kMaxOrder], T* values, T* derivatives, int leading)
+/// Trivariate sum factorisation one channel at a time, with no scratch: for orders past the
+/// factorised scratch (2 (p+1)^3 operations a channel for value and gradient).
+template<class T>
+IGA_HD void evaluateByChannel(const PatchView<const T, 3>& patch, const T (&basis)[3][kMaxOrder],
+  const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives, int leading)
 {
-  const int channels = patch.channels;
+  const int n0 = patch.order(0), n1 = patch.order(1), n2 = patch.order(2), C = patch.channels;
   for (int c = 0; c < leading; ++c)
   {
-    values[c] = T(0);
-  }
-  if (derivatives)
-  {
-    for (int d = 0; d < Dim; ++d)
+    T value = T(0), du = T(0), dv = T(0), dw = T(0);
+    const T* p = patch.coeffs + c;
+    for (int k = 0; k < n2; ++k)
     {
-      for (int c = 0; c < leading; ++c)
+      T v = T(0), vu = T(0), vv = T(0);
+      for (int j = 0; j < n1; ++j, p += n0 * C)
       {
-        derivatives[d * channels + c] = T(0);
+        T line = T(0), dline = T(0);
+        for (int i = 0; i < n0; ++i)
+        {
+          line += basis[0][i] * p[i * C];
+          dline += dbasis[0][i] * p[i * C];
+        }
+        v += basis[1][j] * line;
+        vu += basis[1][j] * dline;
+        vv += dbasis[1][j] * line;
       }
+      value += basis[2][k] * v;
+      du += basis[2][k] * vu;
+      dv += basis[2][k] * vv;
+      dw += dbasis[2][k] * v;
     }
-  }
-  const int count = patch.pointCount();
-  int index[Dim] = {};
-  for (int p = 0; p < count; ++p)
-  {
-    T weight = T(1);
-    for (int d = 0; d < Dim; ++d)
-    {
-      weight *= basis[d][index[d]];
-    }
-    const T* point = patch.point(p);
-    for (int c = 0; c < leading; ++c)
-    {
-      values[c] += weight * point[c];
-    }
+    values[c] = value;
     if (derivatives)
     {
-      for (int d = 0; d < Dim; ++d)
-      {
-        T dweight = dbasis[d][index[d]];
-        for (int e = 0; e < Dim; ++e)
-        {
-          if (e != d)
-          {
-            dweight *= basis[e][index[e]];
-          }
-        }
-        for (int c = 0; c < leading; ++c)
-        {
-          derivatives[d * channels + c] += dweight * point[c];
-        }
-      }
-    }
-    for (int d = 0; d < Dim; ++d) // advance the multi-index, first direction fastest
-    {
-      if (++index[d] < patch.order(d))
-      {
-        break;
-      }
-      index[d] = 0;
+      derivatives[c] = du;
+      derivatives[C + c] = dv;
+      derivatives[2 * C + c] = dw;
     }
   }
 }
@@ -454,7 +432,7 @@ IGA_HD void evaluateHomogeneous(
   }
   else
   {
-    detail::evaluateTensor(patch, basis, dbasis, values, derivatives, leading);
+    detail::evaluateByChannel(patch, basis, dbasis, values, derivatives, leading);
   }
 }
 

@@ -256,6 +256,22 @@ inline double fieldAt(const AffinePatch& patch, const double* u)
   return sum;
 }
 
+/// The Bernstein coefficients of the polynomial with these values at the interpolation's points.
+inline void bernsteinFromValues(
+  const ChebyshevInterpolation& interpolation, const double* values, double* coefficients)
+{
+  const int n = interpolation.degree + 1;
+  for (int i = 0; i < n; ++i)
+  {
+    double sum = 0;
+    for (int k = 0; k < n; ++k)
+    {
+      sum += interpolation.inverse[i][k] * values[k];
+    }
+    coefficients[i] = sum;
+  }
+}
+
 /// The Bernstein coefficients (degree interpolation.degree) on s in [0, 1] of the field minus
 /// `isovalue` along u(s) = u0 + s du.
 inline void composeRay(const AffinePatch& patch, double isovalue, const glm::dvec3& u0,
@@ -270,15 +286,7 @@ inline void composeRay(const AffinePatch& patch, double isovalue, const glm::dve
       std::min(std::max(u.z, 0.0), 1.0) };
     values[k] = fieldAt(patch, at) - isovalue;
   }
-  for (int i = 0; i < n; ++i)
-  {
-    double sum = 0;
-    for (int k = 0; k < n; ++k)
-    {
-      sum += interpolation.inverse[i][k] * values[k];
-    }
-    coefficients[i] = sum;
-  }
+  bernsteinFromValues(interpolation, values, coefficients);
 }
 
 } // namespace iga
