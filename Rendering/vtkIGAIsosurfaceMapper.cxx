@@ -27,6 +27,7 @@
 #include "vtkPointData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkScalarsToColors.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
@@ -35,6 +36,7 @@
 
 #include "iga/Boundary.h"
 #include "iga/Csg.h"
+#include "iga/Curvature.h"
 #include "iga/NurbsSet.h"
 #include "iga/sst/Csg.h"
 #include "iga/sst/ElementEdges.h"
@@ -55,6 +57,9 @@ vtkStandardNewMacro(vtkIGAIsosurfaceMapper);
 
 namespace
 {
+/// Colour names that stand for the isosurface's curvature at the hits.
+const char* const kCurvatureMean = "curvature_mean";
+const char* const kCurvatureGauss = "curvature_gauss";
 
 /// The mapper's own image: colour (RGBA) and depth as floats, in host memory and as textures.
 size_t mapperImageBytes(int width, int height)
@@ -684,6 +689,9 @@ struct vtkIGAIsosurfaceMapper::Frame
   iga::sst::View View;
   iga::sst::Settings Settings;
   bool ByScalars = false;
+  /// Colour by the isosurface's curvature ("curvature_mean", "curvature_gauss"): 0 none,
+  /// 1 mean, 2 Gaussian (computed at the hits, not an attribute of the engine's).
+  int Curvature = 0;
   bool Translucent = false;           ///< the actor's opacity is below 1: every layer is drawn
   bool Volumes = false;               ///< the hexahedra's isosurfaces are drawn
   double MostPairs = 0, Progress = 0; ///< of the progress reported during the frame
@@ -951,9 +959,14 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
       settings.clipPlanes.end(), this->CappedClips.begin(), this->CappedClips.end());
   }
   settings.surfaceAttribute = frame.Volumes ? surfaceAttribute : 0;
-  frame.ByScalars = this->ScalarVisibility && this->ArrayName && *this->ArrayName &&
-                    indexOf(this->ArrayName) < int(names.size());
-  settings.colorAttribute = frame.ByScalars ? indexOf(this->ArrayName) : -1;
+  const std::string colourName = this->ArrayName ? this->ArrayName : "";
+  frame.Curvature = !this->ScalarVisibility || this->DrawMode != DRAW_ISOSURFACES ? 0
+                    : colourName == kCurvatureMean                                ? 1
+                    : colourName == kCurvatureGauss                               ? 2
+                                                                                  : 0;
+  frame.ByScalars = this->ScalarVisibility && !colourName.empty() &&
+                    (frame.Curvature > 0 || indexOf(this->ArrayName) < int(names.size()));
+  settings.colorAttribute = frame.ByScalars && frame.Curvature == 0 ? indexOf(this->ArrayName) : -1;
   settings.maxSubdivisionDepth = this->MaximumSubdivisionDepth;
   const vtkTypeUInt64 budget = vtkTypeUInt64(this->MemoryBudgetMB) << 20;
   if (vtkIGAIsosurfaceMapper::GetImageBytes(frame.Width, frame.Height) > budget)
@@ -1146,6 +1159,10 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
                   frame.Settings, method, in.GBuffer);
     this->UpdateProgress(1.0);
     this->ReportEngine(report);
+    if (frame.Curvature > 0)
+    {
+      this->ColourByCurvature(matrix->IsIdentity() != 0, frame);
+    }
   }
   catch (const std::exception& e)
   {
@@ -1155,6 +1172,26 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
     return false;
   }
   return true;
+}
+
+void vtkIGAIsosurfaceMapper::ColourByCurvature(bool identity, const Frame& frame)
+{
+  Internals& in = *this->Internal;
+  const auto& volumes = identity ? in.Set.patches : in.World;
+  const int channel = iga::kFirstAttributeChannel + frame.Settings.surfaceAttribute;
+  const bool mean = frame.Curvature == 1;
+  std::vector<iga::sst::Hit>& hits = in.GBuffer.hits;
+  vtkSMPTools::For(0, vtkIdType(hits.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType h = begin; h < end; ++h)
+      {
+        iga::sst::Hit& hit = hits[size_t(h)];
+        const auto curvature =
+          iga::isosurfaceCurvature(volumes[size_t(hit.patch)].view(), channel, &hit.uvw[0]);
+        hit.color = mean ? curvature.mean : curvature.gauss;
+      }
+    });
 }
 
 iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, const Frame& frame)

@@ -78,6 +78,13 @@
  * lookup table) or the input change, not on every render or camera move;
  * GetLastUnresolvedPixels() gives the count of the last frame computed.
  *
+ * Curvature: with DRAW_ISOSURFACES, ScalarVisibility on and the colour array named
+ * "curvature_mean" or "curvature_gauss" (SelectColorArray; no such attribute is needed), the
+ * surface is coloured by its mean or Gaussian curvature at each hit, in world coordinates
+ * (iga::isosurfaceCurvature: through the geometry's second derivatives; the mean with respect
+ * to the normal towards lower values of the surface array, so that a sphere around a minimum
+ * has 1/r), mapped through the lookup table and its ScalarRange like an attribute.
+ *
  * Lookup table: with UseLookupTableScalarRange off (vtkMapper's default) the table's range is
  * set to ScalarRange when colouring by scalars; with it on the table's own range is left alone,
  * as vtkOpenGLPolyDataMapper does.
@@ -364,6 +371,7 @@ private:
   void UpdateBlockFaces();
   /// The engine's frame of the CSG solid and the slices.
   iga::sst::FrameReport ComputeCsgFrame(bool identity, const Frame& frame);
+  void ColourByCurvature(bool identity, const Frame& frame);
   /// The scene the engine draws, in world space.
   iga::sst::Scene EngineScene(bool identity) const;
   /// The cell and composite block a hit's patch (the engine's numbering) came from.

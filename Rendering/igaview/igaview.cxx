@@ -108,7 +108,9 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --iso V                isovalue (repeatable; default: the middle of the attribute's values
                          at the patches' corners and centres)
   --surface-by NAME      attribute that defines the surface (default: the first one)
-  --color-by NAME        attribute that colours the surface (default: a plain colour)
+  --color-by NAME        attribute that colours the surface (default: a plain colour), or
+                         curvature_mean / curvature_gauss: the isosurface's mean or Gaussian
+                         curvature at each pixel (the map spans its 2nd to 98th percentile)
   --size WxH             image size in pixels (default 800x600)
   --time T               the time drawn: the default dataset's deformation time, 0..1, or
                          the time step nearest T of a .pvd series (default 0.5)
@@ -896,7 +898,9 @@ struct Drawing
   int surface = 0;
   std::vector<double> isovalues;
   double surfaceRange[2] = { 0, 1 };
-  int colour = -1;
+  int colour = -1;        ///< the attribute coloured by, -1 for none (or a curvature)
+  std::string colourName; ///< the attribute's name or a curvature's, empty for none
+  bool curvature = false; ///< coloured by curvature_mean or curvature_gauss
   double colourRange[2] = { 0, 1 };
 };
 
@@ -972,8 +976,13 @@ Drawing chooseDrawing(const Options& options, const Input& input)
       drawing.isovalues.push_back(0.5 * (taken[0] + taken[1]));
     }
   }
-  drawing.colour =
-    options.colorBy.empty() ? -1 : attributeIndex(input, options.colorBy, "--color-by");
+  drawing.curvature = options.colorBy == "curvature_mean" || options.colorBy == "curvature_gauss";
+  if (drawing.curvature && (drawing.surfaces || drawing.csg))
+    fail("--color-by " + options.colorBy + ": the curvature of isosurfaces only");
+  drawing.colour = options.colorBy.empty() || drawing.curvature
+                     ? -1
+                     : attributeIndex(input, options.colorBy, "--color-by");
+  drawing.colourName = options.colorBy;
   if (drawing.colour >= 0)
   {
     attributeRange(input, drawing.colour, true, drawing.colourRange);
@@ -1017,17 +1026,43 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
   for (size_t k = 0; k < drawing.isovalues.size(); ++k)
     mapper->SetIsovalue(int(k), drawing.isovalues[k]);
   mapper->ScalarVisibilityOff();
-  if (drawing.colour >= 0)
+  if (!drawing.colourName.empty())
   {
     coolToWarm->SetColorSpaceToDiverging();
     coolToWarm->AddRGBPoint(drawing.colourRange[0], 0.231, 0.298, 0.753);
     coolToWarm->AddRGBPoint(drawing.colourRange[1], 0.706, 0.016, 0.150);
     mapper->SetLookupTable(coolToWarm);
     mapper->SetScalarModeToUsePointFieldData();
-    mapper->SelectColorArray(names[drawing.colour].c_str());
+    mapper->SelectColorArray(drawing.colourName.c_str());
     mapper->SetScalarRange(drawing.colourRange);
     mapper->ScalarVisibilityOn();
   }
+}
+
+/// --color-by curvature_*: the colour map spans the curvature's values at the first frame's
+/// hits (2nd to 98th percentile, so that a few points of high curvature do not wash it out).
+void fitCurvatureRange(vtkRenderWindow* window, vtkIGAIsosurfaceMapper* mapper,
+  vtkColorTransferFunction* coolToWarm, Drawing& drawing)
+{
+  window->Render();
+  std::vector<double> values;
+  for (const auto& hit : mapper->GetLastGBuffer().hits)
+    if (std::isfinite(hit.color))
+      values.push_back(hit.color);
+  if (values.empty())
+    return;
+  std::sort(values.begin(), values.end());
+  drawing.colourRange[0] = values[values.size() / 50];
+  drawing.colourRange[1] = values[values.size() - 1 - values.size() / 50];
+  if (!(drawing.colourRange[1] > drawing.colourRange[0]))
+    drawing.colourRange[1] =
+      drawing.colourRange[0] + 1e-9 * (1 + std::fabs(drawing.colourRange[0]));
+  coolToWarm->RemoveAllPoints();
+  coolToWarm->AddRGBPoint(drawing.colourRange[0], 0.231, 0.298, 0.753);
+  coolToWarm->AddRGBPoint(drawing.colourRange[1], 0.706, 0.016, 0.150);
+  mapper->SetScalarRange(drawing.colourRange);
+  std::printf("igaview: %s from %g to %g\n", drawing.colourName.c_str(), drawing.colourRange[0],
+    drawing.colourRange[1]);
 }
 
 /// The actor's look, with the element edges for --edges.
@@ -1123,8 +1158,8 @@ std::string enginePaths(vtkIGAIsosurfaceMapper* mapper)
 }
 
 /// The PNG of the window and, for --exr, the G-buffer.
-void writeOutputs(const Options& options, const Input& input, const Drawing& drawing,
-  vtkRenderWindow* window, vtkIGAIsosurfaceMapper* mapper)
+void writeOutputs(const Options& options, const Drawing& drawing, vtkRenderWindow* window,
+  vtkIGAIsosurfaceMapper* mapper)
 {
   // Errors of the engine surface as VTK errors; make them fatal and on one line.
   const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
@@ -1146,10 +1181,9 @@ void writeOutputs(const Options& options, const Input& input, const Drawing& dra
   std::printf("igaview: wrote %s\n", options.output.c_str());
   if (!options.exr.empty())
   {
-    const auto& names = input.patches.volumes.attributeNames;
     vtkNew<vtkIGAEXRWriter> writer;
-    writer->SetInputData(vtkIGAGBufferImage::Convert(gbuffer, mapper->GetLastColours().data(),
-      drawing.colour >= 0 ? names[drawing.colour] : "", drawing.csg));
+    writer->SetInputData(vtkIGAGBufferImage::Convert(
+      gbuffer, mapper->GetLastColours().data(), drawing.colourName, drawing.csg));
     writer->SetFileName(options.exr.c_str());
     writer->Write();
     if (writer->GetErrorCode() != 0)
@@ -1200,7 +1234,7 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
     frame.output = numbered(options.output, k);
     frame.exr = options.exr.empty() ? "" : numbered(options.exr, k);
     frame.deepExr = options.deepExr.empty() ? "" : numbered(options.deepExr, k);
-    writeOutputs(frame, input, drawing, window, mapper);
+    writeOutputs(frame, drawing, window, mapper);
   }
 }
 
@@ -1220,7 +1254,7 @@ int main(int argc, char** argv)
   vtkNew<vtkRenderWindow> window;
   checkDisplay(window);
   const Input input = loadInput(options);
-  const Drawing drawing = chooseDrawing(options, input);
+  Drawing drawing = chooseDrawing(options, input);
   vtkNew<vtkIGAIsosurfaceMapper> mapper;
   vtkNew<vtkColorTransferFunction> coolToWarm;
   configureMapper(options, input, drawing, mapper, coolToWarm);
@@ -1235,6 +1269,8 @@ int main(int argc, char** argv)
   window->AddRenderer(renderer);
   window->SetSize(options.size[0], options.size[1]);
   describe(options, input, drawing);
+  if (drawing.curvature)
+    fitCurvatureRange(window, mapper, coolToWarm, drawing);
   if (options.series)
   {
     renderSeries(options, input, drawing, window, mapper);
@@ -1255,6 +1291,6 @@ int main(int argc, char** argv)
   {
     window->Render();
   }
-  writeOutputs(options, input, drawing, window, mapper);
+  writeOutputs(options, drawing, window, mapper);
   return 0;
 }

@@ -40,8 +40,8 @@ TEST(Curvature, SphereOfRadiusTwoHasMeanOneHalfAndGaussOneQuarter)
   ASSERT_GT(gbuffer.hits.size(), 300u);
   for (const auto& hit : gbuffer.hits)
   {
-    const auto c = iga::isosurfaceCurvature(patches[size_t(hit.patch)].view(),
-      iga::kFirstAttributeChannel, &hit.uvw[0]);
+    const auto c = iga::isosurfaceCurvature(
+      patches[size_t(hit.patch)].view(), iga::kFirstAttributeChannel, &hit.uvw[0]);
     EXPECT_NEAR(c.mean, 0.5, 1e-9);
     EXPECT_NEAR(c.gauss, 0.25, 1e-9);
   }
@@ -63,8 +63,8 @@ TEST(Curvature, TheTubesRadiusLevelIsACylinderOnRationalPatches)
   ASSERT_GT(gbuffer.hits.size(), 300u);
   for (const auto& hit : gbuffer.hits)
   {
-    const auto c = iga::isosurfaceCurvature(tube.patches[size_t(hit.patch)].view(),
-      iga::kFirstAttributeChannel + 1, &hit.uvw[0]);
+    const auto c = iga::isosurfaceCurvature(
+      tube.patches[size_t(hit.patch)].view(), iga::kFirstAttributeChannel + 1, &hit.uvw[0]);
     EXPECT_NEAR(c.mean, 1 / 1.5, 1e-9);
     EXPECT_NEAR(c.gauss, 0.0, 1e-9);
   }

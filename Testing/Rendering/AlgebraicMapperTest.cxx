@@ -159,4 +159,35 @@ TEST(AlgebraicMapper, CurvedPatchesTakeTheTreeAndForcedRayCompositionIsRefused)
   EXPECT_NE(errors[0].find("patch 0 has not"), std::string::npos) << errors[0];
 }
 
+TEST(AlgebraicMapper, ColoursByTheIsosurfacesCurvatureInWorldCoordinates)
+{
+  // The tube's radius = 0.75 at rest is a cylinder on rational patches: mean 1 / 1.5,
+  // Gaussian 0; scaled by the actor's matrix to radius 1.5, mean 1 / 3.
+  igatest::MapperScene scene(120, 100);
+  scene.mapper->SetInputData(
+    vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.0)));
+  scene.mapper->SetSurfaceArrayName("radius");
+  scene.mapper->SetIsovalue(0, 0.75);
+  scene.mapper->SetScalarModeToUsePointFieldData();
+  scene.mapper->ScalarVisibilityOn();
+  scene.mapper->SelectColorArray("curvature_mean");
+  scene.mapper->SetScalarRange(0, 1);
+  scene.look(3.0, -2.5, 2.2, 0, 0, 1);
+  const auto expectColours = [&](double expected, const char* what)
+  {
+    scene.window->Render();
+    const auto& hits = scene.mapper->GetLastGBuffer().hits;
+    ASSERT_GT(hits.size(), 1000u) << what;
+    for (const auto& hit : hits)
+      ASSERT_NEAR(hit.color, expected, 1e-9) << what;
+  };
+  expectColours(1 / 1.5, "mean");
+  scene.mapper->SelectColorArray("curvature_gauss");
+  expectColours(0.0, "Gaussian");
+  scene.mapper->SelectColorArray("curvature_mean");
+  scene.actor->SetScale(2.0);
+  scene.look(6.0, -5.0, 4.4, 0, 0, 2);
+  expectColours(1 / 3.0, "mean, scaled by 2");
+}
+
 } // namespace
