@@ -12,6 +12,7 @@
 #include "iga/PolynomialExpression.h"
 
 #include <stdexcept>
+#include <string>
 
 vtkStandardNewMacro(vtkIGAAlgebraicSource);
 
@@ -84,17 +85,17 @@ int vtkIGAAlgebraicSource::RequestData(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int count = 0;
   const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
-  if (this->GallerySurface >= count)
-  {
-    vtkErrorMacro(<< "GallerySurface " << this->GallerySurface << " is not below the gallery's "
-                  << count << " surfaces");
-    return 0;
-  }
-  const bool fromGallery = this->GallerySurface >= 0;
   iga::VolumeSet<double> set;
   set.attributeNames = { "f" };
   try
   {
+    if (this->GallerySurface >= count)
+    {
+      throw std::invalid_argument("GallerySurface " + std::to_string(this->GallerySurface) +
+                                  " is not below the gallery's " + std::to_string(count) +
+                                  " surfaces");
+    }
+    const bool fromGallery = this->GallerySurface >= 0;
     const auto field = iga::parsePolynomial(
       fromGallery ? gallery[this->GallerySurface].expression : this->Expression);
     const auto volume =
@@ -106,8 +107,9 @@ int vtkIGAAlgebraicSource::RequestData(
   }
   catch (const std::invalid_argument& e)
   {
+    // Said once, with an empty output: the pipeline stays sound, so the next good setting
+    // draws again (a failed request would leave ParaView's views on the last good frame).
     vtkErrorMacro(<< e.what());
-    return 0;
   }
   vtkUnstructuredGrid::GetData(outInfo)->ShallowCopy(
     vtkIGABezierHexahedra::ToUnstructuredGrid(set));

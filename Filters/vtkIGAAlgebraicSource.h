@@ -9,7 +9,8 @@
  * the isosurface f = 0, which vtkIGAIsosurfaceMapper draws by ray composition (affine geometry);
  * the cell's degree per direction is f's (at least 1). A bad expression, an empty or non-finite
  * box, or coefficients that overflow are reported as one error naming the problem (the
- * expression's position), with an empty output. Piece requests: piece 0 holds the cell, the
+ * expression's position), with an empty output (the request itself succeeds, so that views
+ * draw again once the setting is good). Piece requests: piece 0 holds the cell, the
  * others are empty.
  */
 #ifndef vtkIGAAlgebraicSource_h

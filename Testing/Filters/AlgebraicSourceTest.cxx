@@ -89,7 +89,9 @@ TEST(AlgebraicSource, GallerySurfacesComeWithTheirBoxes)
     EXPECT_EQ(grid->GetNumberOfPoints(), (f.degree[0] + 1) * (f.degree[1] + 1) * (f.degree[2] + 1))
       << name;
     if (std::string(name) != "super-sphere") // VTK's cells evaluate up to degree 10
+    {
       EXPECT_LT(fieldError(grid, surface->expression), 1e-10) << name;
+    }
   }
 }
 

@@ -1,7 +1,8 @@
 """pvpython: the "IGA Algebraic Surface" source delivers the exact Bernstein volume of a gallery
 surface or of an expression over a box, the "IGA Isosurface" representation draws its f = 0 by
 ray composition (the mapper says which path its patches took), the same pixels as the shared
-subdivision tree and every root finder, and a bad expression is one error naming its position.
+subdivision tree and every root finder, a bad expression is one error naming its position (and
+a good one draws again), and colouring by curvature_mean colours the sphere by its 1/r.
 
 Usage: pvpython test_algebraic_source.py PLUGIN WORK_DIR"""
 import os
@@ -92,3 +93,25 @@ named = [e for e in errors if "expression, position 5: unknown variable 'w'" in 
 assert len(named) == 1, errors
 print(f"algebraic source: kummer {len(composed)} pixels covered, the tree {len(tree)}, "
       f"the cone {len(cone)}")
+
+# After the refused expression a good one draws again. Colour by the isosurface's curvature (not
+# an array of the data: the mapper computes it at the hits): the unit sphere is mean 1 everywhere, so with a colour map from 0 (blue)
+# to 2 (red) every surface pixel shows the map's middle.
+source.Expression = "x^2 + y^2 + z^2 - 1"
+source.Box = [-1.2, 1.2, -1.2, 1.2, -1.2, 1.2]
+simple.UpdatePipeline(proxy=source)
+display.ColorArrayName = ["POINTS", "curvature_mean"]
+lut = simple.GetColorTransferFunction("curvature_mean")
+lut.AutomaticRescaleRangeMode = "Never"
+lut.RGBPoints = [0.0, 0.0, 0.0, 1.0, 2.0, 1.0, 0.0, 0.0]
+lut.ColorSpace = "RGB"
+display.LookupTable = lut
+display.Ambient, display.Diffuse, display.Specular = 1.0, 0.0, 0.0
+iga_scene.place_camera(view, ([0.0, -5.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]))
+simple.Render(view)
+shot = os.path.join(work_dir, "curvature.png")
+simple.SaveScreenshot(shot, view, ImageResolution=iga_scene.SIZE, TransparentBackground=0)
+(width, height), pixel = iga_scene.read_rgb(shot)
+centre = pixel(width // 2, height // 2)
+assert abs(centre[0] - centre[2]) < 12 and centre[0] > 90, centre
+print(f"curvature colour at the sphere's centre: {centre}")

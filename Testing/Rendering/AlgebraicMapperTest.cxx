@@ -91,7 +91,9 @@ TEST(AlgebraicMapper, GallerySurfacesTakeRayCompositionAndAgreeWithTheTree)
       EXPECT_LT(
         std::fabs(f.evaluate(hit.position.x, hit.position.y, hit.position.z)) / largest, 1e-9);
       if (std::string(name) == "sphere")
+      {
         EXPECT_NEAR(glm::length(hit.position), 1.0, 1e-9);
+      }
     }
     scene.mapper->SetMethodToSharedSubdivisionTree();
     const iga::sst::GBuffer tree = scene.draw();
