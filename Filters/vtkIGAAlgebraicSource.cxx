@@ -7,6 +7,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "iga/AbsField.h"
 #include "iga/AlgebraicGallery.h"
 #include "iga/Datasets.h"
 #include "iga/PolynomialExpression.h"
@@ -28,6 +29,8 @@ void vtkIGAAlgebraicSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Box: " << this->Box[0] << " " << this->Box[1] << " " << this->Box[2] << " "
      << this->Box[3] << " " << this->Box[4] << " " << this->Box[5] << "\n";
   os << indent << "GallerySurface: " << this->GallerySurface << "\n";
+  os << indent << "SplineCells: " << this->SplineCells << "\n";
+  os << indent << "SplineDegree: " << this->SplineDegree << "\n";
 }
 
 void vtkIGAAlgebraicSource::SetExpression(const char* expression)
@@ -98,11 +101,26 @@ int vtkIGAAlgebraicSource::RequestData(
     const bool fromGallery = this->GallerySurface >= 0;
     const auto field = iga::parsePolynomial(
       fromGallery ? gallery[this->GallerySurface].expression : this->Expression);
-    const auto volume =
-      iga::makeAlgebraicVolume(field, fromGallery ? gallery[this->GallerySurface].box : this->Box);
-    if (outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) <= 0)
+    const double* box = fromGallery ? gallery[this->GallerySurface].box : this->Box;
+    if (this->SplineCells > 0)
     {
-      set.patches.push_back(volume);
+      const int cells[3] = { this->SplineCells, this->SplineCells, this->SplineCells };
+      set = iga::makeAbsField([&](double x, double y, double z) { return field.evaluate(x, y, z); },
+        box, this->SplineDegree, cells)
+              .set;
+    }
+    else
+    {
+      set.patches.push_back(iga::makeAlgebraicVolume(field, box));
+    }
+    // Piece p of n keeps the elements [p N / n, (p + 1) N / n).
+    const int piece = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
+    const int pieces = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
+    if (pieces > 1 && piece >= 0 && piece < pieces)
+    {
+      const size_t count = set.patches.size();
+      set.patches = decltype(set.patches)(set.patches.begin() + count * piece / pieces,
+        set.patches.begin() + count * (piece + 1) / pieces);
     }
   }
   catch (const std::invalid_argument& e)

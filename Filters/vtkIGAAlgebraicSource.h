@@ -10,8 +10,13 @@
  * the cell's degree per direction is f's (at least 1). A bad expression, an empty or non-finite
  * box, or coefficients that overflow are reported as one error naming the problem (the
  * expression's position), with an empty output (the request itself succeeds, so that views
- * draw again once the setting is good). Piece requests: piece 0 holds the cell, the
- * others are empty.
+ * draw again once the setting is good).
+ *
+ * With SplineCells n > 0 the output is instead an algebraic B-spline (ABS) field, Wei and
+ * Feng's scenes: f fitted on n x n x n uniform elements of degree SplineDegree
+ * (iga::makeAbsField: coefficients f's values at the Greville points), each element a cell with
+ * affine geometry, those whose coefficients share a sign (no surface inside) dropped.
+ * Piece requests: piece p of n holds the cells [p N / n, (p + 1) N / n) of the N.
  */
 #ifndef vtkIGAAlgebraicSource_h
 #define vtkIGAAlgebraicSource_h
@@ -52,6 +57,19 @@ public:
   static const char* GetGallerySurfaceName(int index);
   ///@}
 
+  ///@{
+  /// 0 (default): the exact Bernstein volume of f; 1..64: an ABS field of that many elements
+  /// per direction.
+  vtkSetClampMacro(SplineCells, int, 0, 64);
+  vtkGetMacro(SplineCells, int);
+  ///@}
+
+  ///@{
+  /// The ABS field's degree per direction, 1..3 (default 3).
+  vtkSetClampMacro(SplineDegree, int, 1, 3);
+  vtkGetMacro(SplineDegree, int);
+  ///@}
+
 protected:
   vtkIGAAlgebraicSource();
   ~vtkIGAAlgebraicSource() override = default;
@@ -62,6 +80,8 @@ protected:
   std::string Expression = "x^2 + y^2 + z^2 - 1";
   double Box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
   int GallerySurface = -1;
+  int SplineCells = 0;
+  int SplineDegree = 3;
 
 private:
   vtkIGAAlgebraicSource(const vtkIGAAlgebraicSource&) = delete;

@@ -111,13 +111,28 @@ TEST(AlgebraicSource, ThePluginsMenuListsTheGallery)
   }
 }
 
-TEST(AlgebraicSource, PiecesAfterTheFirstAreEmpty)
+TEST(AlgebraicSource, AbsFieldsKeepTheElementsTheSurfaceCrosses)
 {
+  // The unit sphere on 12^3 cubic elements over [-1.2, 1.2]^3: the elements kept are those the
+  // sphere may cross, each with the sphere's field to the spline's accuracy, split over pieces.
   vtkNew<vtkIGAAlgebraicSource> source;
-  source->UpdatePiece(0, 2, 0);
-  EXPECT_EQ(source->GetOutput()->GetNumberOfCells(), 1);
-  source->UpdatePiece(1, 2, 0);
-  EXPECT_EQ(source->GetOutput()->GetNumberOfCells(), 0);
+  source->SetSplineCells(12);
+  ASSERT_TRUE(igatest::updateCollectingErrors(source).empty());
+  const vtkIdType kept = source->GetOutput()->GetNumberOfCells();
+  EXPECT_GT(kept, 200);
+  EXPECT_LT(kept, 12 * 12 * 12 / 2);
+  EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), kept * 64);
+  vtkIdType total = 0;
+  for (int piece = 0; piece < 3; ++piece)
+  {
+    source->UpdatePiece(piece, 3, 0);
+    total += source->GetOutput()->GetNumberOfCells();
+    EXPECT_NEAR(double(source->GetOutput()->GetNumberOfCells()), kept / 3.0, 1.0);
+  }
+  EXPECT_EQ(total, kept);
+  source->SetSplineDegree(2);
+  source->UpdatePiece(0, 1, 0);
+  EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), source->GetOutput()->GetNumberOfCells() * 27);
 }
 
 void expectOneError(vtkIGAAlgebraicSource* source, const std::string& message)

@@ -2,8 +2,10 @@
 // positions) and the algebraic gallery, whose equations are checked by their nodes: the Cayley
 // cubic's 4, the Kummer surface's 16 and the Dervish's 31, counted by Newton's method on the
 // gradient from a grid of starts.
+#include "iga/AbsField.h"
 #include "iga/AlgebraicGallery.h"
 #include "iga/PolynomialExpression.h"
+#include "iga/RayComposition.h"
 
 #include <gtest/gtest.h>
 
@@ -261,6 +263,67 @@ TEST(AlgebraicGallery, SurfacesHaveTheirNodes)
       EXPECT_EQ(countNodes(gallery[k]), gallery[k].nodes) << gallery[k].name;
     }
   }
+}
+
+} // namespace
+
+namespace
+{
+
+TEST(AbsField, ALinearFieldIsReproducedAndOnlyTheCrossedElementsKept)
+{
+  const auto f = [](double x, double y, double z) { return x + 2 * y - z - 0.3; };
+  const double box[6] = { -1, 1, -1, 1, -1, 1 };
+  for (int degree = 1; degree <= 3; ++degree)
+  {
+    const int cells[3] = { 6, 5, 4 };
+    const iga::AbsField field = iga::makeAbsField(f, box, degree, cells);
+    EXPECT_EQ(field.elements, 120u);
+    // An element holds the plane iff its corners' values straddle zero (f is linear).
+    size_t crossed = 0;
+    for (int k = 0; k < 4; ++k)
+      for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 6; ++i)
+        {
+          double lo = INFINITY, hi = -INFINITY;
+          for (int c = 0; c < 8; ++c)
+          {
+            const double v = f(-1 + 2.0 * (i + (c & 1)) / 6, -1 + 2.0 * (j + (c >> 1 & 1)) / 5,
+              -1 + 2.0 * (k + (c >> 2 & 1)) / 4);
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+          }
+          crossed += lo <= 0 && hi >= 0 ? 1 : 0;
+        }
+    EXPECT_EQ(field.set.patches.size(), crossed) << "degree " << degree;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (const auto& patch : field.set.patches)
+    {
+      const iga::VolumeView<const double> view = patch.view();
+      iga::AffinePatch affine;
+      EXPECT_TRUE(iga::affineGeometry(view, iga::kFirstAttributeChannel, affine));
+      const double u[3] = { unit(rng), unit(rng), unit(rng) };
+      double values[iga::kFirstAttributeChannel + 1];
+      iga::evaluateHomogeneous<double, 3>(view, u, values, nullptr);
+      EXPECT_NEAR(values[iga::kFirstAttributeChannel], f(values[0], values[1], values[2]), 1e-12);
+    }
+  }
+}
+
+TEST(AbsField, BadSizesAndValuesAreRefused)
+{
+  const auto f = [](double x, double, double) { return x; };
+  const double box[6] = { -1, 1, -1, 1, -1, 1 };
+  const int cells[3] = { 4, 4, 4 }, tooMany[3] = { 4, 65, 4 }, none[3] = { 0, 4, 4 };
+  EXPECT_THROW(iga::makeAbsField(f, box, 4, cells), std::invalid_argument);
+  EXPECT_THROW(iga::makeAbsField(f, box, 3, tooMany), std::invalid_argument);
+  EXPECT_THROW(iga::makeAbsField(f, box, 3, none), std::invalid_argument);
+  const double flat[6] = { -1, 1, 1, 1, -1, 1 };
+  EXPECT_THROW(iga::makeAbsField(f, flat, 3, cells), std::invalid_argument);
+  EXPECT_THROW(
+    iga::makeAbsField([](double, double, double) { return std::nan(""); }, box, 3, cells),
+    std::invalid_argument);
 }
 
 } // namespace

@@ -3,6 +3,7 @@
 // within 1e-6 of the SST's and |f(hit)| / K (Reimers and Seland's error metric) below their
 // Table 1; patches without affine geometry refused, and drawn by the tree in the automatic
 // method's frames.
+#include "iga/AbsField.h"
 #include "iga/AlgebraicGallery.h"
 #include "iga/Camera.h"
 #include "iga/Deformation.h"
@@ -329,6 +330,50 @@ TEST(RayComposition, AutomaticMethodComposesAffinePatchesWithTheTreesOthersInOne
     EXPECT_GT(fromEach[0], 300u);
     EXPECT_GT(fromEach[1], 300u);
     expectSameHits(automatic, tree);
+  }
+}
+
+TEST(RayComposition, AbsFieldsAgreeWithTheTree)
+{
+  // Wei and Feng's scenes: the Kummer surface fitted on 12^3 cubic elements, the elements it
+  // crosses kept (hundreds of patches, each seen by few pixels: composed directly).
+  const iga::AlgebraicSurface* kummer = iga::findAlgebraicSurface("kummer");
+  const auto f = iga::parsePolynomial(kummer->expression);
+  const int cells[3] = { 12, 12, 12 };
+  const iga::AbsField field = iga::makeAbsField(
+    [&](double x, double y, double z) { return f.evaluate(x, y, z); }, kummer->box, 3, cells);
+  ASSERT_GT(field.set.patches.size(), 300u);
+  double bounds[6];
+  iga::sst::patchBounds(iga::sst::Scene(field.set.patches), bounds);
+  const iga::Camera camera = iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+  iga::sst::Settings settings;
+  settings.width = settings.height = 96;
+  settings.isovalues = { 0.0 };
+  settings.threads = 2;
+  settings.isoTolerance = 1e-12;
+  GBuffer composed, tree;
+  const auto report = iga::sst::render(
+    iga::sst::Scene(field.set.patches), camera, settings, Method::Automatic, composed);
+  iga::sst::render(
+    iga::sst::Scene(field.set.patches), camera, settings, Method::SharedSubdivisionTree, tree);
+  EXPECT_EQ(report.rayCompositionPatches, field.set.patches.size());
+  EXPECT_EQ(report.unresolvedPixels, 0u);
+  ASSERT_GT(composed.coveredPixels(), 1200u);
+  size_t differing = 0;
+  for (int j = 0; j < 96; ++j)
+    for (int i = 0; i < 96; ++i)
+    {
+      const auto* a = composed.firstHit(i, j);
+      const auto* b = tree.firstHit(i, j);
+      differing += (!a != !b) || (a && b && glm::length(a->position - b->position) > 1e-6);
+    }
+  EXPECT_LE(differing, composed.coveredPixels() / 100);
+  for (const auto& hit : composed.hits)
+  {
+    double values[iga::kFirstAttributeChannel + 1];
+    const iga::VolumeView<const double> patch = field.set.patches[size_t(hit.patch)].view();
+    iga::evaluateHomogeneous<double, 3>(patch, &hit.uvw[0], values, nullptr);
+    EXPECT_LT(std::fabs(values[iga::kFirstAttributeChannel]), 1e-9);
   }
 }
 
