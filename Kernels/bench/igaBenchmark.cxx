@@ -25,6 +25,7 @@
 // deforming), with stage times and peak device memory, next to the CPU engine at 1080p. Without a
 // usable device it says why and measures nothing. --only NAME keeps the datasets whose names
 // contain NAME (a profiler's run: one dataset, not the whole study).
+#include "iga/AbsField.h"
 #include "iga/AlgebraicGallery.h"
 #include "iga/Boundary.h"
 #include "iga/Csg.h"
@@ -281,42 +282,69 @@ std::string json(
   return out.str();
 }
 
-/// The algebraic study: each gallery surface over its box as one polynomial volume, the SST
-/// against ray composition with each root finder (ratio `sstOverComposition_NAME_FINDER`).
-void algebraicStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
+/// One algebraic scene: the SST against ray composition with each root finder (ratio
+/// `sstOverComposition_NAME_FINDER`).
+void compareWithComposition(const std::string& name, const iga::VolumeSet<double>& set, int degree,
+  bool quick, int threads, int reps, std::vector<Measurement>& all,
   std::vector<std::pair<std::string, double>>& ratios)
 {
   using iga::sst::Method;
+  const int size = quick ? 256 : 512;
+  const auto sst = measure("algebraic", name, set, 0.0, degree, size, size, threads,
+    Method::SharedSubdivisionTree, quick ? 1 : reps);
+  all.push_back(sst);
+  const iga::Camera camera = frame(set.patches);
+  for (int f = 0; f < iga::kRootFinderCount; ++f)
+  {
+    const auto finder = iga::RootFinder(f);
+    auto composed = measureFrames("algebraic", name + "/" + iga::rootFinderName(finder), 0.0,
+      degree, size, size, threads, Method::RayComposition, reps, iga::sst::Backend::Cpu, false,
+      [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
+      {
+        iga::sst::Settings withFinder = settings;
+        withFinder.rootFinder = finder;
+        return iga::sst::render(set.patches, camera, withFinder, m, out);
+      });
+    ratios.emplace_back(
+      "sstOverComposition_" + name + "_" + iga::rootFinderName(finder), sst.ms / composed.ms);
+    all.push_back(std::move(composed));
+  }
+}
+
+/// The algebraic study: each gallery surface over its box as one polynomial volume, then ABS
+/// fields (iga/AbsField.h) fitted to gallery surfaces, named SURFACE-abs-CELLS-pDEGREE.
+void algebraicStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
   int count = 0;
   const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
-  const int size = quick ? 256 : 512;
   for (int s = 0; s < count; ++s)
   {
     const auto field = iga::parsePolynomial(gallery[s].expression);
     iga::VolumeSet<double> set;
     set.patches.push_back(iga::makeAlgebraicVolume(field, gallery[s].box));
-    const int total = iga::detail::totalDegree(field);
-    const auto sst = measure("algebraic", gallery[s].name, set, 0.0, total, size, size, threads,
-      Method::SharedSubdivisionTree, quick ? 1 : reps);
-    all.push_back(sst);
-    for (int f = 0; f < iga::kRootFinderCount; ++f)
-    {
-      const auto finder = iga::RootFinder(f);
-      const iga::Camera camera = frame(set.patches);
-      auto composed = measureFrames("algebraic",
-        std::string(gallery[s].name) + "/" + iga::rootFinderName(finder), 0.0, total, size, size,
-        threads, Method::RayComposition, reps, iga::sst::Backend::Cpu, false,
-        [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
-        {
-          iga::sst::Settings withFinder = settings;
-          withFinder.rootFinder = finder;
-          return iga::sst::render(set.patches, camera, withFinder, m, out);
-        });
-      ratios.emplace_back(
-        std::string("sstOverComposition_") + gallery[s].name + "_" + iga::rootFinderName(finder),
-        sst.ms / composed.ms);
-      all.push_back(std::move(composed));
-    }
+    compareWithComposition(
+      gallery[s].name, set, iga::detail::totalDegree(field), quick, threads, reps, all, ratios);
+  }
+  const struct
+  {
+    const char* surface;
+    int cells, degree;
+  } models[] = { { "kummer", 16, 3 }, { "kummer", 37, 3 }, { "heart", 32, 2 },
+    { "dervish", 32, 3 } };
+  for (const auto& model : models)
+  {
+    const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(model.surface);
+    const auto f = iga::parsePolynomial(surface->expression);
+    const int cells[3] = { model.cells, model.cells, model.cells };
+    const iga::AbsField field =
+      iga::makeAbsField([&](double x, double y, double z) { return f.evaluate(x, y, z); },
+        surface->box, model.degree, cells);
+    const std::string name = std::string(model.surface) + "-abs-" + std::to_string(model.cells) +
+                             "-p" + std::to_string(model.degree);
+    std::printf(
+      "%s: %zu of %zu elements kept\n", name.c_str(), field.set.patches.size(), field.elements);
+    compareWithComposition(name, field.set, 3 * model.degree, quick, threads, reps, all, ratios);
   }
 }
 

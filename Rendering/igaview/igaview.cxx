@@ -87,6 +87,10 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --gallery NAME         instead of INPUT, a surface of the papers' gallery over its own box:
                          sphere, cayley, clebsch, kummer, dervish, kiss, heart, klein,
                          linked-tori, tangle, barth-decic, super-sphere
+  --abs-cells N          with --algebraic or --gallery: an algebraic B-spline (ABS) field instead,
+                         the surface's f fitted on N x N x N elements (1..64), the elements it
+                         crosses kept (Wei and Feng's scenes)
+  --abs-degree P         the ABS field's degree per direction, 1..3 (default 3)
   --method M             auto (default: patches with affine geometry by ray composition, the
                          others by the SST), sst, or ray-composition (every patch; curved ones
                          are refused)
@@ -160,6 +164,7 @@ struct Options
   iga::sst::Backend backend = iga::sst::Backend::Automatic;
   std::string algebraic, gallery; ///< --algebraic, --gallery
   bool hasBox = false;
+  int absCells = 0, absDegree = 3; ///< --abs-cells, --abs-degree
   double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
   int method = vtkIGAIsosurfaceMapper::METHOD_AUTOMATIC;
   iga::RootFinder rootFinder = iga::RootFinder::PointInsertion;
@@ -315,6 +320,8 @@ void checkAlgebraic(const Options& options)
   if ((algebraic || gallery) && !options.input.empty())
     fail(std::string(algebraic ? "--algebraic" : "--gallery") + " stands instead of an input, '" +
          options.input + "' given too");
+  if (options.absCells > 0 && !algebraic && !gallery)
+    fail("--abs-cells fits --algebraic's or --gallery's surface: give one");
   if (options.hasBox && !algebraic)
     fail("--box is the box of --algebraic's expression (gallery surfaces bring their own)");
   if (gallery && !iga::findAlgebraicSurface(options.gallery))
@@ -430,6 +437,16 @@ Options parseArguments(int argc, char** argv)
       parseNumbers(value(), arg, 6, "x0,x1,y0,y1,z0,z1", options.box), options.hasBox = true;
     else if (arg == "--gallery")
       options.gallery = value();
+    else if (arg == "--abs-cells" || arg == "--abs-degree")
+    {
+      const std::string text = value();
+      const double number = parseNumber(text, arg);
+      const bool cells = arg == "--abs-cells";
+      if (!(number == std::floor(number) && number >= 1 && number <= (cells ? 64 : 3)))
+        fail(
+          arg + " expects a whole number in 1.." + (cells ? "64" : "3") + ", got '" + text + "'");
+      (cells ? options.absCells : options.absDegree) = int(number);
+    }
     else if (arg == "--method")
       options.method = parseMethodOption(value());
     else if (arg == "--root-finder")
@@ -585,6 +602,8 @@ Input loadInput(const Options& options)
     source->SetBox(options.box);
     if (!options.gallery.empty())
       source->SetGallerySurfaceByName(options.gallery.c_str());
+    source->SetSplineCells(options.absCells);
+    source->SetSplineDegree(options.absDegree);
     name = options.gallery.empty() ? "--algebraic" : "--gallery " + options.gallery;
     requestOrFail(name, [&] { return source->GetExecutive()->Update() != 0; });
     input.producer = source;

@@ -41,6 +41,14 @@ assert grid.GetNumberOfPoints() == 125, grid.GetNumberOfPoints()  # degree 4 per
 assert grid.GetPointData().GetArray("f") is not None
 assert all(abs(b - e) < 1e-12 for b, e in zip(grid.GetBounds(), [-2.5, 2.5] * 3)), grid.GetBounds()
 
+# An ABS field of the same surface: the elements the surface crosses, 64 points each (cubic).
+source.SplineCells = 12
+simple.UpdatePipeline(proxy=source)
+abs_grid = servermanager.Fetch(source)
+assert 100 < abs_grid.GetNumberOfCells() < 12 ** 3, abs_grid.GetNumberOfCells()
+assert abs_grid.GetNumberOfPoints() == 64 * abs_grid.GetNumberOfCells()
+source.SplineCells = 0
+
 view = iga_scene.make_view()
 display = iga_scene.show_surface(source, view, "f", 0.0)
 iga_scene.place_camera(view, ([-8.0, -10.0, 6.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]))
