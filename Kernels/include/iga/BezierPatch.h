@@ -213,9 +213,6 @@ IGA_HD void evaluateHomogeneous(
 
 namespace detail
 {
-/// Scratch limit of the sum-factorised trivariate evaluation (orders up to 6, 8 channels).
-constexpr int kFactorisedScratch = 6 * 6 * 8;
-
 /// Orders, channel count and evaluated leading channels of an evaluation, known at run time...
 struct RuntimeShape
 {
@@ -228,41 +225,32 @@ struct FixedShape
   static constexpr int n0 = N, n1 = N, n2 = N, channels = C, evaluated = E;
 };
 
-/// Trivariate evaluation contracting one direction at a time (sum factorisation): about
-/// (p+1)^2 (2 + ...) C operations instead of 4 (p+1)^3 C for value and gradient.
+/// Trivariate evaluation contracting one direction at a time (sum factorisation), one channel
+/// at a time and with no scratch: about 2 (p+1)^3 operations a channel for value and gradient
+/// instead of 4 (p+1)^3 and the basis products.
 template<class T, class Shape>
 IGA_HD void evaluateFactorised(const T* coeffs, const Shape& shape, const T (&basis)[3][kMaxOrder],
   const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
 {
   const int n0 = shape.n0, n1 = shape.n1, n2 = shape.n2, C = shape.channels, E = shape.evaluated;
-  T line[kFactorisedScratch], dline[kFactorisedScratch]; // contracted along u: (j, k, c)
-  for (int jk = 0; jk < n1 * n2; ++jk)
-  {
-    for (int c = 0; c < E; ++c)
-    {
-      T v = T(0), dv = T(0);
-      const T* p = coeffs + (jk * n0) * C + c;
-      for (int i = 0; i < n0; ++i)
-      {
-        v += basis[0][i] * p[i * C];
-        dv += dbasis[0][i] * p[i * C];
-      }
-      line[jk * C + c] = v;
-      dline[jk * C + c] = dv;
-    }
-  }
   for (int c = 0; c < E; ++c)
   {
     T value = T(0), du = T(0), dv = T(0), dw = T(0);
+    const T* p = coeffs + c;
     for (int k = 0; k < n2; ++k)
     {
       T v = T(0), vu = T(0), vv = T(0);
-      for (int j = 0; j < n1; ++j)
+      for (int j = 0; j < n1; ++j, p += n0 * C)
       {
-        const int index = (k * n1 + j) * C + c;
-        v += basis[1][j] * line[index];
-        vu += basis[1][j] * dline[index];
-        vv += dbasis[1][j] * line[index];
+        T line = T(0), dline = T(0);
+        for (int i = 0; i < n0; ++i)
+        {
+          line += basis[0][i] * p[i * C];
+          dline += dbasis[0][i] * p[i * C];
+        }
+        v += basis[1][j] * line;
+        vu += basis[1][j] * dline;
+        vv += dbasis[1][j] * line;
       }
       value += basis[2][k] * v;
       du += basis[2][k] * vu;
@@ -367,49 +355,6 @@ IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&bas
 }
 } // namespace detail
 
-namespace detail
-{
-/// Trivariate sum factorisation one channel at a time, with no scratch: for orders past the
-/// factorised scratch (2 (p+1)^3 operations a channel for value and gradient).
-template<class T>
-IGA_HD void evaluateByChannel(const PatchView<const T, 3>& patch, const T (&basis)[3][kMaxOrder],
-  const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives, int leading)
-{
-  const int n0 = patch.order(0), n1 = patch.order(1), n2 = patch.order(2), C = patch.channels;
-  for (int c = 0; c < leading; ++c)
-  {
-    T value = T(0), du = T(0), dv = T(0), dw = T(0);
-    const T* p = patch.coeffs + c;
-    for (int k = 0; k < n2; ++k)
-    {
-      T v = T(0), vu = T(0), vv = T(0);
-      for (int j = 0; j < n1; ++j, p += n0 * C)
-      {
-        T line = T(0), dline = T(0);
-        for (int i = 0; i < n0; ++i)
-        {
-          line += basis[0][i] * p[i * C];
-          dline += dbasis[0][i] * p[i * C];
-        }
-        v += basis[1][j] * line;
-        vu += basis[1][j] * dline;
-        vv += dbasis[1][j] * line;
-      }
-      value += basis[2][k] * v;
-      du += basis[2][k] * vu;
-      dv += basis[2][k] * vv;
-      dw += dbasis[2][k] * v;
-    }
-    values[c] = value;
-    if (derivatives)
-    {
-      derivatives[c] = du;
-      derivatives[C + c] = dv;
-      derivatives[2 * C + c] = dw;
-    }
-  }
-}
-} // namespace detail
 
 template<class T, int Dim>
 IGA_HD void evaluateHomogeneous(
@@ -422,18 +367,7 @@ IGA_HD void evaluateHomogeneous(
   {
     bernsteinBasis(patch.degree[d], u[d], basis[d], dbasis[d]);
   }
-  if constexpr (Dim == 2)
-  {
-    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives, leading);
-  }
-  else if (patch.order(1) * patch.order(2) * patch.channels <= detail::kFactorisedScratch)
-  {
-    detail::evaluateFactorised(patch, basis, dbasis, values, derivatives, leading);
-  }
-  else
-  {
-    detail::evaluateByChannel(patch, basis, dbasis, values, derivatives, leading);
-  }
+  detail::evaluateFactorised(patch, basis, dbasis, values, derivatives, leading);
 }
 
 /// The rational function numerator/denominator from homogeneous values, with its gradient by the
