@@ -4,6 +4,7 @@
 //   igaBenchmark [--quick] [--json FILE]
 //   igaBenchmark --csg [--quick] [--json FILE]
 //   igaBenchmark --algebraic [--quick] [--json FILE]
+//   igaBenchmark --screen-filling [--quick] [--json FILE]
 //   igaBenchmark --gpu [--quick] [--only NAME] [--json FILE]
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
@@ -19,12 +20,15 @@
 // over its box, SST against ray composition with each root finder at 512^2 (256^2 quick), with
 // the finders' knot insertions and evaluations per composed ray.
 //
+// --screen-filling: scenes framed as users frame them, covering a third of a 1920x1080 image or
+// more (the sphere p2 close up, the teapot, the deforming blade's boundary, the dice's CSG solid).
+//
 // --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
-// every frame), a deforming NURBS ball, and the 800k-patch blade (camera moves, and at 1080p
-// deforming), with stage times and peak device memory, next to the CPU engine at 1080p. Without a
-// usable device it says why and measures nothing. --only NAME keeps the datasets whose names
-// contain NAME (a profiler's run: one dataset, not the whole study).
+// every frame), the screen-filling scenes at 1080p, a deforming NURBS ball, and the 800k-patch
+// blade (camera moves, and at 1080p deforming), with stage times and peak device memory, next to
+// the CPU engine at 1080p. Without a usable device it says why and measures nothing. --only NAME
+// keeps the datasets whose names contain NAME (a profiler's run: one dataset, not the whole study).
 #include "iga/AbsField.h"
 #include "iga/AlgebraicGallery.h"
 #include "iga/Boundary.h"
@@ -62,6 +66,14 @@ iga::Camera frame(const iga::sst::Scene& scene)
   double bounds[6];
   iga::sst::patchBounds(scene, bounds);
   return iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+}
+
+/// The camera zoomed by `factor` as vtkCamera::Zoom does: the view angle's tangent divided.
+iga::Camera zoomed(iga::Camera camera, double factor)
+{
+  const double degrees = 180 / 3.14159265358979323846;
+  camera.viewAngle = 2 * degrees * std::atan(std::tan(camera.viewAngle / (2 * degrees)) / factor);
+  return camera;
 }
 
 /// Renders frame r of a measurement with the settings given (data version set) into a G-buffer.
@@ -133,22 +145,53 @@ Measurement measure(const std::string& study, const std::string& dataset,
     });
 }
 
-/// Frames of surfaces (of the ones `frames` returns for repetition r, for deforming data).
+/// Frames of surfaces (of the ones `frames` returns for repetition r, for deforming data), seen
+/// by `camera` or else framed whole.
 Measurement measureSurfaces(const std::string& dataset,
   const std::vector<iga::BezierSurface<double>>& surfaces, int width, int height, int threads,
   iga::sst::Method method, int repetitions,
-  const std::function<std::vector<iga::BezierSurface<double>>(int)>& frames = {})
+  const std::function<std::vector<iga::BezierSurface<double>>(int)>& frames = {},
+  iga::sst::Backend backend = iga::sst::Backend::Cpu, const std::string& study = "surfaces",
+  const std::function<iga::Camera(const iga::Camera&)>& reframe = {})
 {
   static const std::vector<iga::BezierVolume<double>> noVolumes;
-  const iga::Camera camera = frame(iga::sst::Scene(noVolumes, surfaces));
-  return measureFrames("surfaces", dataset, 0, 0, width, height, threads, method, repetitions,
-    iga::sst::Backend::Cpu, bool(frames),
+  const iga::Camera whole = frame(iga::sst::Scene(noVolumes, surfaces));
+  const iga::Camera camera = reframe ? reframe(whole) : whole;
+  return measureFrames(study, dataset, 0, 0, width, height, threads, method, repetitions, backend,
+    bool(frames),
     [&](int r, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
     {
       return iga::sst::render(
         iga::sst::Scene(noVolumes, frames ? frames(r) : surfaces), camera, settings, m, out);
     });
 }
+
+/// The deforming blade's boundary: its faces found once for the topology, sliced from each
+/// frame's net (frame r at the flap's time 0.1 (r % 10)).
+struct DeformingBladeBoundary
+{
+  iga::BladeLayout layout;
+  std::vector<iga::PatchFace> faces;
+
+  explicit DeformingBladeBoundary(const iga::BladeLayout& bladeLayout)
+    : layout(bladeLayout)
+    , faces(iga::boundaryFaces(iga::makeBlade<double>(layout, 0.0).patches))
+  {
+  }
+  std::string name() const
+  {
+    return "blade-boundary-" + std::to_string(faces.size()) + "-deforming";
+  }
+  std::vector<iga::BezierSurface<double>> operator()(int r) const
+  {
+    const auto blade = iga::makeBlade<double>(layout, 0.1 * (r % 10));
+    std::vector<iga::BezierSurface<double>> surfaces;
+    for (const iga::PatchFace& face : faces)
+      surfaces.push_back(
+        iga::faceSurface(blade.patches[size_t(face.patch)], face.direction, face.side));
+    return surfaces;
+  }
+};
 
 /// The surface study: per dataset and size, SST against the better of the basic scheme and
 /// Bézier clipping (ratio `referenceOverSst_...`).
@@ -157,20 +200,8 @@ void surfaceStudy(bool quick, int threads, int reps, std::vector<Measurement>& a
 {
   using iga::sst::Method;
   const auto teapot = iga::makeTeapot<double>().patches;
-  // The blade's boundary, found once for its topology and sliced from every frame's net.
-  const iga::BladeLayout layout = iga::bladeLayout(quick ? 1000 : 10000);
-  const auto rest = iga::makeBlade<double>(layout, 0.0);
-  const auto faces = iga::boundaryFaces(rest.patches);
-  auto boundary = [&](int r)
-  {
-    const auto blade = iga::makeBlade<double>(layout, 0.1 * (r % 10));
-    std::vector<iga::BezierSurface<double>> surfaces;
-    for (const iga::PatchFace& face : faces)
-      surfaces.push_back(
-        iga::faceSurface(blade.patches[size_t(face.patch)], face.direction, face.side));
-    return surfaces;
-  };
-  const std::string bladeName = "blade-boundary-" + std::to_string(faces.size()) + "-deforming";
+  const auto boundary = DeformingBladeBoundary(iga::bladeLayout(quick ? 1000 : 10000));
+  const std::string bladeName = boundary.name();
   struct Size
   {
     int width, height;
@@ -202,36 +233,43 @@ void surfaceStudy(bool quick, int threads, int reps, std::vector<Measurement>& a
   }
 }
 
+/// Frames of the dice's solid, cube<0 - pips<0: its nearest surface, or all its layers (as a
+/// translucent actor draws them); framed whole and zoomed by `zoom`.
+Measurement measureDiceSolid(const std::string& study, const std::string& dataset, int width,
+  int height, int threads, int repetitions, iga::sst::Backend backend, bool allLayers,
+  double zoom = 1)
+{
+  const auto dice = iga::makeDice<double>();
+  const auto faces = iga::boundaryFaces(dice.patches);
+  iga::sst::CsgScene scene;
+  scene.inputs.push_back({ &dice.patches, dice.attributeNames, &faces });
+  scene.expression = iga::csg::parseExpression("cube<0 - pips<0");
+  const iga::Camera camera = zoomed(frame(dice.patches), zoom);
+  return measureFrames(study, dataset, 0, 4, width, height, threads,
+    iga::sst::Method::SharedSubdivisionTree, repetitions, backend, false,
+    [&](int, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+    {
+      iga::sst::Settings s = settings;
+      s.firstHitOnly = !allLayers;
+      return iga::sst::renderCsg(scene, iga::sst::makeView(camera, s.width, s.height), s, m, out);
+    });
+}
+
 /// The CSG study: the dice's solid against the cube's isosurface alone (first hit), per size.
 void csgStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
   std::vector<std::pair<std::string, double>>& ratios)
 {
   using iga::sst::Method;
   const auto dice = iga::makeDice<double>();
-  const auto faces = iga::boundaryFaces(dice.patches);
-  iga::sst::CsgScene scene;
-  scene.inputs.push_back({ &dice.patches, dice.attributeNames, &faces });
-  scene.expression = iga::csg::parseExpression("cube<0 - pips<0");
-  const iga::Camera camera = frame(dice.patches);
   const int sizes[2][2] = { { quick ? 256 : 512, quick ? 256 : 512 }, { 1920, 1080 } };
   for (const auto& size : sizes)
   {
     const std::string tag = std::to_string(size[0]) + "x" + std::to_string(size[1]);
     // The solid's nearest surface, then all its layers (as a translucent actor draws them).
-    auto solid = [&](const std::string& dataset, bool allLayers)
-    {
-      return measureFrames("csg", dataset, 0, 4, size[0], size[1], threads,
-        Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, false,
-        [&](int, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
-        {
-          iga::sst::Settings s = settings;
-          s.firstHitOnly = !allLayers;
-          return iga::sst::renderCsg(
-            scene, iga::sst::makeView(camera, s.width, s.height), s, m, out);
-        });
-    };
-    const auto csg = solid("dice-cube-minus-pips", false);
-    const auto layers = solid("dice-cube-minus-pips-all-layers", true);
+    const auto csg = measureDiceSolid("csg", "dice-cube-minus-pips", size[0], size[1], threads,
+      reps, iga::sst::Backend::Cpu, false);
+    const auto layers = measureDiceSolid("csg", "dice-cube-minus-pips-all-layers", size[0], size[1],
+      threads, reps, iga::sst::Backend::Cpu, true);
     const auto cube = measure("csg", "dice-cube-isosurface", dice, 0.0, 4, size[0], size[1],
       threads, Method::SharedSubdivisionTree, reps);
     all.insert(all.end(), { csg, layers, cube });
@@ -349,6 +387,52 @@ void algebraicStudy(bool quick, int threads, int reps, std::vector<Measurement>&
 }
 
 /// The CUDA engine's study (see the header). Returns false, with the reason, without a GPU.
+/// Scenes that fill the screen as users frame them (issue 23), at 1920x1080 on `backend`, for
+/// the datasets `wanted` keeps, each framed whole and zoomed to cover 35-45% of the image: the
+/// Marsden sphere p2, the teapot's 32 bicubic surfaces, the deforming 10k blade's boundary (its
+/// middle third) and the dice's solid (CSG, first hit). Coverage is reported beside each figure.
+std::vector<Measurement> screenFillingStudy(const std::string& study, iga::sst::Backend backend,
+  int threads, int reps, const std::function<bool(const std::string&)>& wanted)
+{
+  using iga::sst::Method;
+  const int width = 1920, height = 1080;
+  std::vector<Measurement> all;
+  const auto sphere = iga::makeMarsdenSphere<double>(2);
+  const iga::Camera closeUp = zoomed(frame(sphere.patches), 2.5);
+  if (wanted("marsden-sphere-p2-close"))
+  {
+    all.push_back(measureFrames(study, "marsden-sphere-p2-close", 0.0, 2, width, height, threads,
+      Method::SharedSubdivisionTree, reps, backend, false,
+      [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
+      { return iga::sst::render(sphere.patches, closeUp, settings, m, out); }));
+  }
+  if (wanted("teapot-close"))
+  {
+    all.push_back(measureSurfaces("teapot-close", iga::makeTeapot<double>().patches, width, height,
+      threads, Method::SharedSubdivisionTree, reps, {}, backend, study,
+      [](const iga::Camera& whole) { return zoomed(whole, 2.0); }));
+  }
+  const DeformingBladeBoundary boundary(iga::bladeLayout(10000));
+  if (wanted(boundary.name() + "-close"))
+  {
+    // Its span across the image, as a long blade is seen on a wide screen.
+    auto alongTheWidth = [](const iga::Camera& whole)
+    {
+      iga::Camera camera = zoomed(whole, 4.5);
+      camera.viewUp = { 1, 0, 0 };
+      return camera;
+    };
+    all.push_back(measureSurfaces(boundary.name() + "-close", boundary(0), width, height, threads,
+      Method::SharedSubdivisionTree, reps, boundary, backend, study, alongTheWidth));
+  }
+  if (wanted("dice-cube-minus-pips-close"))
+  {
+    all.push_back(measureDiceSolid(
+      study, "dice-cube-minus-pips-close", width, height, threads, reps, backend, false, 1.7));
+  }
+  return all;
+}
+
 bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all,
   std::vector<std::pair<std::string, double>>& ratios, std::string& why)
 {
@@ -451,6 +535,15 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
                         iga::sst::extractElements(ballVolumes(r)), view, settings, m, out);
       }));
   }
+  // The screen-filling scenes, against one CPU frame each on all the host's threads.
+  const auto filling = screenFillingStudy("gpu", Backend::Cuda, 0, reps, wanted);
+  const auto fillingOnCpu = screenFillingStudy("gpu", Backend::Cpu, 0, 1, wanted);
+  for (size_t k = 0; k < filling.size(); ++k)
+  {
+    all.insert(all.end(), { filling[k], fillingOnCpu[k] });
+    ratios.emplace_back(
+      "cpuOverGpu_" + filling[k].dataset + "_1080p", fillingOnCpu[k].ms / filling[k].ms);
+  }
   const iga::BladeLayout large = iga::bladeLayout(800000);
   const std::string largeName = "blade-" + std::to_string(large.patchCount());
   if (!quick && wanted(largeName))
@@ -477,7 +570,7 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
 
 int main(int argc, char** argv)
 {
-  bool quick = false, gpu = false, csgOnly = false, algebraicOnly = false;
+  bool quick = false, gpu = false, csgOnly = false, algebraicOnly = false, fillingOnly = false;
   std::string jsonFile, only;
   for (int i = 1; i < argc; ++i)
   {
@@ -487,6 +580,8 @@ int main(int argc, char** argv)
       csgOnly = true;
     else if (!std::strcmp(argv[i], "--algebraic"))
       algebraicOnly = true;
+    else if (!std::strcmp(argv[i], "--screen-filling"))
+      fillingOnly = true;
     else if (!std::strcmp(argv[i], "--gpu"))
       gpu = true;
     else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
@@ -496,7 +591,8 @@ int main(int argc, char** argv)
     else
     {
       std::fprintf(stderr,
-        "usage: igaBenchmark [--gpu [--only NAME] | --csg | --algebraic] [--quick] "
+        "usage: igaBenchmark [--gpu [--only NAME] | --csg | --algebraic | --screen-filling] "
+        "[--quick] "
         "[--json FILE]\n");
       return 1;
     }
@@ -544,6 +640,12 @@ int main(int argc, char** argv)
   if (csgOnly)
   {
     csgStudy(quick, threads, reps, all, ratios);
+    return emit(json(all, ratios));
+  }
+  if (fillingOnly)
+  {
+    all = screenFillingStudy("screen-filling", iga::sst::Backend::Cpu, threads, reps,
+      [](const std::string&) { return true; });
     return emit(json(all, ratios));
   }
   if (algebraicOnly)
