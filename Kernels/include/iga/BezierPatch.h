@@ -225,11 +225,13 @@ struct FixedShape
   static constexpr int n0 = N, n1 = N, n2 = N, channels = C, evaluated = E;
 };
 
-/// Trivariate evaluation contracting one direction at a time (sum factorisation), one channel
-/// at a time and with no scratch: about 2 (p+1)^3 operations a channel for value and gradient
-/// instead of 4 (p+1)^3 and the basis products.
+/// Trivariate evaluation contracting one direction at a time (sum factorisation): about
+/// 2 (p+1)^3 operations a channel for value and gradient instead of 4 (p+1)^3 and the basis
+/// products. Two loop orders of one contraction, as each processor is faster with: here one
+/// channel at a time with no scratch (the GPU's: a thread's stack in the solution kernel 7.2 ->
+/// 2.1 KB, volume frames 3-20% faster on an H200)...
 template<class T, class Shape>
-IGA_HD void evaluateFactorised(const T* coeffs, const Shape& shape, const T (&basis)[3][kMaxOrder],
+IGA_HD void evaluateByChannel(const T* coeffs, const Shape& shape, const T (&basis)[3][kMaxOrder],
   const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
 {
   const int n0 = shape.n0, n1 = shape.n1, n2 = shape.n2, C = shape.channels, E = shape.evaluated;
@@ -251,6 +253,61 @@ IGA_HD void evaluateFactorised(const T* coeffs, const Shape& shape, const T (&ba
         v += basis[1][j] * line;
         vu += basis[1][j] * dline;
         vv += dbasis[1][j] * line;
+      }
+      value += basis[2][k] * v;
+      du += basis[2][k] * vu;
+      dv += basis[2][k] * vv;
+      dw += dbasis[2][k] * v;
+    }
+    values[c] = value;
+    if (derivatives)
+    {
+      derivatives[c] = du;
+      derivatives[C + c] = dv;
+      derivatives[2 * C + c] = dw;
+    }
+  }
+}
+
+/// Scratch limit of the channels-inner order below (n1 n2 evaluated channels).
+constexpr int kFactorisedScratch = 6 * 6 * 8;
+
+/// ... and here the channels of a control point innermost, the first contraction kept in
+/// scratch (the CPU's: the compiler vectorises across adjacent channels; volume frames 8-10%
+/// faster on 2 cores than by channel).
+template<class T, class Shape>
+IGA_HD void evaluateChannelsInner(const T* coeffs, const Shape& shape,
+  const T (&basis)[3][kMaxOrder], const T (&dbasis)[3][kMaxOrder], T* values, T* derivatives)
+{
+  const int n0 = shape.n0, n1 = shape.n1, n2 = shape.n2, C = shape.channels, E = shape.evaluated;
+  T line[kFactorisedScratch], dline[kFactorisedScratch]; // contracted along u: (j, k, c)
+  for (int jk = 0; jk < n1 * n2; ++jk)
+  {
+    for (int c = 0; c < E; ++c)
+    {
+      T v = T(0), dv = T(0);
+      const T* p = coeffs + (jk * n0) * C + c;
+      for (int i = 0; i < n0; ++i)
+      {
+        v += basis[0][i] * p[i * C];
+        dv += dbasis[0][i] * p[i * C];
+      }
+      line[jk * E + c] = v;
+      dline[jk * E + c] = dv;
+    }
+  }
+  for (int c = 0; c < E; ++c)
+  {
+    T value = T(0), du = T(0), dv = T(0), dw = T(0);
+    for (int k = 0; k < n2; ++k)
+    {
+      T v = T(0), vu = T(0), vv = T(0);
+      for (int j = 0; j < n1; ++j)
+      {
+        const int index = (k * n1 + j) * E + c;
+        v += basis[1][j] * line[index];
+        vu += basis[1][j] * dline[index];
+        vv += dbasis[1][j] * line[index];
       }
       value += basis[2][k] * v;
       du += basis[2][k] * vu;
@@ -351,10 +408,17 @@ IGA_HD void evaluateFactorised(const PatchView<const T, 3>& patch, const T (&bas
   withShape(patch.channels == 6 && patch.degree[1] == p && patch.degree[2] == p, p,
     RuntimeShape{ patch.order(0), patch.order(1), patch.order(2), patch.channels, leading },
     [&](const auto& shape)
-    { evaluateFactorised(patch.coeffs, shape, basis, dbasis, values, derivatives); });
+    {
+#ifndef __CUDA_ARCH__
+      if (shape.n1 * shape.n2 * shape.evaluated <= kFactorisedScratch)
+      {
+        return evaluateChannelsInner(patch.coeffs, shape, basis, dbasis, values, derivatives);
+      }
+#endif
+      evaluateByChannel(patch.coeffs, shape, basis, dbasis, values, derivatives);
+    });
 }
 } // namespace detail
-
 
 template<class T, int Dim>
 IGA_HD void evaluateHomogeneous(
