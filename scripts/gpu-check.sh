@@ -49,10 +49,11 @@ phase configure 60 cmake -S "$root/Kernels" -B "$build" -G Ninja -DCMAKE_BUILD_T
   -DCMAKE_CUDA_ARCHITECTURES="${CUDA_ARCHITECTURES:-90}" || exit 1
 phase build 300 cmake --build "$build" -j "$(nproc)" --target igaBenchmark igaCudaEngineTests \
   igaKernelsCudaTests || { tail -50 "$out/build.log"; exit 1; }
-# Registers, stack and shared memory of every kernel (what limits occupancy).
+# Registers, stack and shared memory of every kernel (what limits occupancy), a line each.
 if command -v cuobjdump > /dev/null; then
-  cuobjdump --dump-resource-usage "$build/CMakeFiles/igaEngine.dir/src/CudaEngine.cu.o" \
-    > "$out/resource-usage.txt" 2>&1 || true
+  cuobjdump --dump-resource-usage "$build/CMakeFiles/igaEngine.dir/src/CudaEngine.cu.o" 2>&1 |
+    grep -E "Function|REG" | sed -E 's/^[[:space:]]+//' | paste - - | sort -u \
+    > "$out/resource-usage.txt" || true
 fi
 phase gpu-tests 200 ctest --test-dir "$build" -L cuda -j 4 --no-tests=error --output-on-failure
 tail -3 "$out/gpu-tests.log"
