@@ -1,5 +1,6 @@
 #include "vtkIGAAlgebraicSource.h"
 
+#include "vtkErrorCode.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -90,6 +91,7 @@ int vtkIGAAlgebraicSource::RequestData(
   const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
   iga::VolumeSet<double> set;
   set.attributeNames = { "f" };
+  this->SetErrorCode(vtkErrorCode::NoError);
   try
   {
     if (this->GallerySurface >= count)
@@ -126,8 +128,10 @@ int vtkIGAAlgebraicSource::RequestData(
   catch (const std::invalid_argument& e)
   {
     // Said once, with an empty output: the pipeline stays sound, so the next good setting
-    // draws again (a failed request would leave ParaView's views on the last good frame).
+    // draws again (a failed request would leave ParaView's views on the last good frame). The
+    // error code tells callers that stop at an error, as a reader's does.
     vtkErrorMacro(<< e.what());
+    this->SetErrorCode(vtkErrorCode::UserError);
   }
   vtkUnstructuredGrid::GetData(outInfo)->ShallowCopy(
     vtkIGABezierHexahedra::ToUnstructuredGrid(set));

@@ -605,10 +605,8 @@ Input loadInput(const Options& options)
     source->SetSplineCells(options.absCells);
     source->SetSplineDegree(options.absDegree);
     name = options.gallery.empty() ? "--algebraic" : "--gallery " + options.gallery;
-    // A bad setting leaves the source's output empty (ParaView then draws again once it is
-    // fixed) with its error: here that error ends the run.
-    requestOrFail(name, [&]
-      { return source->GetExecutive()->Update() != 0 && source->GetOutput()->GetNumberOfCells(); });
+    requestOrFail(
+      name, [&] { return source->GetExecutive()->Update() != 0 && source->GetErrorCode() == 0; });
     input.producer = source;
     input.algebraic = true;
     convertOutput(source, name, input.patches, warnings);

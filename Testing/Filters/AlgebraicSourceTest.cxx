@@ -141,6 +141,7 @@ void expectOneError(vtkIGAAlgebraicSource* source, const std::string& message)
   ASSERT_EQ(errors.size(), 1u) << message;
   EXPECT_NE(errors[0].find(message), std::string::npos) << errors[0];
   EXPECT_EQ(source->GetOutput()->GetNumberOfCells(), 0);
+  EXPECT_NE(source->GetErrorCode(), 0ul) << message;
 }
 
 TEST(AlgebraicSource, BadInputIsOneErrorNamingIt)
@@ -179,6 +180,7 @@ TEST(AlgebraicSource, BadInputIsOneErrorNamingIt)
   EXPECT_EQ(source->GetGallerySurface(), -1);
   ASSERT_TRUE(igatest::updateCollectingErrors(source).empty());
   EXPECT_EQ(source->GetOutput()->GetNumberOfCells(), 1);
+  EXPECT_EQ(source->GetErrorCode(), 0ul); // a good setting clears the last error
 }
 
 } // namespace
