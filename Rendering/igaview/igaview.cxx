@@ -50,6 +50,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -333,6 +334,161 @@ void checkAlgebraic(const Options& options)
   }
 }
 
+/// The next argument, the value of the option before it.
+using OptionValue = std::function<std::string()>;
+
+/// What and how to draw, and where to write it. Each parse*Option says whether `arg` was its own.
+bool parseDrawingOption(const std::string& arg, const OptionValue& value, Options& options)
+{
+  if (arg == "--iso")
+    options.isovalues.push_back(parseNumber(value(), arg));
+  else if (arg == "--surface")
+    options.surface = true;
+  else if (arg == "--edges")
+    options.edges = true;
+  else if (arg == "--csg")
+  {
+    options.csg = value();
+    try
+    {
+      iga::csg::parseExpression(options.csg);
+    }
+    catch (const iga::csg::ExpressionError& e)
+    {
+      failExpression(options.csg, e);
+    }
+  }
+  else if (arg == "--slice")
+    options.slices.push_back(parsePlane(value(), arg));
+  else if (arg == "--clip")
+    options.clips.push_back(parsePlane(value(), arg));
+  else if (arg == "--surface-by")
+    options.surfaceBy = value();
+  else if (arg == "--color-by")
+    options.colorBy = value();
+  else if (arg == "--time")
+    options.time = parseNumber(value(), arg);
+  else if (arg == "--series" && !options.view)
+    options.series = true;
+  else if (arg == "-o")
+    options.output = value(), options.hasOutput = true;
+  else if (arg == "--keys" && options.view)
+  {
+    std::stringstream keys(value());
+    std::string key;
+    while (std::getline(keys, key, ','))
+    {
+      if (key != "Up" && key != "Down" && key != "Left" && key != "Right" && key != "r")
+        fail("--keys: unknown key '" + key + "' (Up, Down, Left, Right, r)");
+      options.keys.push_back(key);
+    }
+  }
+  else if (arg == "--exr")
+    options.exr = value();
+  else if (arg == "--deep-exr")
+    options.deepExr = value();
+  else
+    return false;
+  return true;
+}
+
+/// The engine's settings.
+bool parseEngineOption(const std::string& arg, const OptionValue& value, Options& options)
+{
+  if (arg == "--threads")
+    options.threads = parseWholeNumber(value(), arg, 1, 1024);
+  else if (arg == "--memory-budget")
+    options.memoryBudgetMB = parseWholeNumber(value(), arg, 16, 1048576);
+  else if (arg == "--deadline")
+  {
+    const std::string text = value();
+    options.deadline = parseNumber(text, arg);
+    if (!(options.deadline >= 0 && options.deadline <= 1e6))
+      fail("--deadline expects seconds in 0..1e6, got '" + text + "'");
+  }
+  else if (arg == "--backend")
+  {
+    try
+    {
+      options.backend = iga::sst::parseBackend(value());
+    }
+    catch (const std::invalid_argument& e)
+    {
+      fail(std::string("--backend: ") + e.what());
+    }
+  }
+  else if (arg == "--method")
+    options.method = parseMethodOption(value());
+  else if (arg == "--root-finder")
+  {
+    try
+    {
+      options.rootFinder = iga::parseRootFinder(value());
+    }
+    catch (const std::invalid_argument& e)
+    {
+      fail(std::string("--root-finder: ") + e.what());
+    }
+  }
+  else
+    return false;
+  return true;
+}
+
+/// An algebraic surface instead of an input.
+bool parseAlgebraicOption(const std::string& arg, const OptionValue& value, Options& options)
+{
+  if (arg == "--algebraic")
+    options.algebraic = value();
+  else if (arg == "--box")
+    parseNumbers(value(), arg, 6, "x0,x1,y0,y1,z0,z1", options.box), options.hasBox = true;
+  else if (arg == "--gallery")
+    options.gallery = value();
+  else if (arg == "--abs-cells" || arg == "--abs-degree")
+  {
+    const std::string text = value();
+    const double number = parseNumber(text, arg);
+    const bool cells = arg == "--abs-cells";
+    if (!(number == std::floor(number) && number >= 1 && number <= (cells ? 64 : 3)))
+      fail(arg + " expects a whole number in 1.." + (cells ? "64" : "3") + ", got '" + text + "'");
+    (cells ? options.absCells : options.absDegree) = int(number);
+  }
+  else
+    return false;
+  return true;
+}
+
+/// The image's size and the camera.
+bool parseViewOption(const std::string& arg, const OptionValue& value, Options& options)
+{
+  if (arg == "--size")
+  {
+    const std::string text = value();
+    char rest = 0;
+    if (std::sscanf(text.c_str(), "%dx%d%c", &options.size[0], &options.size[1], &rest) != 2 ||
+        options.size[0] < 1 || options.size[1] < 1 || options.size[0] > 16384 ||
+        options.size[1] > 16384)
+    {
+      fail("--size expects WxH with 1..16384 pixels each, got '" + text + "'");
+    }
+  }
+  else if (arg == "--camera-position")
+    parseTriple(value(), arg, options.position), options.hasPosition = true;
+  else if (arg == "--focal-point")
+    parseTriple(value(), arg, options.focal), options.hasFocal = true;
+  else if (arg == "--view-up")
+    parseTriple(value(), arg, options.viewUp), options.hasViewUp = true;
+  else if (arg == "--view-angle")
+  {
+    options.viewAngle = parseNumber(value(), arg);
+    if (!(options.viewAngle > 0 && options.viewAngle < 180))
+      fail("--view-angle must lie strictly between 0 and 180 degrees");
+  }
+  else
+    return false;
+  return true;
+}
+
 Options parseArguments(int argc, char** argv)
 {
   if (argc < 2 || std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")
@@ -349,7 +505,7 @@ Options parseArguments(int argc, char** argv)
   for (int i = 2; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    auto value = [&]() -> std::string
+    const OptionValue value = [&]() -> std::string
     {
       if (i + 1 >= argc)
       {
@@ -362,128 +518,12 @@ Options parseArguments(int argc, char** argv)
       std::fputs(kUsage, stdout);
       std::exit(0);
     }
-    else if (arg == "--iso")
-      options.isovalues.push_back(parseNumber(value(), arg));
-    else if (arg == "--surface")
-      options.surface = true;
-    else if (arg == "--edges")
-      options.edges = true;
-    else if (arg == "--csg")
-    {
-      options.csg = value();
-      try
-      {
-        iga::csg::parseExpression(options.csg);
-      }
-      catch (const iga::csg::ExpressionError& e)
-      {
-        failExpression(options.csg, e);
-      }
-    }
-    else if (arg == "--slice")
-      options.slices.push_back(parsePlane(value(), arg));
-    else if (arg == "--clip")
-      options.clips.push_back(parsePlane(value(), arg));
-    else if (arg == "--surface-by")
-      options.surfaceBy = value();
-    else if (arg == "--color-by")
-      options.colorBy = value();
-    else if (arg == "--time")
-      options.time = parseNumber(value(), arg);
-    else if (arg == "--series" && !options.view)
-      options.series = true;
-    else if (arg == "-o")
-      options.output = value(), options.hasOutput = true;
-    else if (arg == "--keys" && options.view)
-    {
-      std::stringstream keys(value());
-      std::string key;
-      while (std::getline(keys, key, ','))
-      {
-        if (key != "Up" && key != "Down" && key != "Left" && key != "Right" && key != "r")
-          fail("--keys: unknown key '" + key + "' (Up, Down, Left, Right, r)");
-        options.keys.push_back(key);
-      }
-    }
-    else if (arg == "--exr")
-      options.exr = value();
-    else if (arg == "--deep-exr")
-      options.deepExr = value();
-    else if (arg == "--threads")
-      options.threads = parseWholeNumber(value(), arg, 1, 1024);
-    else if (arg == "--memory-budget")
-      options.memoryBudgetMB = parseWholeNumber(value(), arg, 16, 1048576);
-    else if (arg == "--deadline")
-    {
-      const std::string text = value();
-      options.deadline = parseNumber(text, arg);
-      if (!(options.deadline >= 0 && options.deadline <= 1e6))
-        fail("--deadline expects seconds in 0..1e6, got '" + text + "'");
-    }
-    else if (arg == "--backend")
-    {
-      try
-      {
-        options.backend = iga::sst::parseBackend(value());
-      }
-      catch (const std::invalid_argument& e)
-      {
-        fail(std::string("--backend: ") + e.what());
-      }
-    }
-    else if (arg == "--algebraic")
-      options.algebraic = value();
-    else if (arg == "--box")
-      parseNumbers(value(), arg, 6, "x0,x1,y0,y1,z0,z1", options.box), options.hasBox = true;
-    else if (arg == "--gallery")
-      options.gallery = value();
-    else if (arg == "--abs-cells" || arg == "--abs-degree")
-    {
-      const std::string text = value();
-      const double number = parseNumber(text, arg);
-      const bool cells = arg == "--abs-cells";
-      if (!(number == std::floor(number) && number >= 1 && number <= (cells ? 64 : 3)))
-        fail(
-          arg + " expects a whole number in 1.." + (cells ? "64" : "3") + ", got '" + text + "'");
-      (cells ? options.absCells : options.absDegree) = int(number);
-    }
-    else if (arg == "--method")
-      options.method = parseMethodOption(value());
-    else if (arg == "--root-finder")
-    {
-      try
-      {
-        options.rootFinder = iga::parseRootFinder(value());
-      }
-      catch (const std::invalid_argument& e)
-      {
-        fail(std::string("--root-finder: ") + e.what());
-      }
-    }
-    else if (arg == "--size")
-    {
-      const std::string text = value();
-      char rest = 0;
-      if (std::sscanf(text.c_str(), "%dx%d%c", &options.size[0], &options.size[1], &rest) != 2 ||
-          options.size[0] < 1 || options.size[1] < 1 || options.size[0] > 16384 ||
-          options.size[1] > 16384)
-      {
-        fail("--size expects WxH with 1..16384 pixels each, got '" + text + "'");
-      }
-    }
-    else if (arg == "--camera-position")
-      parseTriple(value(), arg, options.position), options.hasPosition = true;
-    else if (arg == "--focal-point")
-      parseTriple(value(), arg, options.focal), options.hasFocal = true;
-    else if (arg == "--view-up")
-      parseTriple(value(), arg, options.viewUp), options.hasViewUp = true;
-    else if (arg == "--view-angle")
-    {
-      options.viewAngle = parseNumber(value(), arg);
-      if (!(options.viewAngle > 0 && options.viewAngle < 180))
-        fail("--view-angle must lie strictly between 0 and 180 degrees");
-    }
-    else if (!arg.empty() && arg[0] == '-')
+    const bool parsed =
+      parseDrawingOption(arg, value, options) || parseEngineOption(arg, value, options) ||
+      parseAlgebraicOption(arg, value, options) || parseViewOption(arg, value, options);
+    if (parsed)
+      continue;
+    if (!arg.empty() && arg[0] == '-')
       fail("unknown option '" + arg + "' (try: igaview --help)");
     else if (options.input.empty())
       options.input = arg;
