@@ -121,6 +121,7 @@ struct vtkIGAIsosurfaceMapper::Internals
   const vtkDataObject* SetInput = nullptr;
   vtkMTimeType SetTime = 0;
   bool SetValid = false;
+  std::string SetError; ///< why the input cannot be drawn, when it cannot
   // The surfaces drawn (the quadrilaterals, then in DRAW_SURFACES the volumes' boundary faces)
   // for the data of SurfacesTime and the draw mode SurfacesMode; the faces, found again only
   // when the topology changes.
@@ -149,6 +150,7 @@ struct vtkIGAIsosurfaceMapper::Internals
   // Where the last frame ran, and why not where it was asked to.
   std::string LastBackend;
   std::string LastNotice;
+  std::string LastRefusal;
   // Messages reported since the settings or the input last changed (their keys), and the
   // modification times they were reported for; engine notices reported (never repeated).
   std::set<std::string> Reported;
@@ -392,6 +394,20 @@ vtkTypeUInt64 vtkIGAIsosurfaceMapper::GetLastExtractionVersion() const
 const char* vtkIGAIsosurfaceMapper::GetLastNotice() const
 {
   return this->Internal->LastNotice.c_str();
+}
+
+const char* vtkIGAIsosurfaceMapper::GetLastRefusal() const
+{
+  return this->Internal->LastRefusal.c_str();
+}
+
+void vtkIGAIsosurfaceMapper::Refuse(const std::string& why)
+{
+  Internals& in = *this->Internal;
+  in.LastRefusal = why;
+  in.FrameKey.clear();
+  in.GBuffer = iga::sst::GBuffer();
+  this->LastEngineTime = 0;
 }
 
 void vtkIGAIsosurfaceMapper::ReportOnce(
@@ -700,6 +716,7 @@ struct vtkIGAIsosurfaceMapper::Frame
 void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 {
   Frame frame;
+  this->Internal->LastRefusal.clear();
   if (!this->CollectInput(frame) || !this->DescribeFrame(renderer, actor, frame))
   {
     return;
@@ -746,11 +763,13 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
     }
     if (!in.SetValid)
     {
-      vtkErrorMacro(<< "cannot draw the input: " << error);
+      in.SetError = "cannot draw the input: " + error;
+      vtkErrorMacro(<< in.SetError);
     }
   }
   if (!in.SetValid)
   {
+    this->Refuse(in.SetError);
     return false;
   }
   this->UpdateSurfaces();
@@ -893,9 +912,10 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   if (frame.Volumes && this->DrawMode == DRAW_ISOSURFACES &&
       (names.empty() || surfaceAttribute >= int(names.size())))
   {
-    this->ReportOnce("surface array",
-      "no point array named '" + this->SurfaceArrayName + "' to draw isosurfaces of", true);
-    in.FrameKey.clear();
+    const std::string why =
+      "no point array named '" + this->SurfaceArrayName + "' to draw isosurfaces of";
+    this->ReportOnce("surface array", why, true);
+    this->Refuse(why);
     return false;
   }
   int origin[2];
@@ -972,7 +992,6 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
   if (vtkIGAIsosurfaceMapper::GetImageBytes(frame.Width, frame.Height) > budget)
   {
     this->ReportImageOverBudget(frame);
-    in.FrameKey.clear();
     return false;
   }
   settings.memoryBudgetBytes = budget - mapperImageBytes(frame.Width, frame.Height);
@@ -1014,6 +1033,7 @@ void vtkIGAIsosurfaceMapper::ReportImageOverBudget(const Frame& frame)
   this->ReportOnce(
     "image over budget " + std::to_string(frame.Width) + "x" + std::to_string(frame.Height), text,
     true);
+  this->Refuse(text);
 }
 
 void vtkIGAIsosurfaceMapper::DescribeLights(vtkRenderer* renderer, Frame& frame)
@@ -1168,7 +1188,7 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
   {
     this->UpdateProgress(1.0);
     this->ReportOnce(std::string("engine: ") + e.what(), e.what(), true);
-    in.FrameKey.clear();
+    this->Refuse(e.what());
     return false;
   }
   return true;

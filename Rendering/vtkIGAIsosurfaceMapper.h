@@ -296,8 +296,13 @@ public:
   vtkGetMacro(FrameDeadline, double);
   ///@}
 
-  /// Milliseconds the engine took for the last frame it computed.
+  /// Milliseconds the engine took for the last frame it computed (0 after a refused render).
   double GetLastEngineTime() const { return this->LastEngineTime; }
+
+  /// Why the last render drew nothing of the input: the input, or a setting, was refused (the
+  /// error reported, once, says the same). Empty after a render that drew. A refused render
+  /// forgets the frame before it: GetLastGBuffer is then empty.
+  const char* GetLastRefusal() const;
 
   /// Where the last frame computed ran: "cpu" or "cuda" (empty before the first frame).
   const char* GetLastBackend() const;
@@ -357,6 +362,8 @@ private:
   /// Reports `message` (a warning, or an error) unless the same key was reported since the
   /// settings or the input last changed.
   void ReportOnce(const std::string& key, const std::string& message, bool error);
+  /// Forgets the last frame and remembers why this render draws nothing (GetLastRefusal).
+  void Refuse(const std::string& why);
 
 #ifndef __VTK_WRAP__
   // The steps of Render: the input as patches, what the frame depends on, the engine's frame

@@ -883,13 +883,26 @@ struct Viewer
     return text;
   }
 
-  /// The corner text, after a frame: state, engine and whole-frame milliseconds.
+  /// What the last frame drew: pixels covered and engine and whole-frame milliseconds, or why
+  /// it drew nothing.
+  std::string outcome() const
+  {
+    const std::string refusal = this->mapper->GetLastRefusal();
+    if (!refusal.empty())
+    {
+      return "nothing drawn: " + refusal;
+    }
+    char text[128];
+    std::snprintf(text, sizeof(text), "%zu pixels covered, engine %.1f ms, frame %.1f ms",
+      this->mapper->GetLastGBuffer().coveredPixels(), this->mapper->GetLastEngineTime(),
+      1000 * this->renderer->GetLastRenderTimeInSeconds());
+    return text;
+  }
+
+  /// The corner text, after a frame: the state, then the outcome.
   void updateReadout()
   {
-    char times[96];
-    std::snprintf(times, sizeof(times), "\nengine %.1f ms   frame %.1f ms",
-      this->mapper->GetLastEngineTime(), 1000 * this->renderer->GetLastRenderTimeInSeconds());
-    this->readout->SetInput((this->state() + times).c_str());
+    this->readout->SetInput((this->state() + "\n" + this->outcome()).c_str());
   }
 };
 
@@ -915,9 +928,8 @@ void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
       viewer.press(key);
       window->Render();
       viewer.updateReadout();
-      std::printf("igaview: key %s: %s, %zu pixels covered, engine %.1f ms, frame %.1f ms\n",
-        key.c_str(), viewer.state().c_str(), viewer.mapper->GetLastGBuffer().coveredPixels(),
-        viewer.mapper->GetLastEngineTime(), 1000 * viewer.renderer->GetLastRenderTimeInSeconds());
+      std::printf(
+        "igaview: key %s: %s, %s\n", key.c_str(), viewer.state().c_str(), viewer.outcome().c_str());
     }
     window->Render();
     return;
@@ -1222,6 +1234,9 @@ void writeOutputs(const Options& options, const Drawing& drawing, vtkRenderWindo
   vtkIGAIsosurfaceMapper* mapper)
 {
   // Errors of the engine surface as VTK errors; make them fatal and on one line.
+  const std::string refusal = mapper->GetLastRefusal();
+  if (!refusal.empty())
+    fail(refusal);
   const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
   if (gbuffer.width != options.size[0] || gbuffer.height != options.size[1])
   {
@@ -1279,16 +1294,15 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
   if (steps.empty())
     fail("--series: '" + options.input +
          "' has no time steps (a .pvd series and the default dataset have)");
-  // A step the mapper refuses (an attribute it lacks) leaves the last frame's G-buffer: fail.
-  const std::string& refused = mapperError;
   for (size_t k = 0; k < steps.size(); ++k)
   {
     requestOrFail("time " + std::to_string(steps[k]),
       [&] { return input.producer->UpdateTimeStep(steps[k]) != 0; });
     window->Render();
-    if (!refused.empty())
+    const std::string refusal = mapper->GetLastRefusal();
+    if (!refusal.empty())
       fail("time step " + std::to_string(k + 1) + " of " + std::to_string(steps.size()) + ": " +
-           refused);
+           refusal);
     std::printf("igaview: time step %zu of %zu, time %g\n", k + 1, steps.size(), steps[k]);
     Options frame = options;
     frame.output = numbered(options.output, k);

@@ -15,6 +15,7 @@
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkPlane.h"
+#include "vtkPoints.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -427,6 +428,46 @@ TEST(IsosurfaceMapperSettings, MissingSurfaceArrayIsReportedOnce)
   scene.mapper->SetSurfaceArrayName("temperature");
   scene.render();
   EXPECT_EQ(scene.recorder->errors.size(), 2u);
+  EXPECT_GT(scene.coveredPixels(), 1000u);
+}
+
+// A refused render forgets the frame before it, so that what reads the mapper afterwards (the
+// viewer's readout, an export) does not take the last good frame for this one.
+TEST(IsosurfaceMapperSettings, ARefusedRenderSaysWhyAndForgetsTheFrameBeforeIt)
+{
+  TubeScene scene;
+  scene.render();
+  EXPECT_STREQ(scene.mapper->GetLastRefusal(), "");
+  ASSERT_GT(scene.coveredPixels(), 1000u);
+  ASSERT_GT(scene.mapper->GetLastEngineTime(), 0.0);
+
+  scene.mapper->SetSurfaceArrayName("bogus");
+  scene.render();
+  EXPECT_STREQ(
+    scene.mapper->GetLastRefusal(), "no point array named 'bogus' to draw isosurfaces of");
+  EXPECT_EQ(scene.mapper->GetLastGBuffer().width, 0);
+  EXPECT_EQ(scene.coveredPixels(), 0u);
+  EXPECT_EQ(scene.mapper->GetLastEngineTime(), 0.0);
+
+  // An input that cannot be drawn (a NaN control point) is refused each render, said once.
+  scene.mapper->SetSurfaceArrayName("temperature");
+  auto bad = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5));
+  bad->GetPoints()->SetPoint(3, std::nan(""), 0, 0);
+  scene.mapper->SetInputData(bad);
+  for (int frame = 0; frame < 2; ++frame)
+  {
+    scene.turn(3);
+    scene.render();
+    EXPECT_NE(std::string(scene.mapper->GetLastRefusal()).find("cannot draw the input: "),
+      std::string::npos)
+      << scene.mapper->GetLastRefusal();
+    EXPECT_EQ(scene.coveredPixels(), 0u);
+  }
+
+  scene.mapper->SetInputData(
+    vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5)));
+  scene.render();
+  EXPECT_STREQ(scene.mapper->GetLastRefusal(), "");
   EXPECT_GT(scene.coveredPixels(), 1000u);
 }
 
