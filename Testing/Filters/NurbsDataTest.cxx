@@ -179,20 +179,20 @@ TEST(NurbsData, BadInputIsNamed)
               "control point (0, 0, 0) has a non-finite attribute 1 (channel 5): nan"),
     std::string::npos);
 
-  // Control point (0, 0) of the surface weighing 1e7 times its neighbours: element (0, 0) draws
-  // on it, at the first step or a later one.
+  // Control point (0, 0) of the surface weighing 1e7 times its neighbours: it is element
+  // (0, 0)'s corner, at the first step or a later one.
   set = randomSet(3);
   auto skewed =
     std::vector<std::vector<double>>{ set.volumes[0].net, set.volumes[1].net, set.surfaces[0].net };
   for (int c = 0; c < set.channels(); ++c)
     skewed[2][size_t(c)] *= 1e7;
-  const std::string drawsOn = "element (0, 0) draws on control points whose weights range over ";
+  const std::string skewedElement = "element (0, 0): its Bézier weights range over ";
   ASSERT_EQ(data->SetPatches(set, 1.0), "");
   const std::string later = data->AddTimeStep(2.0, skewed);
-  EXPECT_EQ(later.rfind("time 2.000000, patch 2: " + drawsOn, 0), 0u) << later;
+  EXPECT_EQ(later.rfind("time 2.000000, patch 2: " + skewedElement, 0), 0u) << later;
   set.surfaces[0].net = skewed[2];
   const std::string first = data->SetPatches(set);
-  EXPECT_EQ(first.rfind("patch 2 (surface): " + drawsOn, 0), 0u) << first;
+  EXPECT_EQ(first.rfind("patch 2 (surface): " + skewedElement, 0), 0u) << first;
   EXPECT_NE(first.find(": more than the 1e+06 that subdivision resolves"), std::string::npos);
 
   set = randomSet(3);

@@ -3,6 +3,8 @@
 #include "TestPatches.h"
 
 #include "iga/BSpline.h"
+#include "iga/NurbsSet.h"
+#include "iga/Validation.h"
 
 #include <algorithm>
 
@@ -177,6 +179,50 @@ TEST(BSplineValidation, RejectsMalformedKnotVectorsWithClearMessages)
   {
     EXPECT_NE(std::string(e.what()).find("direction 2"), std::string::npos) << e.what();
   }
+}
+
+// An element is refused for its Bézier weights, not for its support's: quadratic in u with knots
+// 0 0 0 1 2 3 3 3 and the middle control point weighing W, element 0's Bézier weights along u
+// are 1, 1 and (1 + W) / 2, while its support in the net ranges over 1 .. W.
+TEST(BSplineValidation, ElementsAreRefusedForTheirBezierWeightsRatherThanTheirSupports)
+{
+  auto patchWithMiddleWeight = [](double w)
+  {
+    iga::BSplinePatch<double, 3> patch;
+    const int degree[3] = { 2, 1, 1 }, size[3] = { 5, 2, 2 };
+    patch.knots[0] = { 0, 0, 0, 1, 2, 3, 3, 3 };
+    patch.knots[1] = patch.knots[2] = { 0, 0, 1, 1 };
+    std::copy(degree, degree + 3, patch.degree);
+    std::copy(size, size + 3, patch.netSize);
+    patch.channels = iga::kFirstAttributeChannel;
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 5; ++i)
+        {
+          const double weight = i == 2 ? w : 1.0;
+          for (double x : { double(i), double(j), double(k) })
+            patch.net.push_back(weight * x);
+          patch.net.push_back(weight);
+        }
+    return patch;
+  };
+  auto problem = [](const iga::BSplinePatch<double, 3>& patch)
+  {
+    const iga::BezierExtraction<double, 3> extraction(patch.knots, patch.degree, patch.netSize);
+    return iga::skewedElementProblem(extraction, patch.net, patch.channels);
+  };
+  // W = 1.5e6: supports range over 1.5e6, Bézier weights over 7.5e5 at most; accepted, and the
+  // engine's own check passes every element.
+  const auto accepted = patchWithMiddleWeight(1.5e6);
+  EXPECT_EQ(problem(accepted), "");
+  for (const auto& element : iga::extractBezier(accepted))
+    EXPECT_EQ(iga::checkPatch(element.view()), "");
+  // W = 3e6: element 0's Bézier weights range over 1 .. 1.5e6.
+  const auto refused = patchWithMiddleWeight(3e6);
+  EXPECT_EQ(problem(refused), "element (0, 0, 0): its Bézier weights range over 1 .. 1.5e+06, a "
+                              "ratio of 1.5e+06: more than the 1e+06 that subdivision resolves");
+  const auto elements = iga::extractBezier(refused);
+  EXPECT_NE(iga::checkPatch(elements[0].view()), "");
 }
 
 } // namespace

@@ -85,23 +85,53 @@ std::string checkControlNet(const BSplinePatch<T, Dim>& patch, const std::vector
   return checkControlNet<T, Dim>(patch.netSize, patch.channels, net);
 }
 
-/// Empty unless an element of the patch draws on control points (its support in the net) whose
-/// weights range over more than kMaxWeightRatio; then names the first such element by its index
-/// along each direction. Its Bézier weights are convex combinations of these, so an element that
-/// passes passes checkPatch too (the converse may fail: this check is the stricter). Walks the
-/// elements only when the whole net's weights range that far. `net` passed checkControlNet.
+/// Whether the control points element `index` draws on (its support in the net) have weights
+/// that range over more than `limit`.
+template<class T, int Dim>
+bool supportWeightsExceed(const BezierExtraction<T, Dim>& extraction, const int* index,
+  const std::vector<T>& net, int channels, T limit)
+{
+  int first[Dim], count = 1;
+  for (int d = 0; d < Dim; ++d)
+  {
+    first[d] = extraction.direction(d).firstBasis[size_t(index[d])];
+    count *= extraction.direction(d).degree + 1;
+  }
+  T lo = std::numeric_limits<T>::infinity(), hi = T(0);
+  for (int k = 0; k < count; ++k) // the support's points, first direction fastest
+  {
+    size_t point = 0, stride = 1;
+    for (int d = 0, rest = k; d < Dim; ++d)
+    {
+      const int order = extraction.direction(d).degree + 1;
+      point += size_t(first[d] + rest % order) * stride;
+      stride *= size_t(extraction.netSize(d));
+      rest /= order;
+    }
+    const T weight = net[point * size_t(channels) + kWeightChannel];
+    lo = std::min(lo, weight);
+    hi = std::max(hi, weight);
+  }
+  return hi > limit * lo;
+}
+
+/// Empty unless an element of the patch has Bézier weights that range over more than
+/// kMaxWeightRatio (what checkPatch refuses); then names the first such element by its index
+/// along each direction. Its Bézier weights are convex combinations of its support's in the net,
+/// so only an element whose support ranges that far is extracted, and only when the whole net's
+/// weights do. `net` passed checkControlNet.
 template<class T, int Dim>
 std::string skewedElementProblem(
   const BezierExtraction<T, Dim>& extraction, const std::vector<T>& net, int channels)
 {
-  // Extraction's rounding may widen an element's weights past its support's by a few ulps:
-  // the support is held to a hair less, so that checkPatch never refuses what passed here.
+  // Another extraction's rounding (the device's) may widen an element's weights by a few ulps:
+  // the limit here is a hair less, so that no engine refuses an element that passed.
   const T limit = T(kMaxWeightRatio * (1 - 1e-12));
-  const auto weight = [&](size_t point) { return net[point * size_t(channels) + kWeightChannel]; };
-  int netDegree[Dim]; // the net laid out as a patch of degrees netSize - 1
+  int netDegree[Dim], degree[Dim]; // the net laid out as a patch of degrees netSize - 1
   for (int d = 0; d < Dim; ++d)
   {
     netDegree[d] = extraction.netSize(d) - 1;
+    degree[d] = extraction.direction(d).degree;
   }
   T lo, hi;
   weightRange(PatchView<const T, Dim>(net.data(), netDegree, channels), lo, hi);
@@ -109,39 +139,26 @@ std::string skewedElementProblem(
   {
     return std::string();
   }
+  BezierPatch<T, Dim> element(degree, channels);
+  std::vector<T> work(2 * element.coeffs().size());
   for (int e = 0; e < extraction.elementCount(); ++e)
   {
-    int element[Dim], first[Dim], count = 1;
-    extraction.elementIndex(e, element);
-    for (int d = 0; d < Dim; ++d)
+    int index[Dim];
+    extraction.elementIndex(e, index);
+    if (!supportWeightsExceed(extraction, index, net, channels, limit))
     {
-      first[d] = extraction.direction(d).firstBasis[size_t(element[d])];
-      count *= extraction.direction(d).degree + 1;
+      continue;
     }
-    lo = std::numeric_limits<T>::infinity();
-    hi = T(0);
-    for (int k = 0; k < count; ++k) // the support's points, first direction fastest
-    {
-      size_t point = 0, stride = 1;
-      for (int d = 0, rest = k; d < Dim; ++d)
-      {
-        const int order = extraction.direction(d).degree + 1;
-        point += size_t(first[d] + rest % order) * stride;
-        stride *= size_t(extraction.netSize(d));
-        rest /= order;
-      }
-      lo = std::min(lo, weight(point));
-      hi = std::max(hi, weight(point));
-    }
+    extraction.extract(e, net.data(), channels, element.coeffs().data(), work.data());
+    weightRange(static_cast<const BezierPatch<T, Dim>&>(element).view(), lo, hi);
     if (hi > limit * lo)
     {
       std::string where = "element (";
       for (int d = 0; d < Dim; ++d)
       {
-        where += (d ? ", " : "") + std::to_string(element[d]);
+        where += (d ? ", " : "") + std::to_string(index[d]);
       }
-      return where + ") draws on control points whose " +
-             weightRatioProblem(double(lo), double(hi));
+      return where + "): its Bézier " + weightRatioProblem(double(lo), double(hi));
     }
   }
   return std::string();
