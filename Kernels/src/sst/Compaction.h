@@ -110,22 +110,28 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
   uint8_t* unresolved = raw(s.Unresolved);
   unsigned long long* tallies = raw(s.Tallies);
   uint64_t* totals = raw(s.Totals);
-  // How many children each failed tuple moves to; a child is used when it receives a tuple.
+  // The children each failed tuple moves to, and how many; a child is used when it receives a
+  // tuple.
   uint64_t* newCounts = sized(s.Counts, tupleCount + 1);
+  uint8_t* childMasks = sized(s.ChildMasks, tupleCount);
+  static_assert(kChildSlots <= 8, "a child mask has a bit per slot");
   s.exec.forEach(tupleCount,
     [=] IGA_HD(size_t t)
     {
-      uint32_t count = 0;
+      uint32_t count = 0, mask = 0;
       const uint8_t state = split[tuples[t].node];
       if (outcome[t] == Failed && state == Split)
       {
         const size_t first = kChildSlots * size_t(splitIndex[tuples[t].node]);
-        for (size_t c = first; c < first + kChildSlots; ++c)
+        for (int c = 0; c < kChildSlots; ++c)
         {
-          if (keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
+          const Node& child = children[first + size_t(c)];
+          if (keep[first + size_t(c)] &&
+              mayHitPixel(child, tuples[t].pixel, best[tuples[t].pixel], frame))
           {
             ++count;
-            lowerAtomically(&firstTuple[c], unsigned(t));
+            mask |= 1u << c;
+            lowerAtomically(&firstTuple[first + size_t(c)], unsigned(t));
           }
         }
       }
@@ -135,6 +141,7 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
         addAtomically(&tallies[state == AtDepthCap ? TuplesAtDepthCap : TuplesOverBudget], 1);
       }
       newCounts[t] = count;
+      childMasks[t] = uint8_t(mask);
     });
   s.exec.scan(newCounts, tupleCount);
   // The memory cap on the tuples handed on: the tuples whose next ones pass it give them up.
@@ -178,11 +185,11 @@ void compactionStage(LoopState<Exec>& s, size_t allowed)
         return;
       }
       const size_t first = kChildSlots * size_t(splitIndex[tuples[t].node]);
-      for (size_t c = first; c < first + kChildSlots; ++c)
+      for (int c = 0; c < kChildSlots; ++c)
       {
-        if (keep[c] && mayHitPixel(children[c], tuples[t].pixel, best[tuples[t].pixel], frame))
+        if (childMasks[t] & (1u << c))
         {
-          next[write++] = { tuples[t].pixel, newIndex[c] };
+          next[write++] = { tuples[t].pixel, newIndex[first + size_t(c)] };
         }
       }
     });

@@ -151,6 +151,7 @@ struct LoopState
   Array<unsigned long long> Tallies;      ///< Tally
   Array<unsigned long long> RowPairs;     ///< the sweep's pairs per row, as differences
   Array<uint8_t> Present, Outcomes, SplitFlags, Deferred, KeepFlags, Used;
+  Array<uint8_t> ChildMasks; ///< per failed tuple, the child slots it moves to (bit c: slot c)
   Array<double> Solution;
   // Hits, and the G-buffer stage's runs of them.
   size_t HitCount = 0, RunCount = 0, KeptCount = 0;
@@ -238,7 +239,7 @@ size_t budgetedBytes(const LoopState<Exec>& s)
          bytesOf(s.SplitFlags) + bytesOf(s.SplitIndex) + bytesOf(s.ChildValues) +
          bytesOf(s.SplitCost) + bytesOf(s.FailedTuples) + bytesOf(s.NodeBytes) +
          bytesOf(s.Deferred) + bytesOf(s.KeepFlags) + bytesOf(s.Used) + bytesOf(s.FirstTuple) +
-         bytesOf(s.Index) + bytesOf(s.Offsets);
+         bytesOf(s.Index) + bytesOf(s.Offsets) + bytesOf(s.ChildMasks);
 }
 
 /// The copies of the input and the hits, which the budget does not cap, and the per-pixel
@@ -271,7 +272,7 @@ void endIteration(LoopState<Exec>& s)
   markEmpty(s.NextNodes, s.Children, s.NextPool, s.ChildPool, s.Solution, s.Counts, s.ChildValues,
     s.SplitCost, s.NodeBytes, s.Offsets, s.FailedTuples, s.HitIndex, s.ToSplit, s.SplitIndex,
     s.Index, s.FirstTuple, s.Outcomes, s.SplitFlags, s.Deferred, s.KeepFlags, s.Used, s.Next,
-    s.Taken);
+    s.Taken, s.ChildMasks);
 }
 
 } // namespace sst

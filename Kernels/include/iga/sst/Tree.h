@@ -53,8 +53,8 @@ struct Tuple
 // the band's work items and the loop's nodes, coefficients, tuples and children.
 
 /// Per tuple, in either driver: the tuple, its outcome, solution (u, depth) and hit index or
-/// pixel run, and the compaction's count and offset.
-constexpr uint64_t kBytesPerTuple = sizeof(Tuple) + 1 + 4 * sizeof(double) + 12;
+/// pixel run, and the compaction's count, offset and child slots.
+constexpr uint64_t kBytesPerTuple = sizeof(Tuple) + 2 + 4 * sizeof(double) + 12;
 /// Per node record, with the flags, counts and offsets of its stages.
 constexpr uint64_t kBytesPerNode = sizeof(Node) + 64;
 /// Per work item of the band: its initial node, and the sorted (pixel, node) pair it came from,
