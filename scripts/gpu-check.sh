@@ -20,14 +20,15 @@ build="${BUILD_DIR:-$root/build-gpu}"
 deadline=$((SECONDS + ${GPU_CHECK_SECONDS:-540}))
 export PATH="$PATH:/usr/local/cuda/bin"
 mkdir -p "$out"
-: > "$out/phases.txt"
+rm -f "$out"/*.log
 failed=0
 
-# phase NAME LIMIT COMMAND...: COMMAND's output in $out/NAME.log, run for at most LIMIT seconds
-# and never past the deadline; its status and time appended to phases.txt.
+# phase NAME LIMIT COMMAND...: COMMAND's output appended to $out/NAME.log (or $out/$log.log when
+# `log` is set), run for at most LIMIT seconds and never past the deadline; its status and time
+# appended to phases.txt.
 phase()
 {
-  local name="$1" limit="$2"
+  local name="$1" limit="$2" file="$out/${log:-$1}.log"
   shift 2
   local left=$((deadline - SECONDS))
   ((left < limit)) && limit=$left
@@ -37,16 +38,19 @@ phase()
     return 1
   fi
   local start=$SECONDS status=0
-  timeout --kill-after=5 "$limit" "$@" > "$out/$name.log" 2>&1 || status=$?
+  timeout --kill-after=5 "$limit" "$@" >> "$file" 2>&1 || status=$?
   echo "$name exit $status after $((SECONDS - start)) s (limit $limit s)" | tee -a "$out/phases.txt"
   ((status == 0)) || failed=1
   return "$status"
 }
 
+# The device tool brings back few files: the device goes at the top of phases.txt, the
+# configure step's output into build.log.
 nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv \
-  > "$out/device.csv" 2>&1 || true
-phase configure 60 cmake -S "$root/Kernels" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CUDA_ARCHITECTURES="${CUDA_ARCHITECTURES:-90}" || exit 1
+  > "$out/phases.txt" 2>&1 || true
+: > "$out/build.log"
+log=build phase configure 60 cmake -S "$root/Kernels" -B "$build" -G Ninja \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES="${CUDA_ARCHITECTURES:-90}" || exit 1
 phase build 300 cmake --build "$build" -j "$(nproc)" --target igaBenchmark igaCudaEngineTests \
   igaKernelsCudaTests || { tail -50 "$out/build.log"; exit 1; }
 # Registers, stack and shared memory of every kernel (what limits occupancy), a line each.
