@@ -5,6 +5,7 @@
 //   igaBenchmark --csg [--quick] [--json FILE]
 //   igaBenchmark --algebraic [--quick] [--json FILE]
 //   igaBenchmark --screen-filling [--quick] [--json FILE]
+//   igaBenchmark --surfaces [--quick] [--json FILE]
 //   igaBenchmark --gpu [--quick] [--only NAME] [--json FILE]
 //
 // Studies (the SST paper's figures): SST vs basic scheme over degrees 2..5 (fig. 13); time and
@@ -13,7 +14,8 @@
 // paper's surface study): the teapot's 32 bicubic patches and the deforming blade's boundary
 // (over 10 000 biquadratic faces) at 512^2 and 1080p, SST against the basic scheme and per-pixel
 // Bézier clipping; CSG: the dice (cube<0 - pips<0, 125 patches of degree 4) at 512^2 and 1080p
-// against the cube's isosurface alone in first-hit mode (--csg: this study alone). Ratios
+// against the cube's isosurface alone in first-hit mode (--csg: this study alone; --surfaces:
+// the surface study alone). Ratios
 // compare runs of the same process.
 //
 // --algebraic: the gallery's algebraic surfaces (AlgebraicGallery.h), each one polynomial volume
@@ -575,7 +577,8 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
 
 int main(int argc, char** argv)
 {
-  bool quick = false, gpu = false, csgOnly = false, algebraicOnly = false, fillingOnly = false;
+  bool quick = false, gpu = false, csgOnly = false, algebraicOnly = false, fillingOnly = false,
+       surfacesOnly = false;
   std::string jsonFile, only;
   for (int i = 1; i < argc; ++i)
   {
@@ -587,6 +590,8 @@ int main(int argc, char** argv)
       algebraicOnly = true;
     else if (!std::strcmp(argv[i], "--screen-filling"))
       fillingOnly = true;
+    else if (!std::strcmp(argv[i], "--surfaces"))
+      surfacesOnly = true;
     else if (!std::strcmp(argv[i], "--gpu"))
       gpu = true;
     else if (!std::strcmp(argv[i], "--json") && i + 1 < argc)
@@ -596,9 +601,8 @@ int main(int argc, char** argv)
     else
     {
       std::fprintf(stderr,
-        "usage: igaBenchmark [--gpu [--only NAME] | --csg | --algebraic | --screen-filling] "
-        "[--quick] "
-        "[--json FILE]\n");
+        "usage: igaBenchmark [--gpu [--only NAME] | --csg | --algebraic | --screen-filling | "
+        "--surfaces] [--quick] [--json FILE]\n");
       return 1;
     }
   }
@@ -651,6 +655,11 @@ int main(int argc, char** argv)
   {
     all = screenFillingStudy("screen-filling", iga::sst::Backend::Cpu, threads, reps,
       [](const std::string&) { return true; });
+    return emit(json(all, ratios));
+  }
+  if (surfacesOnly)
+  {
+    surfaceStudy(quick, threads, reps, all, ratios);
     return emit(json(all, ratios));
   }
   if (algebraicOnly)
