@@ -401,10 +401,10 @@ const char* vtkIGAIsosurfaceMapper::GetLastRefusal() const
   return this->Internal->LastRefusal.c_str();
 }
 
-void vtkIGAIsosurfaceMapper::Refuse(const std::string& why)
+void vtkIGAIsosurfaceMapper::DrawNothing(const std::string& refusal)
 {
   Internals& in = *this->Internal;
-  in.LastRefusal = why;
+  in.LastRefusal = refusal;
   in.FrameKey.clear();
   in.GBuffer = iga::sst::GBuffer();
   this->LastEngineTime = 0;
@@ -716,11 +716,11 @@ struct vtkIGAIsosurfaceMapper::Frame
 void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 {
   Frame frame;
-  this->Internal->LastRefusal.clear();
   if (!this->CollectInput(frame) || !this->DescribeFrame(renderer, actor, frame))
   {
     return;
   }
+  this->Internal->LastRefusal.clear();
   if (!this->SameFrame(frame.Key))
   {
     if (!this->ComputeFrame(actor, frame))
@@ -769,7 +769,7 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
   }
   if (!in.SetValid)
   {
-    this->Refuse(in.SetError);
+    this->DrawNothing(in.SetError);
     return false;
   }
   this->UpdateSurfaces();
@@ -793,7 +793,12 @@ bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
       "settings or the input change",
       false);
   }
-  return frame.Volumes || !in.Surfaces.empty();
+  if (!frame.Volumes && in.Surfaces.empty())
+  {
+    this->DrawNothing(std::string());
+    return false;
+  }
+  return true;
 }
 
 void vtkIGAIsosurfaceMapper::UpdateSurfaces()
@@ -915,7 +920,7 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
     const std::string why =
       "no point array named '" + this->SurfaceArrayName + "' to draw isosurfaces of";
     this->ReportOnce("surface array", why, true);
-    this->Refuse(why);
+    this->DrawNothing(why);
     return false;
   }
   int origin[2];
@@ -1024,16 +1029,16 @@ vtkTypeUInt64 vtkIGAIsosurfaceMapper::GetImageBytes(int width, int height)
 void vtkIGAIsosurfaceMapper::ReportImageOverBudget(const Frame& frame)
 {
   const double needed = vtkIGAIsosurfaceMapper::GetImageBytes(frame.Width, frame.Height);
-  char text[256];
-  std::snprintf(text, sizeof text,
-    "nothing drawn: a %dx%d image needs %.0f MiB (%.0f bytes a pixel), more than the memory "
-    "budget (MemoryBudgetMB %d): raise it or make the view smaller",
+  char why[256];
+  std::snprintf(why, sizeof why,
+    "a %dx%d image needs %.0f MiB (%.0f bytes a pixel), more than the memory budget "
+    "(MemoryBudgetMB %d): raise it or make the view smaller",
     frame.Width, frame.Height, std::ceil(needed / 1048576.0),
     needed / (double(frame.Width) * frame.Height), this->MemoryBudgetMB);
   this->ReportOnce(
-    "image over budget " + std::to_string(frame.Width) + "x" + std::to_string(frame.Height), text,
-    true);
-  this->Refuse(text);
+    "image over budget " + std::to_string(frame.Width) + "x" + std::to_string(frame.Height),
+    std::string("nothing drawn: ") + why, true);
+  this->DrawNothing(why);
 }
 
 void vtkIGAIsosurfaceMapper::DescribeLights(vtkRenderer* renderer, Frame& frame)
@@ -1188,7 +1193,7 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
   {
     this->UpdateProgress(1.0);
     this->ReportOnce(std::string("engine: ") + e.what(), e.what(), true);
-    this->Refuse(e.what());
+    this->DrawNothing(e.what());
     return false;
   }
   return true;

@@ -300,8 +300,9 @@ public:
   double GetLastEngineTime() const { return this->LastEngineTime; }
 
   /// Why the last render drew nothing of the input: the input, or a setting, was refused (the
-  /// error reported, once, says the same). Empty after a render that drew. A refused render
-  /// forgets the frame before it: GetLastGBuffer is then empty.
+  /// error reported, once, says the same). Empty when it was not refused (it drew, or had
+  /// nothing to draw). A render that draws nothing forgets the frame before it: GetLastGBuffer
+  /// is then empty.
   const char* GetLastRefusal() const;
 
   /// Where the last frame computed ran: "cpu" or "cuda" (empty before the first frame).
@@ -362,8 +363,9 @@ private:
   /// Reports `message` (a warning, or an error) unless the same key was reported since the
   /// settings or the input last changed.
   void ReportOnce(const std::string& key, const std::string& message, bool error);
-  /// Forgets the last frame and remembers why this render draws nothing (GetLastRefusal).
-  void Refuse(const std::string& why);
+  /// This render draws nothing: forgets the last frame and remembers the refusal that is why
+  /// (GetLastRefusal; empty when nothing was refused, only nothing left to draw).
+  void DrawNothing(const std::string& refusal);
 
 #ifndef __VTK_WRAP__
   // The steps of Render: the input as patches, what the frame depends on, the engine's frame

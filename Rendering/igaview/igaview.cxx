@@ -1233,10 +1233,10 @@ std::string enginePaths(vtkIGAIsosurfaceMapper* mapper)
 void writeOutputs(const Options& options, const Drawing& drawing, vtkRenderWindow* window,
   vtkIGAIsosurfaceMapper* mapper)
 {
-  // Errors of the engine surface as VTK errors; make them fatal and on one line.
   const std::string refusal = mapper->GetLastRefusal();
   if (!refusal.empty())
     fail(refusal);
+  // Other errors of the mapper surface as VTK errors; make them fatal and on one line.
   const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
   if (gbuffer.width != options.size[0] || gbuffer.height != options.size[1])
   {

@@ -393,6 +393,9 @@ TEST(IsosurfaceMapperSettings, TinyMemoryBudgetLeavesUnresolvedPixelsWarnedOnce)
               "nothing drawn: a 400x320 image needs 45 MiB (365 bytes a pixel), more than the "
               "memory budget (MemoryBudgetMB 16): raise it or make the view smaller"),
     std::string::npos);
+  EXPECT_STREQ(scene.mapper->GetLastRefusal(),
+    "a 400x320 image needs 45 MiB (365 bytes a pixel), more than the memory budget "
+    "(MemoryBudgetMB 16): raise it or make the view smaller");
   scene.turn(4);
   scene.render();
   EXPECT_EQ(scene.recorder->errors.size(), 1u) << "said once";
@@ -449,8 +452,13 @@ TEST(IsosurfaceMapperSettings, ARefusedRenderSaysWhyAndForgetsTheFrameBeforeIt)
   EXPECT_EQ(scene.coveredPixels(), 0u);
   EXPECT_EQ(scene.mapper->GetLastEngineTime(), 0.0);
 
-  // An input that cannot be drawn (a NaN control point) is refused each render, said once.
+  // After a good frame, an input that cannot be drawn (a NaN control point) is refused each
+  // render, said once.
   scene.mapper->SetSurfaceArrayName("temperature");
+  scene.render();
+  ASSERT_STREQ(scene.mapper->GetLastRefusal(), "");
+  ASSERT_GT(scene.coveredPixels(), 1000u);
+  const size_t errorsBefore = scene.recorder->errors.size();
   auto bad = vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5));
   bad->GetPoints()->SetPoint(3, std::nan(""), 0, 0);
   scene.mapper->SetInputData(bad);
@@ -463,6 +471,18 @@ TEST(IsosurfaceMapperSettings, ARefusedRenderSaysWhyAndForgetsTheFrameBeforeIt)
       << scene.mapper->GetLastRefusal();
     EXPECT_EQ(scene.coveredPixels(), 0u);
   }
+  EXPECT_EQ(scene.recorder->errors.size(), errorsBefore + 1);
+
+  // No isovalue: nothing to draw, which is no refusal, and the frame before is forgotten too.
+  scene.mapper->SetInputData(
+    vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5)));
+  scene.render();
+  ASSERT_GT(scene.coveredPixels(), 1000u);
+  scene.mapper->SetNumberOfIsovalues(0);
+  scene.render();
+  EXPECT_STREQ(scene.mapper->GetLastRefusal(), "");
+  EXPECT_EQ(scene.coveredPixels(), 0u);
+  scene.mapper->SetIsovalue(0, 0.0);
 
   scene.mapper->SetInputData(
     vtkIGABezierHexahedra::ToUnstructuredGrid(iga::makeTwistedTube<double>(0.5)));
