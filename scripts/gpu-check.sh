@@ -48,7 +48,6 @@ phase()
 # configure step's output into build.log.
 nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv \
   > "$out/phases.txt" 2>&1 || true
-: > "$out/build.log"
 log=build phase configure 60 cmake -S "$root/Kernels" -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES="${CUDA_ARCHITECTURES:-90}" || exit 1
 phase build 300 cmake --build "$build" -j "$(nproc)" --target igaBenchmark igaCudaEngineTests \

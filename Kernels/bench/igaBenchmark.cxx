@@ -14,9 +14,10 @@
 // paper's surface study): the teapot's 32 bicubic patches and the deforming blade's boundary
 // (over 10 000 biquadratic faces) at 512^2 and 1080p, SST against the basic scheme and per-pixel
 // Bézier clipping; CSG: the dice (cube<0 - pips<0, 125 patches of degree 4) at 512^2 and 1080p
-// against the cube's isosurface alone in first-hit mode (--csg: this study alone; --surfaces:
-// the surface study alone). Ratios
+// against the cube's isosurface alone in first-hit mode (--csg: this study alone). Ratios
 // compare runs of the same process.
+//
+// --surfaces: the surface study alone.
 //
 // --algebraic: the gallery's algebraic surfaces (AlgebraicGallery.h), each one polynomial volume
 // over its box, SST against ray composition with each root finder at 512^2 (256^2 quick), with

@@ -639,7 +639,7 @@ int expectBandsMatchOnePass(
 }
 
 /// 48 slabs over a 160 x 120 image make 7 680 (pixel, patch) pairs a row. A memory budget of
-/// 2 MiB (65 bytes a pair: its work item and a tuple) takes 4 rows a pass: 30 bands. Every pixel's
+/// 2 MiB (66 bytes a pair: its work item and a tuple) takes 4 rows a pass: 30 bands. Every pixel's
 /// first hit lies on the nearest slab's middle plane, y = 1.0025.
 TEST(DeviceEngineCaps, ManyPairsAreDrawnInBands)
 {
@@ -658,7 +658,7 @@ TEST(DeviceEngineCaps, ManyPairsAreDrawnInBands)
 }
 
 /// A row needing more pairs than the budget allows is drawn as a band of its own (rows are not
-/// split): a 64 KiB budget takes 1 008 pairs, the slabs' rows have 7 680 each, so 120 bands.
+/// split): a 64 KiB budget takes 992 pairs, the slabs' rows have 7 680 each, so 120 bands.
 TEST(DeviceEngineCaps, RowOverTheBudgetIsABandOfItsOwn)
 {
   EXPECT_EQ(expectBandsMatchOnePass(slabStack(48, 0.01, 100, 160, 120), 64 * 1024,
@@ -667,8 +667,8 @@ TEST(DeviceEngineCaps, RowOverTheBudgetIsABandOfItsOwn)
 }
 
 /// Band edges across patch boxes: 40 slabs, the far ones narrower than the view, so their boxes
-/// end inside the image, in all-hits mode; a budget of 300 000 bytes (4 615 pairs a band at
-/// 65 bytes a pair) cuts the 37 rows into 10 bands and still leaves the loop room for every
+/// end inside the image, in all-hits mode; a budget of 300 000 bytes (4 545 pairs a band at
+/// 66 bytes a pair) cuts the 37 rows into 10 bands and still leaves the loop room for every
 /// tuple, for every CPU method and the device.
 TEST(DeviceEngineCaps, BandEdgesAcrossBoxesInAllHitsMode)
 {

@@ -151,7 +151,7 @@ struct LoopState
   Array<unsigned long long> Tallies;      ///< Tally
   Array<unsigned long long> RowPairs;     ///< the sweep's pairs per row, as differences
   Array<uint8_t> Present, Outcomes, SplitFlags, Deferred, KeepFlags, Used;
-  Array<uint8_t> ChildMasks; ///< per failed tuple, the child slots it moves to (bit c: slot c)
+  Array<uint8_t> ChildMasks; ///< per tuple, the child slots a failed one moves to (bit c: slot c)
   Array<double> Solution;
   // Hits, and the G-buffer stage's runs of them.
   size_t HitCount = 0, RunCount = 0, KeptCount = 0;

@@ -66,7 +66,7 @@ struct Settings
   /// Cap on a shared-subdivision-tree frame's memory besides its copies of the input. The image
   /// takes imageBytes (its per-pixel arrays and a G-buffer of one hit a pixel): a size needing
   /// more than the budget is refused before anything is allocated. The rest is the loop's: the
-  /// sweep's (pixel, patch) pairs at 65 bytes a pair (a frame that needs more is drawn in
+  /// sweep's (pixel, patch) pairs at 66 bytes a pair (a frame that needs more is drawn in
   /// several passes over bands of rows), the loop's nodes, coefficients, tuples and children
   /// (Tree.h's memory model; FrameReport::peakBudgetedBytes). Pixels whose work would pass it
   /// are left unresolved and counted (FrameReport::unresolvedAtBudget). Hits past one a pixel
