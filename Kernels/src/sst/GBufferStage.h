@@ -1,7 +1,8 @@
-// Stage 6, G-buffer: the frame's hits grouped by pixel, shaded on their input patches in double
-// precision, and per pixel resolved by the hit policy (sorted front to back, duplicates merged,
-// what the policy keeps). Run r of pixel RunPixels[r] keeps KeptStarts[r + 1] - KeptStarts[r]
-// hits, which compactHits puts at KeptStarts[r] where the driver wants them.
+// Stage 6, G-buffer: the frame's hits grouped by pixel, those the hit policy may keep shaded on
+// their input patches in double precision, and per pixel resolved by the policy (sorted front to
+// back, duplicates merged, what the policy keeps). Run r of pixel RunPixels[r] keeps
+// KeptStarts[r + 1] - KeptStarts[r] hits, which compactHits puts at KeptStarts[r] where the
+// driver wants them.
 #pragma once
 
 #include "sst/LoopState.h"
@@ -32,16 +33,26 @@ void gBufferStage(LoopState<Exec>& s)
     runCount,
     [=] IGA_HD(size_t r)
     {
+      // Only the hits the policy may keep are shaded, at the front of the run.
+      double nearest = raws[runStarts[r]].ndcDepth;
+      for (uint32_t h = runStarts[r] + 1; h < runStarts[r + 1]; ++h)
+      {
+        nearest = raws[h].ndcDepth < nearest ? raws[h].ndcDepth : nearest;
+      }
+      uint32_t candidates = runStarts[r];
       for (uint32_t h = runStarts[r]; h < runStarts[r + 1]; ++h)
       {
-        const PatchShape& shape = shapes[raws[h].patch];
-        const VolumeView<const double> shading(
-          shadingPool + shape.screen, shape.degree, kShadeChannels);
-        shaded[h] = shadeHit(shading, raws[h], viewer);
+        if (policy.mayResolveTo(raws[h].ndcDepth, nearest))
+        {
+          const PatchShape& shape = shapes[raws[h].patch];
+          const VolumeView<const double> shading(
+            shadingPool + shape.screen, shape.degree, kShadeChannels);
+          shaded[candidates++] = shadeHit(shading, raws[h], viewer);
+        }
       }
       pixels[r] = raws[runStarts[r]].pixel;
       kept[r] = uint32_t(policy.resolve(
-        shaded + runStarts[r], int(runStarts[r + 1] - runStarts[r]), footprint, viewer.parallel));
+        shaded + runStarts[r], int(candidates - runStarts[r]), footprint, viewer.parallel));
     },
     kGrainHit);
   s.KeptCount = scanCounts(s.exec, s.KeptStarts, runCount); // at most the hit count

@@ -82,6 +82,15 @@ struct HitPolicy
   /// next only while it may matter), rather than all at once.
   IGA_HD bool byDepthGroups() const { return firstHitOnly; }
 
+  /// Whether a pixel's hit at NDC depth `depth` may be among what resolve keeps, the pixel's
+  /// nearest hit lying at `nearest`. In first-hit mode only a hit within 1e-6 of the nearest
+  /// may: the nearest itself or its duplicates, which resolve orders by eye depth, where rounding
+  /// may reorder depths a few ulps apart; a hit further behind is never the first.
+  IGA_HD bool mayResolveTo(double depth, double nearest) const
+  {
+    return !firstHitOnly || !(depth > nearest + 1e-6);
+  }
+
   /// Sorts and merges one pixel's hits (sortAndMergeHits) and returns how many it keeps, at the
   /// front.
   IGA_HD int resolve(Hit* hits, int count, double footprint, bool parallel) const
