@@ -228,32 +228,53 @@ inline bool rayInPatch(const AffinePatch& affine, const glm::dvec3& origin,
   return t0 < t1;
 }
 
-/// The patch's field at u (sum factorised, values only).
-inline double fieldAt(const AffinePatch& patch, const double* u)
+/// The patch's field at the n <= kMaxOrder points u0 + s_k du (s_k = points[k], clamped to the
+/// unit cube), values only: the coefficients contracted one direction at a time for all points
+/// at once, so that each coefficient is read once and the points' sums run side by side.
+inline void fieldAlongRay(const AffinePatch& patch, const glm::dvec3& u0, const glm::dvec3& du,
+  const double* points, int n, double* values)
 {
-  double basis[3][kMaxOrder];
-  for (int d = 0; d < 3; ++d)
-  {
-    bernsteinBasis(patch.degree[d], u[d], basis[d], static_cast<double*>(nullptr));
-  }
   const int n0 = patch.degree[0] + 1, n1 = patch.degree[1] + 1, n2 = patch.degree[2] + 1;
-  const double* c = patch.field.data();
-  double sum = 0;
-  for (int k = 0; k < n2; ++k)
+  double basis[3][kMaxOrder][kMaxOrder]; // [direction][index][point]
+  for (int k = 0; k < n; ++k)
   {
-    double plane = 0;
-    for (int j = 0; j < n1; ++j, c += n0)
+    const glm::dvec3 u = u0 + points[k] * du;
+    for (int d = 0; d < 3; ++d)
     {
-      double line = 0;
+      double b[kMaxOrder];
+      bernsteinBasis(
+        patch.degree[d], std::min(std::max(u[d], 0.0), 1.0), b, static_cast<double*>(nullptr));
+      for (int i = 0; i <= patch.degree[d]; ++i)
+      {
+        basis[d][i][k] = b[i];
+      }
+    }
+  }
+  const double* c = patch.field.data();
+  std::fill(values, values + n, 0.0);
+  for (int w = 0; w < n2; ++w)
+  {
+    double plane[kMaxOrder] = {};
+    for (int v = 0; v < n1; ++v, c += n0)
+    {
+      double line[kMaxOrder] = {};
       for (int i = 0; i < n0; ++i)
       {
-        line += basis[0][i] * c[i];
+        for (int k = 0; k < n; ++k)
+        {
+          line[k] += basis[0][i][k] * c[i];
+        }
       }
-      plane += basis[1][j] * line;
+      for (int k = 0; k < n; ++k)
+      {
+        plane[k] += basis[1][v][k] * line[k];
+      }
     }
-    sum += basis[2][k] * plane;
+    for (int k = 0; k < n; ++k)
+    {
+      values[k] += basis[2][w][k] * plane[k];
+    }
   }
-  return sum;
 }
 
 /// The Bernstein coefficients of the polynomial with these values at the interpolation's points.
@@ -279,12 +300,10 @@ inline void composeRay(const AffinePatch& patch, double isovalue, const glm::dve
 {
   const int n = interpolation.degree + 1;
   double values[kMaxOrder];
+  fieldAlongRay(patch, u0, du, interpolation.point, n, values);
   for (int k = 0; k < n; ++k)
   {
-    const glm::dvec3 u = u0 + interpolation.point[k] * du;
-    const double at[3] = { std::min(std::max(u.x, 0.0), 1.0), std::min(std::max(u.y, 0.0), 1.0),
-      std::min(std::max(u.z, 0.0), 1.0) };
-    values[k] = fieldAt(patch, at) - isovalue;
+    values[k] -= isovalue;
   }
   bernsteinFromValues(interpolation, values, coefficients);
 }
