@@ -4,6 +4,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 
+#include <cctype>
 #include <regex>
 #include <sstream>
 
@@ -51,11 +52,46 @@ void storeMessage(vtkObject*, unsigned long, void* clientData, void* callData)
   }
 }
 
+/// Where an XML declaration follows only whitespace and comments (G+Smo writes and reads such
+/// files, e.g. its filedata/volumes/fichera.xml, though XML wants the declaration first), the
+/// text with the declaration blanked out, lines and columns unchanged; else empty.
+std::string withoutLateDeclaration(const std::string& text)
+{
+  size_t at = 0;
+  for (;;)
+  {
+    at = text.find_first_not_of(" \t\r\n", at);
+    if (at == std::string::npos || text.compare(at, 4, "<!--") != 0)
+    {
+      break;
+    }
+    const size_t end = text.find("-->", at + 4);
+    if (end == std::string::npos)
+    {
+      return std::string(); // the parser says what is wrong
+    }
+    at = end + 3;
+  }
+  const size_t end = at == std::string::npos ? at : text.find("?>", at);
+  if (at == 0 || end == std::string::npos || text.compare(at, 5, "<?xml") != 0 ||
+      !std::isspace(static_cast<unsigned char>(text[at + 5])))
+  {
+    return std::string();
+  }
+  std::string fixed = text;
+  for (size_t k = at; k < end + 2; ++k)
+  {
+    fixed[k] = fixed[k] == '\n' ? '\n' : ' ';
+  }
+  return fixed;
+}
+
 } // namespace
 
 vtkSmartPointer<vtkXMLDataParser> igaParseXML(const std::string& text, std::string& error)
 {
-  std::istringstream stream(text);
+  const std::string fixed = withoutLateDeclaration(text);
+  std::istringstream stream(fixed.empty() ? text : fixed);
   vtkNew<DepthLimitedParser> parser;
   parser->SetStream(&stream);
   parser->SetIgnoreCharacterData(0);

@@ -12,5 +12,6 @@
 constexpr int kIGAXMLMaxDepth = 256;
 
 /// The parser holding `text`'s element tree (GetRootElement), or null with `error` set:
-/// "LINE: not well-formed XML (column C): what", or that the elements nest too deep.
+/// "LINE: not well-formed XML (column C): what", or that the elements nest too deep. An XML
+/// declaration after leading comments, which G+Smo accepts, is accepted too.
 vtkSmartPointer<vtkXMLDataParser> igaParseXML(const std::string& text, std::string& error);

@@ -344,6 +344,28 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return at == std::string::npos ? text : text.replace(at, from.size(), to);
 }
 
+// G+Smo reads files whose XML declaration follows a comment (its filedata/volumes/fichera.xml),
+// which XML itself does not allow: read alike, with errors on the lines where they are.
+TEST(NurbsReaders, GismoDeclarationAfterACommentIsRead)
+{
+  const std::string good = slurp(kData + "/gismo_quarter_ring.xml");
+  ASSERT_EQ(good.rfind("<?xml ", 0), 0u);
+  const std::string commentFirst = "<!-- a comment first, as G+Smo writes some -->\n  " + good;
+  const std::string file = testing::TempDir() + "/comment-first.xml";
+  std::ofstream(file, std::ios::binary) << commentFirst;
+  const auto [set, grid] = readNurbs<vtkIGAGismoReader>(file);
+  checkQuarterRing(grid);
+  const auto [reference, referenceGrid] =
+    readNurbs<vtkIGAGismoReader>(kData + "/gismo_quarter_ring.xml");
+  ASSERT_EQ(set.volumes.size(), 1u);
+  EXPECT_EQ(set.volumes[0].net, reference.volumes[0].net);
+  expectError<vtkIGAGismoReader>("comment-first-count.xml",
+    replaced(commentFirst, "   0 2 1\n", "   0 2\n"), ":21: <coefs> has 35 values, expected 36");
+  // A second declaration, or one after an element, stays an error.
+  expectError<vtkIGAGismoReader>(
+    "declaration-twice.xml", "<?xml version=\"1.0\"?>\n" + commentFirst, ":3: not well-formed XML");
+}
+
 TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
 {
   const std::string good = slurp(kData + "/gismo_quarter_ring.xml");
