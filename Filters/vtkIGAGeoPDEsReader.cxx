@@ -226,60 +226,83 @@ void readPatch(GeoPDEsLines& lines, int rdim, iga::BSplinePatch<double, Dim>& pa
   iga::setGeometryNet(patch, euclidean, weights);
 }
 
-/// Checks the INTERFACE / SUBDOMAIN / BOUNDARY sections after the patches.
-void checkSections(GeoPDEsLines& lines, int ndim, int patches, int interfaces)
+/// The first word of a section's name line, when it names a kind of section (or a patch).
+std::string sectionKeyword(const Line& line)
 {
-  int seenInterfaces = 0;
-  while (!lines.atEnd())
+  std::istringstream in(line.text);
+  std::string word;
+  in >> word;
+  return word == "PATCH" || word == "INTERFACE" || word == "SUBDOMAIN" || word == "BOUNDARY"
+           ? word
+           : std::string();
+}
+
+/// One side "patch side" of an interface or boundary, checked against the patches.
+void readSide(GeoPDEsLines& lines, const char* what, int ndim, int patches)
+{
+  const long number = lines.peek(what).number;
+  const auto side = lines.integers(what, 2, 1, 1000000);
+  if (side[0] > patches || side[1] > 2 * ndim)
   {
-    const Line& line = lines.take("a section");
-    std::istringstream in(line.text);
-    std::string keyword;
-    in >> keyword;
-    if (keyword == "INTERFACE")
+    throw IGAReadError(number, std::string(what) + ": patch " + std::to_string(side[0]) + " side " +
+                                 std::to_string(side[1]) + " does not exist");
+  }
+}
+
+/// Checks the sections after the patches as GeoPDEs reads them: the header's count of
+/// interfaces (a name, two sides, an orientation), then of subdomains (a name, the patches),
+/// then boundaries to the end (a name, a count, the sides). Names are free text (GeoPDEs' own
+/// files have "EXTERNAL BOUNDARY"); one that begins a kind of section where the counts say
+/// another follows means the header's counts are wrong, and says so.
+void checkSections(GeoPDEsLines& lines, int ndim, int patches, int interfaces, int subdomains)
+{
+  const struct
+  {
+    const char* kind;
+    int count;
+  } counted[2] = { { "interfaces", interfaces }, { "subdomains", subdomains } };
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    for (int k = 0; k < counted[kind].count; ++k)
     {
-      ++seenInterfaces;
-      for (int s = 0; s < 2; ++s)
+      const Line& name = lines.take(kind == 0 ? "an interface" : "a subdomain");
+      const std::string keyword = sectionKeyword(name);
+      if (!keyword.empty() && keyword != (kind == 0 ? "INTERFACE" : "SUBDOMAIN"))
       {
-        const long number = lines.peek("interface side").number;
-        const auto side = lines.integers("interface side (patch side)", 2, 1, 1000000);
-        if (side[0] > patches || side[1] > 2 * ndim)
-        {
-          throw IGAReadError(number, "interface side: patch " + std::to_string(side[0]) + " side " +
-                                       std::to_string(side[1]) + " does not exist");
-        }
+        throw IGAReadError(name.number,
+          "'" + name.text + "': the header announces " + std::to_string(counted[kind].count) + " " +
+            counted[kind].kind + ", the file has " + std::to_string(k));
       }
-      lines.integers("interface orientation", ndim == 3 ? 3 : 1, -1, 1);
-    }
-    else if (keyword == "SUBDOMAIN")
-    {
-      lines.integers("subdomain patches", -1, 1, patches);
-    }
-    else if (keyword == "BOUNDARY")
-    {
-      const int sides = lines.integers("number of boundary sides", 1, 0, 1000000)[0];
-      for (int s = 0; s < sides; ++s)
+      if (kind == 0)
       {
-        const long number = lines.peek("boundary side").number;
-        const auto side = lines.integers("boundary side (patch side)", 2, 1, 1000000);
-        if (side[0] > patches || side[1] > 2 * ndim)
-        {
-          throw IGAReadError(number, "boundary side: patch " + std::to_string(side[0]) + " side " +
-                                       std::to_string(side[1]) + " does not exist");
-        }
+        readSide(lines, "interface side", ndim, patches);
+        readSide(lines, "interface side", ndim, patches);
+        lines.integers("interface orientation", ndim == 3 ? 3 : 1, -1, 1);
       }
-    }
-    else
-    {
-      throw IGAReadError(line.number, "'" + line.text +
-                                        "' follows the patches; expected INTERFACE, SUBDOMAIN or "
-                                        "BOUNDARY (or more patches than the header's count)");
+      else
+      {
+        lines.integers("subdomain patches", -1, 1, patches);
+      }
     }
   }
-  if (interfaces >= 0 && seenInterfaces != interfaces)
+  while (!lines.atEnd())
   {
-    throw IGAReadError(0, "the header announces " + std::to_string(interfaces) +
-                            " interfaces, the file has " + std::to_string(seenInterfaces));
+    const Line& name = lines.take("a boundary");
+    const std::string keyword = sectionKeyword(name);
+    if (!keyword.empty() && keyword != "BOUNDARY")
+    {
+      const std::string more =
+        keyword == "PATCH"       ? "patches than the header's " + std::to_string(patches)
+        : keyword == "INTERFACE" ? "interfaces than the header's " + std::to_string(interfaces)
+                                 : "subdomains than the header's " + std::to_string(subdomains);
+      throw IGAReadError(
+        name.number, "'" + name.text + "' follows where boundaries do: more " + more);
+    }
+    const int sides = lines.integers("number of boundary sides", 1, 0, 1000000)[0];
+    for (int k = 0; k < sides; ++k)
+    {
+      readSide(lines, "boundary side", ndim, patches);
+    }
   }
 }
 }
@@ -317,7 +340,8 @@ std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsD
     const int ndim = header[0];
     const int rdim = old ? header[0] : header[1];
     const int patches = header.size() > dims ? header[dims] : 1;
-    const int interfaces = header.size() > dims + 1 ? header[dims + 1] : -1;
+    const int interfaces = header.size() > dims + 1 ? header[dims + 1] : 0;
+    const int subdomains = header.size() > dims + 2 ? header[dims + 2] : 0;
     if (ndim < 2 || ndim > 3 || rdim < ndim || rdim > 3)
     {
       throw IGAReadError(headerLine, "header: parametric dimension " + std::to_string(ndim) +
@@ -341,7 +365,7 @@ std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsD
         readPatch(lines, rdim, set.surfaces.back());
       }
     }
-    checkSections(lines, ndim, patches, interfaces);
+    checkSections(lines, ndim, patches, interfaces, subdomains);
   }
   catch (const IGAReadError& e)
   {

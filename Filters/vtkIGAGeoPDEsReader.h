@@ -7,8 +7,10 @@
  * the comments name no version) or "N Np [Ni Ns]" (v.0.6 / v.0.7, where ndim = rdim = N). Each
  * patch is an optional name line ("PATCH 1"), the degrees, the numbers of control points, one
  * knot vector per parametric direction, rdim lines of weighted coordinates (w*x, w*y[, w*z]) and
- * one line of weights, first parametric direction fastest. The INTERFACE, SUBDOMAIN and
- * BOUNDARY sections that may follow are checked (patch numbers, Ni interfaces) but not used.
+ * one line of weights, first parametric direction fastest. The sections that follow are read
+ * as GeoPDEs reads them: Ni interfaces, Ns subdomains, then boundaries to the end, each after a
+ * name line of free text ("INTERFACE 1", "EXTERNAL BOUNDARY"); they are checked (patch and
+ * side numbers, the header's counts) but not used.
  * rdim = 2 puts the patches in z = 0.
  *
  * Like vtkIGAGismoReader, the output has the attributes "x", "y", "z" and "parameter_u/v/w"

@@ -492,7 +492,9 @@ TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
     ":6: degrees: '2 nan 1' is not a line of finite numbers");
   expectError<R>("dimension.txt", replaced(good, "3 3 1\n", "1 3 1\n"),
     ":4: header: parametric dimension 1 in physical dimension 3 is not supported");
-  expectError<R>("junk.txt", good + "JUNK 1\n", ":15: 'JUNK 1' follows the patches");
+  expectError<R>("patch.txt", good + "PATCH 2\n",
+    ":15: 'PATCH 2' follows where boundaries do: more patches than the header's 1");
+  expectError<R>("junk.txt", good + "JUNK 1\n", "the file ends where number of boundary sides");
   expectError<R>("version.txt", replaced(good, "v.2.1", "v.99999999999.1"),
     ":1: 'nurbs geometry v.9999999...' names no GeoPDEs version");
   // A hundred thousand digits: a regex over them overflowed the stack.
@@ -500,9 +502,32 @@ TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
     ":1: 'nurbs geometry v.7777777...' names no GeoPDEs version");
   const std::string cubes = slurp(kData + "/geopdes_two_cubes_v07.txt");
   expectError<R>("interfaces.txt", replaced(cubes, "3 2 1 1\n", "3 2 2 1\n"),
-    "the header announces 2 interfaces, the file has 1");
+    "'SUBDOMAIN 1': the header announces 2 interfaces, the file has 1");
+  expectError<R>("subdomains.txt", replaced(cubes, "3 2 1 1\n", "3 2 1 2\n"),
+    "'BOUNDARY 1': the header announces 2 subdomains, the file has 1");
+  expectError<R>("more-interfaces.txt", replaced(cubes, "3 2 1 1\n", "3 2 0 0\n"),
+    "'INTERFACE 1' follows where boundaries do: more interfaces than the header's 0");
   expectError<R>("side.txt", replaced(cubes, "1 2\n2 1\n1 1 1", "1 2\n3 1\n1 1 1"),
     "interface side: patch 3 side 1 does not exist");
+}
+
+// GeoPDEs reads its sections by the header's counts, their names free text: its own
+// multipatch/geo_fichera.txt names a boundary "EXTERNAL BOUNDARY".
+TEST(NurbsReaders, GeoPDEsSectionNamesAreFreeText)
+{
+  const std::string cubes = slurp(kData + "/geopdes_two_cubes_v07.txt");
+  const std::string renamed =
+    replaced(replaced(replaced(cubes, "BOUNDARY 1\n", "EXTERNAL BOUNDARY\n"), "INTERFACE 1\n",
+               "the middle face\n"),
+      "SUBDOMAIN 1\n", "both cubes\n");
+  const std::string file = testing::TempDir() + "/renamed-sections.txt";
+  std::ofstream(file, std::ios::binary) << renamed;
+  const auto [set, grid] = readNurbs<vtkIGAGeoPDEsReader>(file);
+  const auto [reference, referenceGrid] =
+    readNurbs<vtkIGAGeoPDEsReader>(kData + "/geopdes_two_cubes_v07.txt");
+  ASSERT_EQ(set.volumes.size(), 2u);
+  EXPECT_EQ(set.volumes[1].net, reference.volumes[1].net);
+  EXPECT_EQ(grid->GetNumberOfCells(), 2);
 }
 
 } // namespace
