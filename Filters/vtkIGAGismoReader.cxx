@@ -3,6 +3,8 @@
 #include "IGAReadError.h"
 #include "IGAXMLDocument.h"
 
+#include "vtkBase64Utilities.h"
+#include "vtkByteSwap.h"
 #include "vtkIGANurbsData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -44,8 +47,78 @@ public:
       "<" + std::string(const_cast<vtkXMLDataElement*>(element)->GetName()) + "> " + what);
   }
 
-  /// The numbers in an element's text.
+  /// The numbers in an element's text, as its format attribute says G+Smo wrote them: decimal
+  /// text (ascii, the default) or base64 of little-endian doubles or floats (b64float64,
+  /// b64float32; the flag in any case, as G+Smo reads it).
   std::vector<double> numbers(vtkXMLDataElement* element) const
+  {
+    const char* attribute = element->GetAttribute("format");
+    std::string format = attribute ? attribute : "ascii";
+    std::transform(format.begin(), format.end(), format.begin(),
+      [](unsigned char c) { return char(std::tolower(c)); });
+    if (format == "ascii")
+    {
+      return this->decimalNumbers(element);
+    }
+    if (format == "b64float64" || format == "b64float32")
+    {
+      return this->base64Numbers(element, attribute, format == "b64float64" ? 8 : 4);
+    }
+    this->fail(element,
+      std::string("format '") + attribute + "' is not supported (ascii, b64float64, b64float32)");
+  }
+
+  std::vector<double> base64Numbers(
+    vtkXMLDataElement* element, const char* format, size_t width) const
+  {
+    std::string text;
+    for (const char* c = element->GetCharacterData() ? element->GetCharacterData() : ""; *c; ++c)
+    {
+      if (!std::isspace(static_cast<unsigned char>(*c)))
+      {
+        text += *c;
+      }
+    }
+    const size_t padding = text.size() - std::min(text.size(), text.find_last_not_of('=') + 1);
+    const bool base64 =
+      text.size() % 4 == 0 && padding <= 2 &&
+      std::all_of(text.begin(), text.end() - long(padding),
+        [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/'; });
+    std::vector<unsigned char> bytes(text.size() / 4 * 3);
+    const size_t decoded =
+      base64 ? vtkBase64Utilities::DecodeSafely(reinterpret_cast<const unsigned char*>(text.data()),
+                 text.size(), bytes.data(), bytes.size())
+             : 0;
+    if (!base64 || decoded != bytes.size() - padding || decoded % width != 0)
+    {
+      this->fail(element, std::string("format '") + format + "': the text is not base64 of " +
+                            (width == 8 ? "doubles" : "floats"));
+    }
+    std::vector<double> values(decoded / width);
+    for (size_t k = 0; k < values.size(); ++k)
+    {
+      if (width == 8)
+      {
+        std::memcpy(&values[k], &bytes[8 * k], 8);
+        vtkByteSwap::Swap8LE(&values[k]);
+      }
+      else
+      {
+        float value;
+        std::memcpy(&value, &bytes[4 * k], 4);
+        vtkByteSwap::Swap4LE(&value);
+        values[k] = value;
+      }
+      if (!std::isfinite(values[k]))
+      {
+        this->fail(element,
+          "value " + std::to_string(k + 1) + " is not finite (" + std::to_string(values[k]) + ")");
+      }
+    }
+    return values;
+  }
+
+  std::vector<double> decimalNumbers(vtkXMLDataElement* element) const
   {
     std::vector<double> values;
     std::istringstream in(element->GetCharacterData() ? element->GetCharacterData() : "");

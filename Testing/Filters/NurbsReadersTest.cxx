@@ -8,13 +8,16 @@
 #include "vtkIGAGismoReader.h"
 #include "vtkIGANurbsData.h"
 
+#include "vtkBase64Utilities.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellType.h"
 #include "vtkDataArray.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <unistd.h>
 
@@ -528,6 +531,65 @@ TEST(NurbsReaders, GeoPDEsSectionNamesAreFreeText)
   ASSERT_EQ(set.volumes.size(), 2u);
   EXPECT_EQ(set.volumes[1].net, reference.volumes[1].net);
   EXPECT_EQ(grid->GetNumberOfCells(), 2);
+}
+
+/// `xml` with the numbers of every <KnotVector>, <weights> and <coefs> written as G+Smo's binary
+/// output writes them: base64 of little-endian doubles (floats), the element marked
+/// format="FORMAT".
+std::string inBase64(const std::string& xml, const std::string& format, bool floats)
+{
+  const std::regex element("<(KnotVector|weights|coefs)([^>]*)>([^<]*)</");
+  std::string out;
+  auto last = xml.cbegin();
+  for (std::sregex_iterator m(xml.begin(), xml.end(), element), end; m != end; ++m)
+  {
+    std::istringstream in((*m)[3].str());
+    std::vector<unsigned char> bytes;
+    for (double value; in >> value;)
+    {
+      const float single = float(value);
+      const auto* raw = floats ? reinterpret_cast<const unsigned char*>(&single)
+                               : reinterpret_cast<const unsigned char*>(&value);
+      bytes.insert(bytes.end(), raw, raw + (floats ? 4 : 8));
+    }
+    std::vector<unsigned char> text(bytes.size() * 2 + 4);
+    text.resize(vtkBase64Utilities::Encode(bytes.data(), bytes.size(), text.data()));
+    out.append(last, (*m)[0].first);
+    out += "<" + (*m)[1].str() + (*m)[2].str() + " format=\"" + format + "\">\n" +
+           std::string(text.begin(), text.end()) + "\n</";
+    last = (*m)[0].second;
+  }
+  return out.append(last, xml.cend());
+}
+
+// G+Smo writes numbers as base64 when asked for binary output (its
+// filedata/pde/poisson2d_bvp_bin.xml): read as the decimal text they encode.
+TEST(NurbsReaders, GismoBase64NumbersAreRead)
+{
+  const std::string good = slurp(kData + "/gismo_quarter_ring.xml");
+  const auto [reference, referenceGrid] =
+    readNurbs<vtkIGAGismoReader>(kData + "/gismo_quarter_ring.xml");
+  for (const bool floats : { false, true })
+  {
+    const std::string format = floats ? "B64Float32" : "B64Float64";
+    const std::string file = testing::TempDir() + "/base64-" + format + ".xml";
+    std::ofstream(file, std::ios::binary) << inBase64(good, format, floats);
+    const auto [set, grid] = readNurbs<vtkIGAGismoReader>(file);
+    ASSERT_EQ(set.volumes.size(), 1u) << format;
+    ASSERT_EQ(set.volumes[0].net.size(), reference.volumes[0].net.size());
+    for (size_t k = 0; k < set.volumes[0].net.size(); ++k)
+      EXPECT_NEAR(set.volumes[0].net[k], reference.volumes[0].net[k], floats ? 1e-7 : 0.0) << k;
+    if (!floats)
+      checkQuarterRing(grid);
+  }
+  const std::string encoded = inBase64(good, "b64float64", false);
+  using R = vtkIGAGismoReader;
+  expectError<R>("base64-junk.xml",
+    replaced(encoded, "<weights format=\"b64float64\">\n", "<weights format=\"b64float64\">\n*"),
+    ":24: <weights> format 'b64float64': the text is not base64 of doubles");
+  expectError<R>("base64-int.xml",
+    replaced(encoded, "<weights format=\"b64float64\">", "<weights format=\"b64int32\">"),
+    ":24: <weights> format 'b64int32' is not supported (ascii, b64float64, b64float32)");
 }
 
 } // namespace
