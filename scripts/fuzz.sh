@@ -25,7 +25,7 @@ seed() { # corpus directory, then seed files (missing ones skipped)
   done
 }
 seed "$build/corpus/vtu" "$root"/Data/*.vtu "$root"/Testing/Fuzz/regressions/*.vtu
-seed "$build/corpus/gismo" "$root"/Data/gismo_*.xml "$shared"/gismo/*.xml
+seed "$build/corpus/gismo" "$root"/Data/gismo_*.xml "$root"/Testing/Fuzz/gismo/*.xml "$shared"/gismo/*.xml
 seed "$build/corpus/geopdes" "$root"/Data/geopdes_*.txt "$shared"/geopdes/*.txt
 seed "$build/corpus/series" "$root"/Testing/Fuzz/series/*.pvd
 seed "$build/corpus/engine" "$root"/Testing/Fuzz/engine/*
