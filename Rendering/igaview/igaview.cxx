@@ -825,7 +825,8 @@ struct Viewer
   vtkIGAIsosurfaceMapper* mapper;
   vtkRenderer* renderer;
   vtkTextActor* readout;
-  std::string surfaceName;
+  /// What is drawn: the isosurfaces' attribute, "surfaces", "solid EXPRESSION" or "slices".
+  std::string drawn;
   std::vector<double> isovalues;
   double isoStep;
   std::vector<double> times;
@@ -871,7 +872,7 @@ struct Viewer
 
   std::string state() const
   {
-    std::string text = this->isovalues.empty() ? "surfaces" : this->surfaceName + " =";
+    std::string text = this->isovalues.empty() ? this->drawn : this->drawn + " =";
     for (double iso : this->isovalues)
     {
       text += " " + std::to_string(iso);
@@ -1354,8 +1355,11 @@ int main(int argc, char** argv)
   {
     vtkNew<vtkTextActor> readout;
     const auto& names = input.patches.volumes.attributeNames;
-    Viewer viewer{ input.producer, mapper, renderer, readout,
-      drawing.surfaces || drawing.csg ? std::string() : names[drawing.surface], drawing.isovalues,
+    const std::string drawn =
+      drawing.csg        ? (drawing.expression.empty() ? "slices" : "solid " + drawing.expression)
+      : drawing.surfaces ? "surfaces"
+                         : names[drawing.surface];
+    Viewer viewer{ input.producer, mapper, renderer, readout, drawn, drawing.isovalues,
       0.02 * (drawing.surfaceRange[1] - drawing.surfaceRange[0]), {}, 0 };
     runViewer(options, viewer, window);
     if (options.keys.empty() || !options.hasOutput)
