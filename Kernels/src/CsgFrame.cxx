@@ -220,6 +220,8 @@ void accumulate(FrameReport& total, const FrameReport& pass)
   total.droppedAtEyePlane += pass.droppedAtEyePlane;
   total.constantAttributeRoots += pass.constantAttributeRoots;
   total.newtonSolves += pass.newtonSolves;
+  total.newtonRuns += pass.newtonRuns;
+  total.newtonEvaluations += pass.newtonEvaluations;
   total.subdividedPatches += pass.subdividedPatches;
   total.maxTuples = std::max(total.maxTuples, pass.maxTuples);
   total.maxPatches = std::max(total.maxPatches, pass.maxPatches);

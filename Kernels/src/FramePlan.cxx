@@ -365,6 +365,17 @@ void checkClipPlanes(const Settings& s)
   }
 }
 
+glm::dmat4 windowFromWorld(const View& view, int width, int height)
+{
+  const double W = width, H = height;
+  glm::dmat4 window(1.0);
+  window[0][0] = 0.5 * W;
+  window[3][0] = 0.5 * W;
+  window[1][1] = 0.5 * H;
+  window[3][1] = 0.5 * H;
+  return window * view.worldToClip;
+}
+
 FramePlan planView(const View& view, const Settings& s, const AttributeRange& attribute,
   bool volumes, FrameReport& report)
 {
@@ -385,14 +396,7 @@ FramePlan planView(const View& view, const Settings& s, const AttributeRange& at
   report.attributeRange[0] = attribute.lo;
   report.attributeRange[1] = attribute.hi;
 
-  // Window coordinates: x, y in pixels (pixel i covers [i, i+1]), z the NDC depth.
-  const double W = s.width, H = s.height;
-  glm::dmat4 window(1.0);
-  window[0][0] = 0.5 * W;
-  window[3][0] = 0.5 * W;
-  window[1][1] = 0.5 * H;
-  window[3][1] = 0.5 * H;
-  plan.windowFromWorld = window * view.worldToClip;
+  plan.windowFromWorld = windowFromWorld(view, s.width, s.height);
   plan.frame.clip.count = 0;
   for (const auto& plane : s.clipPlanes)
   {

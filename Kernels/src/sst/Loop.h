@@ -167,6 +167,8 @@ void reportFrame(LoopState<Exec>& s)
   s.exec.read(raw(s.Tallies), TallyCount, tallies);
   report.unresolvedAtDepthCap += size_t(tallies[TuplesAtDepthCap]);
   report.unresolvedAtBudget += size_t(tallies[TuplesOverBudget]);
+  report.newtonRuns += size_t(tallies[NewtonRuns]);
+  report.newtonEvaluations += size_t(tallies[NewtonEvaluations]);
   report.peakBytes = s.peak;
   report.peakBudgetedBytes = s.peakBudgeted;
 }

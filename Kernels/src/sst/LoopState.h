@@ -96,7 +96,9 @@ enum Tally
 {
   TuplesAtDepthCap = 0,
   TuplesOverBudget = 1,
-  TallyCount = 2
+  NewtonRuns = 2,        ///< Newton solves of the solution stage
+  NewtonEvaluations = 3, ///< their evaluations of F and J
+  TallyCount = 4
 };
 
 template<class Exec>

@@ -27,6 +27,7 @@ void solutionStage(LoopState<Exec>& s)
   uint32_t* hitIndex = sized(s.HitIndex, tupleCount + 1);
   double* bestDepth = raw(s.BestDepth);
   uint32_t* certified = raw(s.PixelSolves);
+  unsigned long long* tallies = raw(s.Tallies);
   s.exec.forEach(
     tupleCount,
     [=] IGA_HD(size_t first)
@@ -41,10 +42,16 @@ void solutionStage(LoopState<Exec>& s)
       {
         ++end;
       }
+      NewtonWork newton;
       bestDepth[pixel] = solvePixelTuples(
         tuples, uint32_t(first), uint32_t(end), pixel, nodes,
         [=](const Node& node) { return viewOf(node, pool, shapes); }, bestDepth[pixel], frame,
-        outcome, solution, certified[pixel]);
+        outcome, solution, certified[pixel], newton);
+      if (newton.runs > 0)
+      {
+        addAtomically(&tallies[NewtonRuns], newton.runs);
+        addAtomically(&tallies[NewtonEvaluations], newton.evaluations);
+      }
       for (size_t t = first; t < end; ++t)
       {
         hitIndex[t] = outcome[t] == Solved ? 1 : 0;

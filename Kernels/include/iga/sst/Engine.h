@@ -130,7 +130,10 @@ struct FrameReport
   /// The surface attribute's range over the patches (their Bernstein bounds): where an
   /// isovalue must lie for anything to be drawn.
   double attributeRange[2] = { 0, 0 };
-  size_t newtonSolves = 0;
+  size_t newtonSolves = 0; ///< tuples tried on nodes that certify a unique root
+  /// The SST loop's Newton solves (tuples that reached Newton) and their evaluations of F and J:
+  /// evaluations / runs is the mean number of iterations a solve takes.
+  size_t newtonRuns = 0, newtonEvaluations = 0;
   size_t subdividedPatches = 0;
   size_t sstPatches = 0;            ///< patches the SST drew
   size_t rayCompositionPatches = 0; ///< patches ray composition drew
@@ -168,6 +171,10 @@ struct View
 
 /// The view of a camera for an image of width x height pixels.
 View makeView(const Camera& camera, int width, int height);
+
+/// The view's map from homogeneous world points to homogeneous window coordinates of a width x
+/// height image: x, y in pixels (pixel i covers [i, i + 1]), z / w the NDC depth.
+glm::dmat4 windowFromWorld(const View& view, int width, int height);
 
 /// What a frame draws: the isosurfaces of volumes (one per isovalue) and surfaces themselves,
 /// both world-space rational Bézier patches in the standard layout. Hits number the patches in

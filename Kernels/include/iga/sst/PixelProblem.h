@@ -205,6 +205,13 @@ enum class TupleOutcome
   Undecided, ///< no certificate or Newton failed: the node must be split for this pixel
 };
 
+/// Newton's work on tuples: the solves run and the evaluations of F and J they took.
+struct NewtonWork
+{
+  uint32_t runs = 0;
+  uint32_t evaluations = 0;
+};
+
 /// The residual G(u) = (X - x W, Y - y W, A - iso V) at a control point; a surface's problem
 /// takes its first two entries.
 template<class T>
@@ -332,12 +339,18 @@ IGA_HD bool excludesPixelAlongRows(
 
 template<class T, int Dim>
 IGA_HD TupleOutcome solvePixel(const VolumeView<const T>& node, int i, int j, T isovalue,
-  const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
+  const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip,
+  NewtonWork* work)
 {
   const T target[3] = { T(i) + T(0.5), T(j) + T(0.5), isovalue };
   T values[kScreenChannels];
   const NewtonResult<T, Dim> result =
     solveNewton<T, Dim>(patchOf<Dim>(node), pixelRows().rows, target, tolerance, start, {}, values);
+  if (work)
+  {
+    ++work->runs;
+    work->evaluations += uint32_t(result.iterations + 1);
+  }
   if (result.status != NewtonStatus::Converged || !(values[kScreenW] > T(0)))
   {
     return TupleOutcome::Undecided;
@@ -354,7 +367,8 @@ IGA_HD TupleOutcome solvePixel(const VolumeView<const T>& node, int i, int j, T 
 
 template<class T, int Dim>
 IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T>& info, int i,
-  int j, T isovalue, const T* tolerance, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
+  int j, T isovalue, const T* tolerance, T* u, T& ndcDepth, const ClipPlanes<T>& clip,
+  NewtonWork* work)
 {
   // A large uncertified node is split whatever its pixels' exclusions say, and its children's
   // boxes shed most of those pixels anyway: skip the tests there. Small ones keep them, as
@@ -404,7 +418,7 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
              : TupleOutcome::Undecided;
   }
   return solvePixel<T, Dim>(
-    node, i, j, isovalue, tolerance, glm::value_ptr(start), u, ndcDepth, clip);
+    node, i, j, isovalue, tolerance, glm::value_ptr(start), u, ndcDepth, clip, work);
 }
 
 } // namespace detail
@@ -471,26 +485,30 @@ IGA_HD bool excludesPixelAlongRows(
 /// Newton on one (pixel, node) tuple from `start` (unknownsOf(node) values). On a hit `u` holds
 /// the root (its third entry 0 for a surface) and `ndcDepth` its NDC depth. A converged root
 /// outside the clip range or cut by a clipping plane is a Miss, which is final where the node
-/// certifies a unique root. `isovalue` is ignored for a surface.
+/// certifies a unique root. `isovalue` is ignored for a surface. `work`, when given, counts the
+/// solve.
 template<class T>
 IGA_HD TupleOutcome solvePixel(const VolumeView<const T>& node, int i, int j, T isovalue,
-  const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip)
+  const T* tolerance, const T* start, T* u, T& ndcDepth, const ClipPlanes<T>& clip,
+  NewtonWork* work = nullptr)
 {
-  return isSurface(node)
-           ? detail::solvePixel<T, 2>(node, i, j, isovalue, tolerance, start, u, ndcDepth, clip)
-           : detail::solvePixel<T, 3>(node, i, j, isovalue, tolerance, start, u, ndcDepth, clip);
+  return isSurface(node) ? detail::solvePixel<T, 2>(
+                             node, i, j, isovalue, tolerance, start, u, ndcDepth, clip, work)
+                         : detail::solvePixel<T, 3>(
+                             node, i, j, isovalue, tolerance, start, u, ndcDepth, clip, work);
 }
 
 /// One (pixel, node) tuple of the solution stage: cheap exclusions first, then Newton on
-/// certified nodes.
+/// certified nodes (counted in `work`, when given).
 template<class T>
 IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T>& info, int i,
   int j, T isovalue, const T* tolerance, T* u, T& ndcDepth,
-  const ClipPlanes<T>& clip = ClipPlanes<T>())
+  const ClipPlanes<T>& clip = ClipPlanes<T>(), NewtonWork* work = nullptr)
 {
-  return isSurface(node)
-           ? detail::solveTuple<T, 2>(node, info, i, j, isovalue, tolerance, u, ndcDepth, clip)
-           : detail::solveTuple<T, 3>(node, info, i, j, isovalue, tolerance, u, ndcDepth, clip);
+  return isSurface(node) ? detail::solveTuple<T, 2>(
+                             node, info, i, j, isovalue, tolerance, u, ndcDepth, clip, work)
+                         : detail::solveTuple<T, 3>(
+                             node, info, i, j, isovalue, tolerance, u, ndcDepth, clip, work);
 }
 
 /// Children of a node's midpoint split: 8 for a volume, 4 for a surface.

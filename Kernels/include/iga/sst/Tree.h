@@ -412,10 +412,11 @@ IGA_HD inline RawHit rawHitOf(uint32_t pixel, const Node& node, const double* u,
 
 /// solveTuple for a node of the loop, a hit outside the node's input patch a miss.
 IGA_HD inline TupleOutcome solveNodeTuple(const VolumeView<const double>& view, const Node& node,
-  int i, int j, const FrameConstants& frame, double* u, double& ndcDepth)
+  int i, int j, const FrameConstants& frame, double* u, double& ndcDepth,
+  NewtonWork* work = nullptr)
 {
   const TupleOutcome outcome = solveTuple(
-    view, node.info, i, j, isovalueOf(node, frame), frame.tolerance, u, ndcDepth, frame.clip);
+    view, node.info, i, j, isovalueOf(node, frame), frame.tolerance, u, ndcDepth, frame.clip, work);
   return outcome == TupleOutcome::Hit && !rootInPatch(node, u) ? TupleOutcome::Miss : outcome;
 }
 
@@ -431,12 +432,12 @@ enum TupleState : uint8_t
 /// The solution stage for one pixel: its tuples [first, last), sorted nearest first, each solved
 /// unless it cannot matter next to the best hit so far (the hit policy). Writes every tuple's state
 /// and, for a hit, its root (u, NDC depth) at solution[4 t]; returns the pixel's best depth.
-/// `certified` counts the tuples tried on certified nodes. `viewOf(node)` gives a node's screen
-/// patch.
+/// `certified` counts the tuples tried on certified nodes, `newton` the Newton solves.
+/// `viewOf(node)` gives a node's screen patch.
 template<class ViewOf>
 IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t last, uint32_t pixel,
   const Node* nodes, const ViewOf& viewOf, double best, const FrameConstants& frame, uint8_t* state,
-  double* solution, uint32_t& certified)
+  double* solution, uint32_t& certified, NewtonWork& newton)
 {
   const int i = int(pixel % frame.width), j = int(pixel / frame.width);
   for (uint32_t t = first; t < last; ++t)
@@ -449,7 +450,8 @@ IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t las
       continue;
     }
     certified += node.info.certified ? 1 : 0;
-    switch (solveNodeTuple(viewOf(node), node, i, j, frame, &solution[4 * t], solution[4 * t + 3]))
+    switch (solveNodeTuple(
+      viewOf(node), node, i, j, frame, &solution[4 * t], solution[4 * t + 3], &newton))
     {
       case TupleOutcome::Hit:
         state[t] = frame.hits.keeps(solution[4 * t + 3], best) ? Solved : Dropped;
