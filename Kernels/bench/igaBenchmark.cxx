@@ -40,12 +40,15 @@
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Csg.h"
 #include "iga/sst/Engine.h"
+#include "iga/sst/PixelProblem.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -62,6 +65,9 @@ struct Measurement
   double peakMB = 0;
   size_t covered = 0, newtonSolves = 0, subdivided = 0, unresolved = 0;
   iga::sst::FrameReport report; ///< of the median run
+  /// The frame's floor (screen-filling scenes on the CPU): every covered pixel solved once by
+  /// Newton, at the frame's mean evaluations a solve, each at its measured cost, on all threads.
+  double floorMs = 0;
 };
 
 iga::Camera frame(const iga::sst::Scene& scene)
@@ -153,6 +159,13 @@ Measurement measure(const std::string& study, const std::string& dataset,
 
 /// Frames of surfaces (of the ones `frames` returns for repetition r, for deforming data), seen
 /// by `reframe` of the camera framing them whole, or by that.
+/// The camera framing surfaces whole, as measureSurfaces frames them.
+iga::Camera frameSurfaces(const std::vector<iga::BezierSurface<double>>& surfaces)
+{
+  static const std::vector<iga::BezierVolume<double>> noVolumes;
+  return frame(iga::sst::Scene(noVolumes, surfaces));
+}
+
 Measurement measureSurfaces(const std::string& dataset,
   const std::vector<iga::BezierSurface<double>>& surfaces, int width, int height, int threads,
   iga::sst::Method method, int repetitions,
@@ -161,7 +174,7 @@ Measurement measureSurfaces(const std::string& dataset,
   const Reframe& reframe = {})
 {
   static const std::vector<iga::BezierVolume<double>> noVolumes;
-  const iga::Camera whole = frame(iga::sst::Scene(noVolumes, surfaces));
+  const iga::Camera whole = frameSurfaces(surfaces);
   const iga::Camera camera = reframe ? reframe(whole) : whole;
   return measureFrames(study, dataset, 0, 0, width, height, threads, method, repetitions, backend,
     bool(frames),
@@ -306,6 +319,8 @@ std::string json(
         << ", \"peakMB\": " << m.peakMB
         << ", \"peakBudgetedMB\": " << r.peakBudgetedBytes / 1048576.0
         << ", \"coveredPixels\": " << m.covered << ", \"newtonSolves\": " << m.newtonSolves
+        << ", \"newtonRuns\": " << r.newtonRuns
+        << ", \"newtonEvaluations\": " << r.newtonEvaluations << ", \"floorMs\": " << m.floorMs
         << ", \"subdividedPatches\": " << m.subdivided << ", \"unresolvedPixels\": " << m.unresolved
         << ", \"bands\": " << r.bands << ", \"uploadedMB\": " << r.uploadedBytes / 1048576.0
         << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
@@ -393,6 +408,55 @@ void algebraicStudy(bool quick, int threads, int reps, std::vector<Measurement>&
   }
 }
 
+/// Milliseconds one evaluation of the engine's Newton takes on one core: the solution stage's
+/// own solver (iga::sst::solvePixel) on the screen patch of `world` (a volume's first attribute,
+/// or a surface) as `camera` frames it at width x height, for pixels next to random points of
+/// the patch, the isovalue the attribute there.
+double newtonEvaluationMs(
+  const iga::VolumeView<const double>& world, const iga::Camera& camera, int width, int height)
+{
+  const int attribute = world.degree[2] == 0 ? iga::kWeightChannel : iga::kFirstAttributeChannel;
+  const auto window =
+    iga::sst::windowFromWorld(iga::sst::makeView(camera, width, height), width, height);
+  std::vector<double> screen(size_t(world.pointCount()) * iga::sst::kScreenChannels);
+  iga::sst::makeScreenPatch(world, window, attribute, screen.data());
+  const iga::VolumeView<const double> patch(screen.data(), world.degree, iga::sst::kScreenChannels);
+  const int unknowns = iga::sst::unknownsOf(patch);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> inside(0.2, 0.8);
+  iga::sst::NewtonWork work;
+  const double tolerance[3] = { 1e-3, 1e-3, 1e-9 };
+  const iga::sst::ClipPlanes<double> noClip{};
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < 20000; ++k)
+  {
+    double u[3] = { inside(rng), inside(rng), unknowns == 3 ? inside(rng) : 0.0 }, values[8];
+    iga::evaluateHomogeneous(patch, u, values, static_cast<double*>(nullptr));
+    const int i = int(std::floor(values[iga::sst::kScreenX] / values[iga::sst::kScreenW]));
+    const int j = int(std::floor(values[iga::sst::kScreenY] / values[iga::sst::kScreenW]));
+    const double iso = values[iga::sst::kScreenAttribute] / values[iga::sst::kScreenWeight];
+    double root[3], ndc;
+    iga::sst::solvePixel(patch, i, j, iso, tolerance, u, root, ndc, noClip, &work);
+  }
+  const double ms =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return work.evaluations > 0 ? ms / work.evaluations : 0.0;
+}
+
+/// The measurement with its floor (Measurement::floorMs) for an evaluation costing `evaluationMs`.
+Measurement withFloor(Measurement m, double evaluationMs)
+{
+  const auto& r = m.report;
+  const double perSolve = r.newtonRuns > 0 ? double(r.newtonEvaluations) / r.newtonRuns : 0.0;
+  m.floorMs = double(m.covered) * perSolve * evaluationMs / std::max(1, r.threads);
+  std::fprintf(stderr,
+    "%-11s %-16s floor %.1f ms (%.2f evaluations a solve, %.0f ns each): "
+    "frame / floor %.1f\n",
+    m.study.c_str(), m.dataset.c_str(), m.floorMs, perSolve, 1e6 * evaluationMs,
+    m.floorMs > 0 ? m.ms / m.floorMs : 0.0);
+  return m;
+}
+
 /// Scenes that fill the screen as users frame them (issue 23), at 1920x1080 on `backend`, for
 /// the datasets `wanted` keeps, each framed whole and zoomed to cover a third of the image or
 /// more (33-39%): the Marsden sphere p2, the teapot's 32 bicubic surfaces, the deforming 10k
@@ -406,18 +470,29 @@ std::vector<Measurement> screenFillingStudy(const std::string& study, iga::sst::
   std::vector<Measurement> all;
   const auto sphere = iga::makeMarsdenSphere<double>(2);
   const iga::Camera closeUp = zoomed(frame(sphere.patches), 2.5);
+  // On the CPU each frame is set against its floor, Newton's evaluations costed on its first patch.
+  auto measured =
+    [&](const Measurement& m, const iga::VolumeView<const double>& patch, const iga::Camera& camera)
+  {
+    all.push_back(backend == iga::sst::Backend::Cpu
+                    ? withFloor(m, newtonEvaluationMs(patch, camera, width, height))
+                    : m);
+  };
   if (wanted("marsden-sphere-p2-close"))
   {
-    all.push_back(measureFrames(study, "marsden-sphere-p2-close", 0.0, 2, width, height, threads,
-      Method::SharedSubdivisionTree, reps, backend, false,
-      [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
-      { return iga::sst::render(sphere.patches, closeUp, settings, m, out); }));
+    measured(measureFrames(study, "marsden-sphere-p2-close", 0.0, 2, width, height, threads,
+               Method::SharedSubdivisionTree, reps, backend, false,
+               [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
+               { return iga::sst::render(sphere.patches, closeUp, settings, m, out); }),
+      sphere.patches[0].view(), closeUp);
   }
+  const auto teapot = iga::makeTeapot<double>().patches;
+  const auto teapotCloseUp = [](const iga::Camera& whole) { return zoomed(whole, 2.0); };
   if (wanted("teapot-close"))
   {
-    all.push_back(measureSurfaces("teapot-close", iga::makeTeapot<double>().patches, width, height,
-      threads, Method::SharedSubdivisionTree, reps, {}, backend, study,
-      [](const iga::Camera& whole) { return zoomed(whole, 2.0); }));
+    measured(measureSurfaces("teapot-close", teapot, width, height, threads,
+               Method::SharedSubdivisionTree, reps, {}, backend, study, teapotCloseUp),
+      iga::flatVolume(teapot[0].view()), teapotCloseUp(frameSurfaces(teapot)));
   }
   const DeformingBladeBoundary boundary(iga::bladeLayout(10000));
   if (wanted(boundary.name() + "-close"))
@@ -429,13 +504,18 @@ std::vector<Measurement> screenFillingStudy(const std::string& study, iga::sst::
       camera.viewUp = { 1, 0, 0 };
       return camera;
     };
-    all.push_back(measureSurfaces(boundary.name() + "-close", boundary(0), width, height, threads,
-      Method::SharedSubdivisionTree, reps, boundary, backend, study, alongTheWidth));
+    const auto faces = boundary(0);
+    measured(measureSurfaces(boundary.name() + "-close", faces, width, height, threads,
+               Method::SharedSubdivisionTree, reps, boundary, backend, study, alongTheWidth),
+      iga::flatVolume(faces[0].view()), alongTheWidth(frameSurfaces(faces)));
   }
   if (wanted("dice-cube-minus-pips-close"))
   {
-    all.push_back(measureDiceSolid(study, "dice-cube-minus-pips-close", width, height, threads,
-      reps, backend, false, [](const iga::Camera& whole) { return zoomed(whole, 1.7); }));
+    const auto dice = iga::makeDice<double>();
+    const auto diceCloseUp = [](const iga::Camera& whole) { return zoomed(whole, 1.7); };
+    measured(measureDiceSolid(study, "dice-cube-minus-pips-close", width, height, threads, reps,
+               backend, false, diceCloseUp),
+      dice.patches[0].view(), diceCloseUp(frame(dice.patches)));
   }
   return all;
 }
