@@ -4,6 +4,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
 #include <cctype>
 #include <regex>
 #include <sstream>
@@ -75,6 +76,17 @@ std::string withoutLateDeclaration(const std::string& text)
   const size_t end = at == std::string::npos ? at : text.find("?>", at);
   if (at == 0 || end == std::string::npos || text.compare(at, 5, "<?xml") != 0 ||
       !std::isspace(static_cast<unsigned char>(text[at + 5])))
+  {
+    return std::string();
+  }
+  // Only a plain declaration of UTF-8 text may go: blanking one that holds markup or names
+  // another encoding would hide what the parser has to say about it.
+  std::string declaration = text.substr(at + 5, end - at - 5);
+  std::transform(declaration.begin(), declaration.end(), declaration.begin(),
+    [](unsigned char c) { return char(std::tolower(c)); });
+  const size_t encoding = declaration.find("encoding");
+  if (declaration.find_first_of("<>") != std::string::npos ||
+      (encoding != std::string::npos && declaration.find("utf-8", encoding) == std::string::npos))
   {
     return std::string();
   }

@@ -5,6 +5,7 @@
 #include "vtkIGANurbsData.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -226,15 +227,17 @@ void readPatch(GeoPDEsLines& lines, int rdim, iga::BSplinePatch<double, Dim>& pa
   iga::setGeometryNet(patch, euclidean, weights);
 }
 
-/// The first word of a section's name line, when it names a kind of section (or a patch).
-std::string sectionKeyword(const Line& line)
+/// The kinds of section in the order a GeoPDEs file holds them.
+const char* const kSectionKinds[4] = { "PATCH", "INTERFACE", "SUBDOMAIN", "BOUNDARY" };
+
+/// The kind (index in kSectionKinds) a section's name line begins with, or -1 for free text.
+int sectionKind(const Line& line)
 {
   std::istringstream in(line.text);
   std::string word;
   in >> word;
-  return word == "PATCH" || word == "INTERFACE" || word == "SUBDOMAIN" || word == "BOUNDARY"
-           ? word
-           : std::string();
+  const auto* kind = std::find(kSectionKinds, kSectionKinds + 4, word);
+  return kind == kSectionKinds + 4 ? -1 : int(kind - kSectionKinds);
 }
 
 /// One side "patch side" of an interface or boundary, checked against the patches.
@@ -256,48 +259,41 @@ void readSide(GeoPDEsLines& lines, const char* what, int ndim, int patches)
 /// another follows means the header's counts are wrong, and says so.
 void checkSections(GeoPDEsLines& lines, int ndim, int patches, int interfaces, int subdomains)
 {
-  const struct
+  const int counts[3] = { patches, interfaces, subdomains };
+  const char* const plural[4] = { "patches", "interfaces", "subdomains", "boundaries" };
+  // A section named for a kind the file should be past means the header counted too few of it;
+  // one named for a kind still to come means it counted too many of the current one.
+  const auto checkName = [&](const Line& name, int expected, int found)
   {
-    const char* kind;
-    int count;
-  } counted[2] = { { "interfaces", interfaces }, { "subdomains", subdomains } };
-  for (int kind = 0; kind < 2; ++kind)
-  {
-    for (int k = 0; k < counted[kind].count; ++k)
+    const int kind = sectionKind(name);
+    if (kind >= 0 && kind < expected)
     {
-      const Line& name = lines.take(kind == 0 ? "an interface" : "a subdomain");
-      const std::string keyword = sectionKeyword(name);
-      if (!keyword.empty() && keyword != (kind == 0 ? "INTERFACE" : "SUBDOMAIN"))
-      {
-        throw IGAReadError(name.number,
-          "'" + name.text + "': the header announces " + std::to_string(counted[kind].count) + " " +
-            counted[kind].kind + ", the file has " + std::to_string(k));
-      }
-      if (kind == 0)
-      {
-        readSide(lines, "interface side", ndim, patches);
-        readSide(lines, "interface side", ndim, patches);
-        lines.integers("interface orientation", ndim == 3 ? 3 : 1, -1, 1);
-      }
-      else
-      {
-        lines.integers("subdomain patches", -1, 1, patches);
-      }
+      throw IGAReadError(name.number, "'" + name.text + "' follows where " + plural[expected] +
+                                        " do: more " + plural[kind] + " than the header's " +
+                                        std::to_string(counts[kind]));
     }
+    if (kind > expected)
+    {
+      throw IGAReadError(name.number, "'" + name.text + "': the header announces " +
+                                        std::to_string(counts[expected]) + " " + plural[expected] +
+                                        ", the file has " + std::to_string(found));
+    }
+  };
+  for (int k = 0; k < interfaces; ++k)
+  {
+    checkName(lines.take("an interface"), 1, k);
+    readSide(lines, "interface side", ndim, patches);
+    readSide(lines, "interface side", ndim, patches);
+    lines.integers("interface orientation", ndim == 3 ? 3 : 1, -1, 1);
+  }
+  for (int k = 0; k < subdomains; ++k)
+  {
+    checkName(lines.take("a subdomain"), 2, k);
+    lines.integers("subdomain patches", -1, 1, patches);
   }
   while (!lines.atEnd())
   {
-    const Line& name = lines.take("a boundary");
-    const std::string keyword = sectionKeyword(name);
-    if (!keyword.empty() && keyword != "BOUNDARY")
-    {
-      const std::string more =
-        keyword == "PATCH"       ? "patches than the header's " + std::to_string(patches)
-        : keyword == "INTERFACE" ? "interfaces than the header's " + std::to_string(interfaces)
-                                 : "subdomains than the header's " + std::to_string(subdomains);
-      throw IGAReadError(
-        name.number, "'" + name.text + "' follows where boundaries do: more " + more);
-    }
+    checkName(lines.take("a boundary"), 3, 0);
     const int sides = lines.integers("number of boundary sides", 1, 0, 1000000)[0];
     for (int k = 0; k < sides; ++k)
     {

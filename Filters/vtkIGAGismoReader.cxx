@@ -12,6 +12,7 @@
 #include "vtkXMLDataParser.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -86,9 +87,10 @@ public:
         [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/'; });
     std::vector<unsigned char> bytes(text.size() / 4 * 3);
     const size_t decoded =
-      base64 ? vtkBase64Utilities::DecodeSafely(reinterpret_cast<const unsigned char*>(text.data()),
-                 text.size(), bytes.data(), bytes.size())
-             : 0;
+      base64 && !text.empty()
+        ? vtkBase64Utilities::DecodeSafely(reinterpret_cast<const unsigned char*>(text.data()),
+            text.size(), bytes.data(), bytes.size())
+        : 0;
     if (!base64 || decoded != bytes.size() - padding || decoded % width != 0)
     {
       this->fail(element, std::string("format '") + format + "': the text is not base64 of " +

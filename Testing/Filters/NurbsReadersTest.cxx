@@ -364,9 +364,16 @@ TEST(NurbsReaders, GismoDeclarationAfterACommentIsRead)
   EXPECT_EQ(set.volumes[0].net, reference.volumes[0].net);
   expectError<vtkIGAGismoReader>("comment-first-count.xml",
     replaced(commentFirst, "   0 2 1\n", "   0 2\n"), ":21: <coefs> has 35 values, expected 36");
-  // A second declaration, or one after an element, stays an error.
+  // A second declaration, or one after an element, stays an error; so does a late one that
+  // names another encoding than UTF-8 or holds markup.
   expectError<vtkIGAGismoReader>(
     "declaration-twice.xml", "<?xml version=\"1.0\"?>\n" + commentFirst, ":3: not well-formed XML");
+  expectError<vtkIGAGismoReader>("declaration-latin1.xml",
+    replaced(commentFirst, "encoding=\"UTF-8\"", "encoding=\"ISO-8859-1\""),
+    ":2: not well-formed XML (column 2): XML or text declaration not at start of entity");
+  expectError<vtkIGAGismoReader>("declaration-markup.xml",
+    replaced(commentFirst, "<?xml version=\"1.0\"", "<?xml version=\"1.0\" <xml>"),
+    ":2: not well-formed XML (column 2): XML or text declaration not at start of entity");
 }
 
 TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
@@ -512,6 +519,10 @@ TEST(NurbsReaders, DamagedGeoPDEsFilesGiveOneError)
     "'INTERFACE 1' follows where boundaries do: more interfaces than the header's 0");
   expectError<R>("side.txt", replaced(cubes, "1 2\n2 1\n1 1 1", "1 2\n3 1\n1 1 1"),
     "interface side: patch 3 side 1 does not exist");
+  expectError<R>("more-patches.txt", replaced(cubes, "3 2 1 1\n", "3 1 1 1\n"),
+    ":16: 'PATCH 2' follows where interfaces do: more patches than the header's 1");
+  expectError<R>("more-interfaces-than-subdomains.txt", replaced(cubes, "3 2 1 1\n", "3 2 0 1\n"),
+    ":26: 'INTERFACE 1' follows where subdomains do: more interfaces than the header's 0");
 }
 
 // GeoPDEs reads its sections by the header's counts, their names free text: its own
@@ -590,6 +601,10 @@ TEST(NurbsReaders, GismoBase64NumbersAreRead)
   expectError<R>("base64-int.xml",
     replaced(encoded, "<weights format=\"b64float64\">", "<weights format=\"b64int32\">"),
     ":24: <weights> format 'b64int32' is not supported (ascii, b64float64, b64float32)");
+  const size_t weights = encoded.find("<weights format=\"b64float64\">\n") + 29;
+  expectError<R>("base64-empty.xml",
+    encoded.substr(0, weights) + encoded.substr(encoded.find("</weights>")),
+    ":24: <weights> has 0 values, expected 12 (one per control point)");
 }
 
 } // namespace
