@@ -825,7 +825,7 @@ struct Viewer
   vtkIGAIsosurfaceMapper* mapper;
   vtkRenderer* renderer;
   vtkTextActor* readout;
-  /// What is drawn: the isosurfaces' attribute, "surfaces", "solid EXPRESSION" or "slices".
+  /// What is drawn: the isosurfaces' attribute, "surfaces", "solid EXPRESSION" and/or "N slices".
   std::string drawn;
   std::vector<double> isovalues;
   double isoStep;
@@ -1355,8 +1355,14 @@ int main(int argc, char** argv)
   {
     vtkNew<vtkTextActor> readout;
     const auto& names = input.patches.volumes.attributeNames;
+    const std::string slices = options.slices.empty()
+                                 ? ""
+                                 : std::to_string(options.slices.size()) +
+                                     (options.slices.size() == 1 ? " slice" : " slices");
     const std::string drawn =
-      drawing.csg        ? (drawing.expression.empty() ? "slices" : "solid " + drawing.expression)
+      drawing.csg        ? (drawing.expression.empty()
+                               ? slices
+                               : "solid " + drawing.expression + (slices.empty() ? "" : " and " + slices))
       : drawing.surfaces ? "surfaces"
                          : names[drawing.surface];
     Viewer viewer{ input.producer, mapper, renderer, readout, drawn, drawing.isovalues,
