@@ -25,6 +25,10 @@
 //
 // --screen-filling: scenes framed as users frame them, covering a third of a 1920x1080 image or
 // more (the sphere p2 close up, the teapot, the deforming blade's boundary, the dice's CSG solid).
+// On the CPU each frame is set against its floor: every covered pixel solved once by the engine's
+// own Newton (iga::sst::solvePixel), at the frame's mean evaluations a solve and one evaluation's
+// cost measured on the scene's first patch, over the threads. --quick times one (cold) frame a
+// scene, else the median of five.
 //
 // --gpu: the CUDA engine in first-hit mode at 1920x1080 and 3840x2160 on the teardrop, the tube
 // with a collapsed axis, the spheres of degrees 2..5, a deforming 10k-patch blade (a new net
