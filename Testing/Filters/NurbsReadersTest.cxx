@@ -368,12 +368,13 @@ TEST(NurbsReaders, GismoDeclarationAfterACommentIsRead)
   // names another encoding than UTF-8 or holds markup.
   expectError<vtkIGAGismoReader>(
     "declaration-twice.xml", "<?xml version=\"1.0\"?>\n" + commentFirst, ":3: not well-formed XML");
-  expectError<vtkIGAGismoReader>("declaration-latin1.xml",
-    replaced(commentFirst, "encoding=\"UTF-8\"", "encoding=\"ISO-8859-1\""),
-    ":2: not well-formed XML (column 2): XML or text declaration not at start of entity");
-  expectError<vtkIGAGismoReader>("declaration-markup.xml",
-    replaced(commentFirst, "<?xml version=\"1.0\"", "<?xml version=\"1.0\" <xml>"),
-    ":2: not well-formed XML (column 2): XML or text declaration not at start of entity");
+  for (const auto& [from, to] :
+    { std::pair<std::string, std::string>{ "encoding=\"UTF-8\"", "encoding=\"ISO-8859-1\"" },
+      { "<?xml version=\"1.0\"", "<?xml version=\"1.0\" <xml>" } })
+  {
+    expectError<vtkIGAGismoReader>("declaration-kept.xml", replaced(commentFirst, from, to),
+      ":2: not well-formed XML (column 2): XML or text declaration not at start of entity");
+  }
 }
 
 TEST(NurbsReaders, DamagedGismoFilesGiveOneError)
