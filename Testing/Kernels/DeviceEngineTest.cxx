@@ -241,6 +241,8 @@ void expectSameSteps(const FrameReport& device, const FrameReport& cpu)
 {
   EXPECT_EQ(device.iterations, cpu.iterations);
   EXPECT_EQ(device.newtonSolves, cpu.newtonSolves);
+  EXPECT_EQ(device.newtonRuns, cpu.newtonRuns);
+  EXPECT_EQ(device.newtonEvaluations, cpu.newtonEvaluations);
   EXPECT_EQ(device.subdividedPatches, cpu.subdividedPatches);
   EXPECT_EQ(device.maxPatches, cpu.maxPatches);
   EXPECT_EQ(device.maxTuples, cpu.maxTuples);
@@ -607,6 +609,7 @@ int expectBandsMatchOnePass(
     EXPECT_TRUE(bands == 0 || bandedReport.bands == bands);
     bands = bandedReport.bands;
     EXPECT_EQ(bandedReport.newtonSolves, wholeReport.newtonSolves) << "each pixel in one band";
+    EXPECT_EQ(bandedReport.newtonEvaluations, wholeReport.newtonEvaluations);
     EXPECT_EQ(bandedReport.unresolvedPixels, 0u);
     EXPECT_EQ(banded.offsets, whole.offsets);
     if (banded.hits.size() != whole.hits.size())

@@ -2,6 +2,7 @@
 // across a collapsed axis), the three methods against each other, and its failure modes.
 #include "AnalyticTruth.h"
 #include "EngineScenes.h"
+#include "iga/Newton.h"
 
 #include <gtest/gtest.h>
 
@@ -396,6 +397,28 @@ TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
   const GBuffer two = renderSet(set, camera, settings);
   ASSERT_GT(one.hits.size(), 500u);
   EXPECT_TRUE(igatest::identicalGBuffers(one, two));
+}
+
+// The floor of igaBenchmark rests on these counts: every hit is a Newton root, Newton runs only
+// on certified tuples, each run evaluates at least once and at most its iteration limit plus
+// one, and a pixel's work does not depend on the threads sharing the image.
+TEST(Engine, NewtonWorkIsCountedPerFrame)
+{
+  SphereView view = sphereView(2, { 1.2, -3.5, 2.1 }, 64);
+  iga::sst::FrameReport one, two;
+  view.settings.threads = 1;
+  const GBuffer gbuffer =
+    renderSet(view.set, view.camera, view.settings, Method::SharedSubdivisionTree, &one);
+  view.settings.threads = 2;
+  renderSet(view.set, view.camera, view.settings, Method::SharedSubdivisionTree, &two);
+  ASSERT_GT(gbuffer.coveredPixels(), 1000u);
+  EXPECT_GE(one.newtonRuns, gbuffer.coveredPixels());
+  EXPECT_LE(one.newtonRuns, one.newtonSolves);
+  EXPECT_GE(one.newtonEvaluations, one.newtonRuns);
+  EXPECT_LE(one.newtonEvaluations,
+    size_t(iga::NewtonSettings<double>().maxIterations + 1) * one.newtonRuns);
+  EXPECT_EQ(two.newtonRuns, one.newtonRuns);
+  EXPECT_EQ(two.newtonEvaluations, one.newtonEvaluations);
 }
 
 TEST(Engine, DepthCapIsReportedNotLooped)
