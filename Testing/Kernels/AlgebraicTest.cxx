@@ -76,6 +76,14 @@ TEST(PolynomialExpression, ErrorsNameTheirPosition)
   expectError("1e400*x", "expression, position 1: bad number");
   expectError("", "expression, position 1: unexpected end of the expression");
   expectError("x + ", "expression, position 5: unexpected end of the expression");
+  // Nesting is bounded where it passes the limit (a fuzzer's 2 000 parentheses overflowed the
+  // stack): 64 levels are read, the 65th is refused.
+  const std::string within = std::string(64, '(') + "x" + std::string(64, ')');
+  EXPECT_EQ(iga::parsePolynomial(within).degree[0], 1);
+  expectError(std::string(100000, '(') + "x",
+    "expression, position 65: parentheses and signs nested deeper than 64");
+  expectError("1 + " + std::string(70, '-') + "x",
+    "expression, position 69: parentheses and signs nested deeper than 64");
 }
 
 TEST(PolynomialExpression, AlgebraicVolumesHoldThePolynomialOverTheirBox)

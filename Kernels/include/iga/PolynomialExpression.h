@@ -16,6 +16,9 @@ namespace iga
 
 /// The highest total degree an algebraic surface may have (the ray's polynomial degree).
 constexpr int kMaxAlgebraicDegree = kMaxDegree;
+/// The deepest parentheses and signs an expression may nest: parsing recurses per level, so
+/// deeper text is refused rather than overflowing the stack.
+constexpr int kMaxExpressionNesting = 64;
 
 namespace detail
 {
@@ -98,6 +101,7 @@ public:
 private:
   const std::string& Text;
   size_t Position = 0;
+  int Depth = 0;
 
   [[noreturn]] void fail(const std::string& what, size_t at) const
   {
@@ -191,13 +195,34 @@ private:
     }
   }
 
+  /// parse() one level deeper, at `at` (an opening parenthesis or a sign).
+  template<class Parse>
+  Polynomial3<double> deeper(size_t at, Parse parse)
+  {
+    if (this->Depth >= kMaxExpressionNesting)
+    {
+      this->fail(
+        "parentheses and signs nested deeper than " + std::to_string(kMaxExpressionNesting), at);
+    }
+    ++this->Depth;
+    Polynomial3<double> p = parse();
+    --this->Depth;
+    return p;
+  }
+
   Polynomial3<double> signedFactor()
   {
+    this->skipSpace();
+    const size_t at = this->Position;
     if (this->accept('-'))
     {
-      return multiply(constant(-1.0), this->signedFactor());
+      return multiply(constant(-1.0), this->deeper(at, [this] { return this->signedFactor(); }));
     }
-    return this->accept('+') ? this->signedFactor() : this->power();
+    if (this->accept('+'))
+    {
+      return this->deeper(at, [this] { return this->signedFactor(); });
+    }
+    return this->power();
   }
 
   Polynomial3<double> power()
@@ -243,7 +268,7 @@ private:
     const size_t open = this->Position;
     if (this->accept('('))
     {
-      Polynomial3<double> p = this->sum();
+      Polynomial3<double> p = this->deeper(open, [this] { return this->sum(); });
       if (!this->accept(')'))
       {
         this->fail("'(' at position " + std::to_string(open + 1) + " is not closed");
