@@ -27,24 +27,20 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// Sub-patches per level kept while splitting a patch at the eye plane.
 constexpr size_t kMaxEyePlaneNodes = size_t(1) << 16;
 
-/// Whether every homogeneous window coefficient of a node lies beyond one side of the view (a
-/// pixel outside the image). The side planes pass through the eye, so the test is linear in the
-/// coefficients and holds whatever the signs of W: it settles parts straddling the eye plane,
-/// which have no window box. Only the parts near the eye meet the view there (its sides meet
-/// the eye plane at the eye alone), so the splitting at the eye plane stays near the eye.
-bool beyondViewSides(const VolumeView<const double>& node, const FrameConstants& frame)
+/// The view's sides (a pixel outside the image) as planes on homogeneous window values. They
+/// pass through the eye, so clippedAway settles with them parts straddling the eye plane, which
+/// have no window box. Only the parts near the eye meet the view there (its sides meet the eye
+/// plane at the eye alone), so the splitting at the eye plane stays near the eye.
+ClipPlanes<double> viewSides(const FrameConstants& frame)
 {
-  bool left = true, right = true, below = true, above = true;
-  for (int p = 0; p < node.pointCount(); ++p)
+  ClipPlanes<double> sides;
+  const double planes[4][4] = { { 1, 0, 0, 1 }, { -1, 0, 0, frame.width + 1.0 }, { 0, 1, 0, 1 },
+    { 0, -1, 0, frame.height + 1.0 } };
+  for (const auto& plane : planes)
   {
-    const double* cp = node.point(p);
-    const double x = cp[kScreenX], y = cp[kScreenY], w = cp[kScreenW];
-    left = left && x + w < 0;
-    right = right && x - (frame.width + 1) * w > 0;
-    below = below && y + w < 0;
-    above = above && y - (frame.height + 1) * w > 0;
+    std::copy(plane, plane + 4, sides.plane[sides.count++]);
   }
-  return left || right || below || above;
+  return sides;
 }
 
 /// Parts a loop over patches is cut into: several per thread, so that uneven parts even out.
@@ -118,7 +114,7 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
       plan.initialNodes.push_back(node);
       return false;
     }
-    return !beyondViewSides(view, plan.frame);
+    return !clippedAway(view, viewSides(plan.frame));
   };
   // Most roots lie in front of the eye: settled here, without copies.
   if (!straddles(root, coeffs))
