@@ -337,12 +337,13 @@ private:
               }
               ++localSplits;
               const auto parent = this->nodeView(node, current);
-              children.resize(size_t(childCount(parent)) * count);
-              splitNode(parent, children.data());
+              const int axes = allAxes(parent);
+              children.resize(size_t(childCount(axes)) * count);
+              splitNode(parent, axes, children.data());
               // Push far children first so that the near ones are explored first.
-              for (int c = childCount(parent) - 1; c >= 0; --c)
+              for (int c = childCount(axes) - 1; c >= 0; --c)
               {
-                Node child = childOf(node, c);
+                Node child = childOf(node, axes, c);
                 child.coeff = size_t(c) * count;
                 child.info = analyzeNode(
                   this->nodeView(child, children), isovalueOf(child, s.frame), s.frame.clip);
@@ -387,14 +388,14 @@ private:
       for (int depth = 0; depth < this->Config.bruteForceLevels; ++depth)
       {
         std::vector<Node> next;
-        const int children = childCount(this->nodeView(level[0], pool));
+        const int axes = allAxes(this->nodeView(level[0], pool)), children = childCount(axes);
         std::vector<double> nextPool(level.size() * children * size_t(count));
         for (size_t k = 0; k < level.size(); ++k)
         {
-          splitNode(this->nodeView(level[k], pool), nextPool.data() + k * children * count);
+          splitNode(this->nodeView(level[k], pool), axes, nextPool.data() + k * children * count);
           for (int c = 0; c < children; ++c)
           {
-            Node child = childOf(level[k], c);
+            Node child = childOf(level[k], axes, c);
             child.coeff = (k * children + c) * size_t(count);
             child.info = analyzeNode(this->nodeView(child, nextPool),
               isovalueOf(child, this->Plan.frame), this->Plan.frame.clip);
@@ -456,7 +457,7 @@ private:
               }
               // The corners of the leaf's inner box and its centre.
               const auto view = this->nodeView(leaf, leafPool);
-              const int centre = childCount(view);
+              const int centre = childCount(allAxes(view));
               for (int s = 0; s <= centre; ++s)
               {
                 double start[3];

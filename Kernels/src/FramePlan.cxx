@@ -131,7 +131,7 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
     for (const Node& node : level)
     {
       const VolumeView<const double> view(pool.data() + node.coeff, degree, kScreenChannels);
-      const int children = childCount(view);
+      const int axes = allAxes(view), children = childCount(axes);
       if (node.level >= settings.maxSubdivisionDepth ||
           straddlingPool.size() / count + children > kMaxEyePlaneNodes)
       {
@@ -140,10 +140,10 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
       }
       const size_t offset = straddlingPool.size();
       straddlingPool.resize(offset + size_t(children) * count);
-      splitNode(view, straddlingPool.data() + offset);
+      splitNode(view, axes, straddlingPool.data() + offset);
       for (int c = 0; c < children; ++c)
       {
-        Node child = childOf(node, c);
+        Node child = childOf(node, axes, c);
         child.coeff = offset + size_t(c) * count;
         if (straddles(child, straddlingPool.data() + child.coeff))
         {

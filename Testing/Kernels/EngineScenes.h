@@ -28,13 +28,13 @@ struct Scene
   iga::sst::Scene patches() const { return iga::sst::Scene(this->set.patches, this->surfaces); }
 };
 
-inline iga::Camera lookAt(
-  const iga::sst::Scene& patches, const glm::dvec3& position, const glm::dvec3& focal, double angle)
+inline iga::Camera lookAt(const iga::sst::Scene& patches, const glm::dvec3& position,
+  const glm::dvec3& focal, double angle, const glm::dvec3& up = { 0, 0, 1 })
 {
   iga::Camera camera;
   camera.position = position;
   camera.focalPoint = focal;
-  camera.viewUp = { 0, 0, 1 };
+  camera.viewUp = up;
   camera.viewAngle = angle;
   double bounds[6];
   iga::sst::patchBounds(patches, bounds);
@@ -43,9 +43,9 @@ inline iga::Camera lookAt(
 }
 
 inline iga::Camera lookAt(const iga::VolumeSet<double>& set, const glm::dvec3& position,
-  const glm::dvec3& focal, double angle)
+  const glm::dvec3& focal, double angle, const glm::dvec3& up = { 0, 0, 1 })
 {
-  return lookAt(iga::sst::Scene(set.patches), position, focal, angle);
+  return lookAt(iga::sst::Scene(set.patches), position, focal, angle, up);
 }
 
 inline Scene scene(const std::string& name, iga::VolumeSet<double> set, const glm::dvec3& position,

@@ -1,6 +1,6 @@
 // The per-tuple exclusion proofs of the SST solution stage against multi-start Newton: a proof
 // must never drop a (pixel, node) pair whose ray meets the isosurface inside the node, and the
-// sharper proof must drop most pairs whose ray misses it.
+// sharper proof must drop most pairs whose ray misses it. The directions a node's split halves.
 #include "iga/sst/PixelProblem.h"
 #include "iga/Camera.h"
 #include "iga/Datasets.h"
@@ -148,6 +148,53 @@ TEST(PixelProblem, ExclusionsAreSoundOnTheTwistedTeardrop)
 {
   const auto teardrop = iga::makeTeardrop<double>(1.2);
   expectSoundAndSharp(countExclusions(teardrop.patches[0], 0.0, 96, 3));
+}
+
+/// A degree-1 screen node (u, v, w in 0, 1 at its corners): window position X/W, Y/W and
+/// attribute A/V from `corner`, each corner's homogeneous values scaled by `weight` (which leaves
+/// the quotients alone), W scaled by `wSign` at corner 0. `surface`: the corners w = 0 alone.
+template<class Corner>
+std::vector<double> linearNode(Corner corner, bool surface, double wSign = 1)
+{
+  std::vector<double> values;
+  for (int p = 0; p < (surface ? 4 : 8); ++p)
+  {
+    const glm::dvec3 u(p & 1, (p >> 1) & 1, (p >> 2) & 1);
+    const glm::dvec3 v = corner(u); // X/W, Y/W, A/V
+    const double weight = 1 + 3 * p, w = p == 0 ? wSign : 1;
+    const double point[iga::sst::kScreenChannels] = { v.x * w, v.y * w, 0.5 * w, w, v.z, 1 };
+    for (double x : point)
+    {
+      values.push_back(weight * x);
+    }
+  }
+  return values;
+}
+
+int axesOf(const std::vector<double>& values, bool surface)
+{
+  const int degree[3] = { 1, 1, surface ? 0 : 1 };
+  return iga::sst::splitAxes(
+    iga::VolumeView<const double>(values.data(), degree, iga::sst::kScreenChannels));
+}
+
+TEST(PixelProblem, SplitAxesFollowWhatVaries)
+{
+  // 100 pixels along u, 2 along v: u for the window; the attribute along w: w.
+  const auto stretched = [](const glm::dvec3& u)
+  { return glm::dvec3(100 * u.x + 5, 2 * u.y + 5, u.z - 0.5); };
+  EXPECT_EQ(axesOf(linearNode(stretched, false), false), 0b101);
+  EXPECT_EQ(axesOf(linearNode(stretched, true), true), 0b01); // a surface has no attribute row
+  // Within a quarter of the most: halved.
+  const auto even = [](const glm::dvec3& u)
+  { return glm::dvec3(10 * u.x + 3 * u.y, 10 * u.y - 3 * u.x, u.x + u.y + u.z); };
+  EXPECT_EQ(axesOf(linearNode(even, false), false), 0b111);
+  EXPECT_EQ(axesOf(linearNode(even, true), true), 0b11);
+  // Nothing varies: all; a corner behind the eye plane (no window position): all.
+  const auto still = [](const glm::dvec3&) { return glm::dvec3(5, 5, 0); };
+  EXPECT_EQ(axesOf(linearNode(still, false), false), 0b111);
+  EXPECT_EQ(axesOf(linearNode(stretched, false, -1), false), 0b111);
+  EXPECT_EQ(axesOf(linearNode(stretched, true, 0), true), 0b11);
 }
 
 } // namespace

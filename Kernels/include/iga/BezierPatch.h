@@ -557,25 +557,48 @@ IGA_HD void split(const PatchView<const T, Dim>& patch, int dir, T t, const Patc
   splitParts<T, Dim>(patch, dir, t, left.coeffs, right.coeffs);
 }
 
-/// Splits a patch at the parametric midpoint in every direction into 2^Dim children written to
-/// `out` (2^Dim consecutive blocks of patch.valueCount() values). Bit d of a child's index is set
-/// when it covers the upper half [0.5, 1] of direction d.
+/// Directions given as bits (bit d for direction d): all of a patch's.
+template<int Dim>
+constexpr int kAllAxes = (1 << Dim) - 1;
+
+/// How many directions `axes` names.
+IGA_HD inline int axisCount(int axes)
+{
+  return (axes & 1) + ((axes >> 1) & 1) + ((axes >> 2) & 1);
+}
+
+/// Whether child `child` of a midpoint split along `axes` covers the upper half [0.5, 1] of
+/// direction d (one of `axes`): bit k of the child's index for the k-th direction of `axes`.
+IGA_HD inline bool upperHalf(int axes, int child, int d)
+{
+  return ((child >> axisCount(axes & ((1 << d) - 1))) & 1) != 0;
+}
+
+/// Splits a patch at the parametric midpoint of the directions in `axes` (all by default) into
+/// 2^axisCount(axes) children written to `out` (consecutive blocks of patch.valueCount() values),
+/// ordered as upperHalf says.
 template<class T, int Dim>
-IGA_HD void splitMidpoint(const PatchView<const T, Dim>& patch, T* out)
+IGA_HD void splitMidpoint(const PatchView<const T, Dim>& patch, T* out, int axes = kAllAxes<Dim>)
 {
   const int size = patch.valueCount();
   for (int i = 0; i < size; ++i)
   {
     out[i] = patch.coeffs[i];
   }
+  int children = 1;
   for (int d = 0; d < Dim; ++d)
   {
-    for (int child = 0; child < (1 << d); ++child)
+    if (((axes >> d) & 1) == 0)
+    {
+      continue;
+    }
+    for (int child = 0; child < children; ++child)
     {
       const PatchView<T, Dim> lower(out + child * size, patch.degree, patch.channels);
-      const PatchView<T, Dim> upper(out + (child | (1 << d)) * size, patch.degree, patch.channels);
+      const PatchView<T, Dim> upper(out + (child + children) * size, patch.degree, patch.channels);
       split<T, Dim>(lower, d, T(0.5), lower, upper);
     }
+    children *= 2;
   }
 }
 
@@ -583,7 +606,8 @@ IGA_HD void splitMidpoint(const PatchView<const T, Dim>& patch, T* out)
 /// operations on the same values, so the same result, with one GPU thread per child instead of
 /// one per parent.
 template<class T, int Dim>
-IGA_HD void midpointChild(const PatchView<const T, Dim>& patch, int child, T* out)
+IGA_HD void midpointChild(
+  const PatchView<const T, Dim>& patch, int child, T* out, int axes = kAllAxes<Dim>)
 {
   const int size = patch.valueCount();
   for (int i = 0; i < size; ++i)
@@ -593,18 +617,24 @@ IGA_HD void midpointChild(const PatchView<const T, Dim>& patch, int child, T* ou
   const PatchView<const T, Dim> current(out, patch.degree, patch.channels);
   for (int d = 0; d < Dim; ++d)
   {
-    const bool upper = ((child >> d) & 1) != 0;
+    if (((axes >> d) & 1) == 0)
+    {
+      continue;
+    }
+    const bool upper = upperHalf(axes, child, d);
     splitParts<T, Dim>(current, d, T(0.5), upper ? nullptr : out, upper ? out : nullptr);
   }
 }
 
-/// Maps a child's parameter to its parent's for a child of splitMidpoint.
+/// Maps a child's parameter to its parent's for a child of splitMidpoint along `axes`.
 template<class T, int Dim>
-IGA_HD void childToParentParameter(int child, const T* childU, T* parentU)
+IGA_HD void childToParentParameter(int child, const T* childU, T* parentU, int axes = kAllAxes<Dim>)
 {
   for (int d = 0; d < Dim; ++d)
   {
-    parentU[d] = T(0.5) * (childU[d] + T((child >> d) & 1));
+    parentU[d] = ((axes >> d) & 1)
+                   ? T(0.5) * (childU[d] + (upperHalf(axes, child, d) ? T(1) : T(0)))
+                   : childU[d];
   }
 }
 

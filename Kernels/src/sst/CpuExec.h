@@ -16,7 +16,7 @@
 //   sortByPixel                     records, stably by pixel
 //   offsetsFromRuns                 per-pixel offsets from runs of records sorted by pixel
 //   kThreadPerChild                 the subdivision stage's grain: a thread per child (GPU) or
-//                                   per split node (CPU, which shares the 8 children's work)
+//                                   per split node (CPU, which shares its children's work)
 //
 // Every primitive writes per index or in index order, so results never depend on the thread
 // count.

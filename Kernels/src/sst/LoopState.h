@@ -29,12 +29,6 @@ struct PatchShape
 
 static_assert(kScreenChannels == kShadeChannels, "screen and shading patches share offsets");
 
-/// Children of a midpoint split of the patch's nodes: 8 for a volume, 4 for a surface.
-IGA_HD inline int childCount(const PatchShape& shape)
-{
-  return shape.degree[2] == 0 ? 4 : 8;
-}
-
 IGA_HD inline VolumeView<const double> viewOf(
   const Node& node, const double* pool, const PatchShape* shapes)
 {

@@ -1,5 +1,6 @@
 // Stage 4, subdivision: the nodes some pixel failed on, and the implicit ones whose boxes still
-// cover pixels, are split at the midpoint (8 ways for a volume, 4 for a surface), as many as the
+// cover pixels, are split at the midpoint of the directions splitAxes picks (up to 8 ways for a
+// volume, 4 for a surface), as many as the
 // memory budget allows (in order); children without a sign change, off screen or outside the clip
 // depth are not kept. Implicit nodes beyond the budget are carried over to become tuples, explicit
 // ones leave their pixels unresolved. Also appends the solution stage's hits, whose count is read
@@ -45,6 +46,7 @@ size_t chooseSplits(LoopState<Exec>& s)
 {
   const size_t nodeCount = s.NodeCount, tupleCount = s.TupleCount;
   Node* nodes = raw(s.Nodes);
+  const double* pool = raw(s.Pool);
   const PatchShape* shapes = s.shapes;
   const FrameConstants frame = s.frame;
   const Tuple* tuples = raw(s.Tuples);
@@ -92,7 +94,8 @@ size_t chooseSplits(LoopState<Exec>& s)
       }
       const bool splits = split[n] == Split;
       const int values = shapes[nodes[n].patch].screenValues;
-      const int children = childCount(shapes[nodes[n].patch]);
+      nodes[n].axes = splits ? uint8_t(splitAxes(viewOf(nodes[n], pool, shapes))) : uint8_t(0);
+      const int children = childCount(nodes[n].axes);
       splitIndex[n] = splits ? 1 : 0;
       childValues[n] = splits ? uint64_t(children) * values : 0;
       splitCost[n] = splits ? splitBytes(values, children, failed[n]) : 0;
@@ -151,7 +154,7 @@ size_t chooseSplits(LoopState<Exec>& s)
 }
 
 /// Splits the chosen nodes into Children, kChildSlots each (coefficients in ChildPool),
-/// KeepFlags saying which are kept: a surface's four empty slots never are.
+/// KeepFlags saying which are kept: the slots past a node's childCount never are.
 template<class Exec>
 void splitNodes(LoopState<Exec>& s, size_t allowed)
 {
@@ -170,7 +173,7 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
   unsigned int* firstTuple = sized(s.FirstTuple, slots);
   auto childAt = [=] IGA_HD(uint32_t n, int c)
   {
-    Node child = childOf(nodes[n], c);
+    Node child = childOf(nodes[n], nodes[n].axes, c);
     child.coeff = childValues[n] + size_t(c) * shapes[nodes[n].patch].screenValues;
     return child;
   };
@@ -182,13 +185,13 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
         const uint32_t n = toSplit[k / kChildSlots];
         const int c = int(k % kChildSlots);
         const auto parent = viewOf(nodes[n], pool, shapes);
-        if (c >= childCount(parent))
+        if (c >= childCount(nodes[n].axes))
         {
           emptySlot(k, keep, firstTuple);
           return;
         }
         const Node child = childAt(n, c);
-        nodeChild(parent, c, childPool + child.coeff);
+        nodeChild(parent, nodes[n].axes, c, childPool + child.coeff);
         finishChild(child, childPool, shapes, frame, k, children, keep, firstTuple);
       });
   }
@@ -200,12 +203,12 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
       {
         const uint32_t n = toSplit[k];
         const auto parent = viewOf(nodes[n], pool, shapes);
-        splitNode(parent, childPool + childValues[n]);
+        splitNode(parent, nodes[n].axes, childPool + childValues[n]);
         for (int c = 0; c < kChildSlots; ++c)
         {
-          c < childCount(parent) ? finishChild(childAt(n, c), childPool, shapes, frame,
-                                     kChildSlots * k + c, children, keep, firstTuple)
-                                 : emptySlot(kChildSlots * k + c, keep, firstTuple);
+          c < childCount(nodes[n].axes) ? finishChild(childAt(n, c), childPool, shapes, frame,
+                                            kChildSlots * k + c, children, keep, firstTuple)
+                                        : emptySlot(kChildSlots * k + c, keep, firstTuple);
         }
       },
       kGrainSplit);

@@ -511,26 +511,108 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
                              node, info, i, j, isovalue, tolerance, u, ndcDepth, clip, work);
 }
 
-/// Children of a node's midpoint split: 8 for a volume, 4 for a surface.
+/// The directions a node's midpoint split halves by default: all of its unknowns'.
 template<class T>
-IGA_HD int childCount(const VolumeView<const T>& node)
+IGA_HD int allAxes(const VolumeView<const T>& node)
 {
-  return 1 << unknownsOf(node);
+  return isSurface(node) ? kAllAxes<2> : kAllAxes<3>;
 }
 
-/// The node's childCount children at the parametric midpoint (splitMidpoint).
-template<class T>
-IGA_HD void splitNode(const VolumeView<const T>& node, T* out)
+namespace detail
 {
-  isSurface(node) ? splitMidpoint<T, 2>(surfaceOf(node), out) : splitMidpoint<T, 3>(node, out);
+/// A direction is halved when the node's window position or attribute varies along it by at
+/// least this share of the most either varies along any direction.
+constexpr double kSplitShare = 0.25;
+
+/// See splitAxes.
+template<class T, int Dim>
+IGA_HD int splitAxes(const PatchView<const T, Dim>& node)
+{
+  // Per direction, the mean variation of the control net's window position (pixels, X/W and
+  // Y/W) and attribute (A/V) along its lines.
+  T window[Dim] = {}, attribute[Dim] = {};
+  const int count = node.pointCount();
+  for (int p = 0; p < count; ++p)
+  {
+    const T* a = node.point(p);
+    if (!(a[kScreenW] > T(0)))
+    {
+      return kAllAxes<Dim>; // no window position: straddles the eye plane
+    }
+    int index = p;
+    for (int d = 0; d < Dim; ++d)
+    {
+      const int along = index % node.order(d);
+      index /= node.order(d);
+      if (along == node.degree[d])
+      {
+        continue;
+      }
+      const T* b = node.point(p + node.stride(d) / node.channels);
+      if (!(b[kScreenW] > T(0)))
+      {
+        return kAllAxes<Dim>;
+      }
+      window[d] += absValue(b[kScreenX] / b[kScreenW] - a[kScreenX] / a[kScreenW]) +
+                   absValue(b[kScreenY] / b[kScreenW] - a[kScreenY] / a[kScreenW]);
+      if (Dim == 3)
+      {
+        attribute[d] +=
+          absValue(b[kScreenAttribute] / b[kScreenWeight] - a[kScreenAttribute] / a[kScreenWeight]);
+      }
+    }
+  }
+  T mostWindow = T(0), mostAttribute = T(0);
+  for (int d = 0; d < Dim; ++d)
+  {
+    window[d] *= T(node.order(d)) / T(count); // per line
+    attribute[d] *= T(node.order(d)) / T(count);
+    mostWindow = maxValue(mostWindow, window[d]);
+    mostAttribute = maxValue(mostAttribute, attribute[d]);
+  }
+  int axes = 0;
+  for (int d = 0; d < Dim; ++d)
+  {
+    const bool varies = (mostWindow > T(0) && window[d] >= T(kSplitShare) * mostWindow) ||
+                        (mostAttribute > T(0) && attribute[d] >= T(kSplitShare) * mostAttribute);
+    axes |= varies ? 1 << d : 0;
+  }
+  return axes != 0 ? axes : kAllAxes<Dim>;
+}
+} // namespace detail
+
+/// The directions worth halving when a node is split: those along which its window position
+/// or its attribute varies by at least a quarter of the most it varies along any direction, all
+/// where the node straddles the eye plane. A node stretched along one direction (where a rational
+/// patch's weights range widely, its map changes across a thin layer in parameter space) is
+/// halved across the layer alone until it is no longer stretched, instead of into 8 children
+/// along the layer as well.
+template<class T>
+IGA_HD int splitAxes(const VolumeView<const T>& node)
+{
+  return isSurface(node) ? detail::splitAxes<T, 2>(surfaceOf(node)) : detail::splitAxes<T, 3>(node);
+}
+
+/// Children of a node's midpoint split along `axes`.
+IGA_HD inline int childCount(int axes)
+{
+  return 1 << axisCount(axes);
+}
+
+/// The node's childCount(axes) children at the parametric midpoint of `axes` (splitMidpoint).
+template<class T>
+IGA_HD void splitNode(const VolumeView<const T>& node, int axes, T* out)
+{
+  isSurface(node) ? splitMidpoint<T, 2>(surfaceOf(node), out, axes)
+                  : splitMidpoint<T, 3>(node, out, axes);
 }
 
 /// Child `child` of splitNode alone (midpointChild).
 template<class T>
-IGA_HD void nodeChild(const VolumeView<const T>& node, int child, T* out)
+IGA_HD void nodeChild(const VolumeView<const T>& node, int axes, int child, T* out)
 {
-  isSurface(node) ? midpointChild<T, 2>(surfaceOf(node), child, out)
-                  : midpointChild<T, 3>(node, child, out);
+  isSurface(node) ? midpointChild<T, 2>(surfaceOf(node), child, out, axes)
+                  : midpointChild<T, 3>(node, child, out, axes);
 }
 
 } // namespace sst

@@ -22,13 +22,15 @@ struct Node
 {
   int patch;
   int iso;
-  int level;
-  int offset[3];
-  size_t coeff; ///< start of its screen coefficients in the owning pool
+  int level;         ///< the most halvings along one direction below the input patch
+  int depth[3];      ///< halvings along each direction
+  int64_t offset[3]; ///< which of the 2^depth[d] intervals along d it covers
+  size_t coeff;      ///< start of its screen coefficients in the owning pool
   NodeInfo<double> info;
   uint32_t initial; ///< the initial node (SAG work item) it descends from
   bool implicit;    ///< SST: stands for all round pixels in its box, without tuples yet
   bool overBudget;  ///< SST: an implicit node the memory cap did not let split
+  uint8_t axes;     ///< SST: the directions its split halves (splitAxes), once it is chosen
 };
 
 /// A ray/isosurface root before shading.
@@ -88,8 +90,8 @@ IGA_HD inline uint64_t childBytes(uint64_t children, uint64_t values)
   return 2 * nodeBytes(children, values);
 }
 
-/// Child slots a split node takes in the subdivision stage: a volume's eight children, or a
-/// surface's four and four empty slots.
+/// Child slots a split node takes in the subdivision stage: up to eight children (childCount),
+/// the slots past them empty.
 constexpr int kChildSlots = 8;
 
 /// What splitting a node with `values` screen coefficients into `children` adds: its children
@@ -200,13 +202,18 @@ IGA_HD inline Node rootNode(int patch, int iso)
   return node;
 }
 
-IGA_HD inline Node childOf(const Node& parent, int child)
+/// Child `child` of a node's split along `axes` (splitNode).
+IGA_HD inline Node childOf(const Node& parent, int axes, int child)
 {
   Node node = parent;
-  node.level = parent.level + 1;
   for (int d = 0; d < 3; ++d)
   {
-    node.offset[d] = 2 * parent.offset[d] + ((child >> d) & 1);
+    if ((axes >> d) & 1)
+    {
+      ++node.depth[d];
+      node.offset[d] = 2 * parent.offset[d] + (upperHalf(axes, child, d) ? 1 : 0);
+      node.level = node.depth[d] > node.level ? node.depth[d] : node.level;
+    }
   }
   return node;
 }
@@ -376,7 +383,7 @@ constexpr double kPatchParameterMargin = 1e-6;
 /// A root's parameter in its input patch: node coordinates moved to the patch's cube.
 IGA_HD inline double patchParameter(const Node& node, const double* u, int d)
 {
-  return (node.offset[d] + u[d]) * ldexp(1.0, -node.level);
+  return (double(node.offset[d]) + u[d]) * ldexp(1.0, -node.depth[d]);
 }
 
 /// Whether a root (node coordinates) lies in its input patch, within kPatchParameterMargin.
