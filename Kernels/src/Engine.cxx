@@ -385,7 +385,7 @@ private:
       const int count = this->valueCount(level[0].patch);
       std::vector<double> pool(this->Plan.initialPool.begin() + this->Plan.initialNodes[n].coeff,
         this->Plan.initialPool.begin() + this->Plan.initialNodes[n].coeff + count);
-      for (int depth = 0; depth < this->Config.bruteForceLevels; ++depth)
+      for (int depth = 0; depth < this->Config.bruteForceLevels && !level.empty(); ++depth)
       {
         std::vector<Node> next;
         const int axes = allAxes(this->nodeView(level[0], pool)), children = childCount(axes);

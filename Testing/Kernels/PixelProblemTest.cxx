@@ -4,6 +4,7 @@
 #include "iga/sst/PixelProblem.h"
 #include "iga/Camera.h"
 #include "iga/Datasets.h"
+#include "iga/sst/Tree.h"
 
 #include <gtest/gtest.h>
 
@@ -195,6 +196,30 @@ TEST(PixelProblem, SplitAxesFollowWhatVaries)
   EXPECT_EQ(axesOf(linearNode(still, false), false), 0b111);
   EXPECT_EQ(axesOf(linearNode(stretched, false, -1), false), 0b111);
   EXPECT_EQ(axesOf(linearNode(stretched, true, 0), true), 0b11);
+}
+
+TEST(PixelProblem, ChildrenKeepTheirPlacePerDirection)
+{
+  using iga::sst::Node;
+  const Node root = iga::sst::rootNode(0, 0);
+  const Node a = iga::sst::childOf(root, 0b001, 1); // upper half along u
+  EXPECT_EQ(a.level, 1);
+  EXPECT_EQ(glm::ivec3(a.depth[0], a.depth[1], a.depth[2]), glm::ivec3(1, 0, 0));
+  const Node b = iga::sst::childOf(a, 0b110, 2); // lower along v, upper along w
+  EXPECT_EQ(b.level, 1);
+  EXPECT_EQ(glm::ivec3(b.offset[0], b.offset[1], b.offset[2]), glm::ivec3(1, 0, 1));
+  const Node c = iga::sst::childOf(b, 0b011, 3); // upper along u and v
+  EXPECT_EQ(c.level, 2);
+  EXPECT_EQ(glm::ivec3(c.depth[0], c.depth[1], c.depth[2]), glm::ivec3(2, 2, 1));
+  EXPECT_EQ(glm::ivec3(c.offset[0], c.offset[1], c.offset[2]), glm::ivec3(3, 1, 1));
+  // u in [0.75, 1], v in [0.25, 0.5], w in [0.5, 1].
+  const double centre[3] = { 0.5, 0.5, 0.5 };
+  EXPECT_EQ(iga::sst::patchParameter(c, centre, 0), 0.875);
+  EXPECT_EQ(iga::sst::patchParameter(c, centre, 1), 0.375);
+  EXPECT_EQ(iga::sst::patchParameter(c, centre, 2), 0.75);
+  EXPECT_EQ(iga::sst::axesAtDepthCap(c, 2), 0b011);
+  EXPECT_EQ(iga::sst::axesAtDepthCap(c, 1), 0b111);
+  EXPECT_EQ(iga::sst::axesAtDepthCap(c, 3), 0);
 }
 
 } // namespace

@@ -31,7 +31,7 @@ IGA_HD inline void finishChild(Node child, const double* childPool, const PatchS
   children[k] = child;
 }
 
-/// A child slot a surface's split leaves empty: never kept.
+/// A child slot past a split node's childCount: never kept.
 IGA_HD inline void emptySlot(size_t k, uint8_t* keep, unsigned int* firstTuple)
 {
   keep[k] = 0;
@@ -88,13 +88,16 @@ size_t chooseSplits(LoopState<Exec>& s)
       {
         split[n] = coveredPixelCount(nodes[n].info.box, frame) > 0 ? Split : Keep;
       }
-      if (split[n] == Split && nodes[n].level >= frame.maxSubdivisionDepth)
+      nodes[n].axes = split[n] == Split
+                        ? uint8_t(splitAxes(viewOf(nodes[n], pool, shapes)) &
+                                  ~axesAtDepthCap(nodes[n], frame.maxSubdivisionDepth))
+                        : uint8_t(0);
+      if (split[n] == Split && nodes[n].axes == 0)
       {
         split[n] = AtDepthCap; // its pixels stay unresolved
       }
       const bool splits = split[n] == Split;
       const int values = shapes[nodes[n].patch].screenValues;
-      nodes[n].axes = splits ? uint8_t(splitAxes(viewOf(nodes[n], pool, shapes))) : uint8_t(0);
       const int children = childCount(nodes[n].axes);
       splitIndex[n] = splits ? 1 : 0;
       childValues[n] = splits ? uint64_t(children) * values : 0;

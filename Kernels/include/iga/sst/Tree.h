@@ -15,9 +15,9 @@ namespace iga
 namespace sst
 {
 
-/// A sub-patch of an input patch for one isovalue (a volume) or of a surface (iso -1): level and
-/// integer offsets locate it in the input patch's parameter cube ([offset, offset + 1] / 2^level
-/// per direction; a surface's third offset stays 0).
+/// A sub-patch of an input patch for one isovalue (a volume) or of a surface (iso -1): depths and
+/// integer offsets locate it in the input patch's parameter cube ([offset, offset + 1] /
+/// 2^depth along each direction; a surface's third stays 0).
 struct Node
 {
   int patch;
@@ -200,6 +200,17 @@ IGA_HD inline Node rootNode(int patch, int iso)
   node.patch = patch;
   node.iso = iso;
   return node;
+}
+
+/// The directions along which a node has been halved `cap` times: not halved further.
+IGA_HD inline int axesAtDepthCap(const Node& node, int cap)
+{
+  int axes = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    axes |= node.depth[d] >= cap ? 1 << d : 0;
+  }
+  return axes;
 }
 
 /// Child `child` of a node's split along `axes` (splitNode).
