@@ -13,3 +13,11 @@ if(NOT GTest_FOUND)
   add_library(GTest::gtest_main ALIAS gtest_main)
 endif()
 include(GoogleTest)
+
+# The tests' main: GoogleTest's, and a scratch directory for each test process
+# (Testing/ScratchDirectory.cxx).
+if(NOT TARGET igaTestMain)
+  add_library(igaTestMain INTERFACE)
+  target_sources(igaTestMain INTERFACE ${CMAKE_CURRENT_LIST_DIR}/../Testing/ScratchDirectory.cxx)
+  target_link_libraries(igaTestMain INTERFACE GTest::gtest_main)
+endif()
