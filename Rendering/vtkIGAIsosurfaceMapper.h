@@ -264,7 +264,8 @@ public:
   ///@}
 
   ///@{
-  /// Subdivision levels below an input patch before a pixel is given up (default 22).
+  /// Halvings of an input patch along one parametric direction before it is halved no further
+  /// along it; a pixel whose work needs more is given up (default 22).
   vtkSetClampMacro(MaximumSubdivisionDepth, int, 0, 40);
   vtkGetMacro(MaximumSubdivisionDepth, int);
   ///@}

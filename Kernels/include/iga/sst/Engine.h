@@ -62,7 +62,9 @@ struct Settings
   /// dropped and no hit is kept (infinity: none; below -1: the pixel is skipped), or empty for
   /// none: CSG frames bound their passes by the result's nearest surface known so far.
   std::vector<double> farDepths;
-  int maxSubdivisionDepth = 22; ///< levels below an input patch before a pixel is given up
+  /// Halvings of an input patch along one parametric direction before it is halved no further
+  /// along it; a pixel whose work needs more is given up.
+  int maxSubdivisionDepth = 22;
   /// Cap on a shared-subdivision-tree frame's memory besides its copies of the input. The image
   /// takes imageBytes (its per-pixel arrays and a G-buffer of one hit a pixel): a size needing
   /// more than the budget is refused before anything is allocated. The rest is the loop's: the
