@@ -634,47 +634,56 @@ struct ShadingLight
   double cosCone;
 };
 
-/// Phong shading of one hit with VTK's property and the renderer's lights (vtkLight semantics:
-/// directional, or positional with attenuation and spot cone).
+/// What one light adds to a hit's Phong colour (vtkLight semantics: directional, or positional
+/// with attenuation and spot cone).
+void addLight(const ShadingLight& light, const iga::sst::Hit& hit, const double* base,
+  vtkProperty* property, const glm::dvec3& toEye, double* colour)
+{
+  double lightColour[3], specularColour[3];
+  light.light->GetDiffuseColor(lightColour);
+  property->GetSpecularColor(specularColour);
+  double intensity = light.light->GetIntensity();
+  glm::dvec3 L = light.towards;
+  if (light.positional)
+  {
+    L = light.position - hit.position;
+    const double distance2 = glm::dot(L, L), distance = std::sqrt(distance2);
+    L = iga::normalizedOrZero(L);
+    const double* a = light.light->GetAttenuationValues();
+    intensity /= std::max(1e-12, a[0] + a[1] * distance + a[2] * distance2);
+    if (light.cosCone > -1)
+    {
+      const double spot = -glm::dot(L, light.direction);
+      intensity *= spot < light.cosCone ? 0.0 : std::pow(spot, light.light->GetExponent());
+    }
+  }
+  const double ndotl = std::max(0.0, glm::dot(hit.normal, L));
+  const double ndoth = std::max(0.0, glm::dot(hit.normal, iga::normalizedOrZero(L + toEye)));
+  const double shine = ndotl > 0 ? std::pow(ndoth, property->GetSpecularPower()) : 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    colour[c] += intensity * lightColour[c] *
+                 (property->GetDiffuse() * ndotl * base[c] +
+                   property->GetSpecular() * shine * specularColour[c]);
+  }
+}
+
+/// Phong shading of one hit with VTK's property and the renderer's lights. With no light
+/// switched on, or lighting off in the property, the hit is unlit: ambient plus diffuse times
+/// its colour, as vtkOpenGLPolyDataMapper draws (ParaView's view with its light kit off).
 void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* property,
   const std::vector<ShadingLight>& lights, const glm::dvec3& toEye, float* rgba)
 {
+  const bool unlit = lights.empty() || !property->GetLighting();
+  const double ambient = property->GetAmbient();
   double colour[3];
-  const double ambient = property->GetAmbient(), diffuse = property->GetDiffuse(),
-               specular = property->GetSpecular(), power = property->GetSpecularPower();
-  double specularColour[3];
-  property->GetSpecularColor(specularColour);
   for (int c = 0; c < 3; ++c)
   {
-    colour[c] = ambient * base[c];
+    colour[c] = (unlit ? ambient + property->GetDiffuse() : ambient) * base[c];
   }
-  for (const auto& light : lights)
+  for (size_t k = 0; !unlit && k < lights.size(); ++k)
   {
-    double lightColour[3];
-    light.light->GetDiffuseColor(lightColour);
-    double intensity = light.light->GetIntensity();
-    glm::dvec3 L = light.towards;
-    if (light.positional)
-    {
-      L = light.position - hit.position;
-      const double distance2 = glm::dot(L, L), distance = std::sqrt(distance2);
-      L = iga::normalizedOrZero(L);
-      const double* a = light.light->GetAttenuationValues();
-      intensity /= std::max(1e-12, a[0] + a[1] * distance + a[2] * distance2);
-      if (light.cosCone > -1)
-      {
-        const double spot = -glm::dot(L, light.direction);
-        intensity *= spot < light.cosCone ? 0.0 : std::pow(spot, light.light->GetExponent());
-      }
-    }
-    const double ndotl = std::max(0.0, glm::dot(hit.normal, L));
-    const double ndoth = std::max(0.0, glm::dot(hit.normal, iga::normalizedOrZero(L + toEye)));
-    const double shine = ndotl > 0 ? std::pow(ndoth, power) : 0.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      colour[c] += intensity * lightColour[c] *
-                   (diffuse * ndotl * base[c] + specular * shine * specularColour[c]);
-    }
+    addLight(lights[k], hit, base, property, toEye, colour);
   }
   const double opacity = property->GetOpacity();
   for (int c = 0; c < 3; ++c)

@@ -68,5 +68,29 @@ simple.Render(view)
 ring_shot = os.path.join(work_dir, "gismo_ring_surface.png")
 simple.SaveScreenshot(ring_shot, view, ImageResolution=iga_scene.SIZE, TransparentBackground=0)
 assert covered_pixels(ring_shot) > 5000, covered_pixels(ring_shot)
+
+# With the light kit off (and no AdditionalLights) ParaView draws surfaces unlit, in full colour; so does
+# the IGA representation, to the value of ParaView's own "Surface" of the same cells.
+view.UseLight = 0
+simple.ColorBy(ring, None)
+ring.AmbientColor = ring.DiffuseColor = [0.9, 0.5, 0.1]
+unlit = {}
+for kind in ("IGA Surface", "Surface"):
+    ring.SetRepresentationType(kind)
+    simple.Render(view)
+    shot_path = os.path.join(work_dir, f"gismo_ring_unlit_{kind.replace(' ', '_')}.png")
+    simple.SaveScreenshot(shot_path, view, ImageResolution=iga_scene.SIZE,
+                          TransparentBackground=0)
+    (width, height), pixel = iga_scene.read_rgb(shot_path)
+    background = tuple(round(255 * c) for c in iga_scene.BACKGROUND)
+    colours = [pixel(i, j) for j in range(height) for i in range(width)
+               if pixel(i, j) != background]
+    unlit[kind] = max(set(colours), key=colours.count), len(colours)
+    share = colours.count(unlit[kind][0]) / len(colours)
+    assert share > 0.95, f"{kind}: {share:.3f} of the covered pixels in its most common colour"
+assert unlit["IGA Surface"][1] > 5000, unlit
+assert all(abs(a - b) <= 1 for a, b in zip(unlit["IGA Surface"][0], unlit["Surface"][0])), unlit
+assert all(abs(a - round(255 * c)) <= 1 for a, c in zip(unlit["IGA Surface"][0], [0.9, 0.5, 0.1]))
 print(f"teapot: {covered} pixels covered, {with_edges} edge pixels, image difference "
-      f"{difference}; G+Smo ring boundary: {covered_pixels(ring_shot)} pixels")
+      f"{difference}; G+Smo ring boundary: {covered_pixels(ring_shot)} pixels, unlit in "
+      f"{unlit['IGA Surface'][0]} (ParaView's Surface: {unlit['Surface'][0]})")

@@ -12,6 +12,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -321,6 +322,65 @@ TEST(IsosurfaceMapper, PositionalSpotLightLightsOnlyItsCone)
   }
   EXPECT_GT(lit, 100);
   EXPECT_GT(dark, 1000);
+}
+
+} // namespace
+
+namespace
+{
+
+/// The window's centre pixel with the scene's actor drawn by its IGA mapper and by VTK's own
+/// mapper of a polygonal unit sphere, in that order; every covered pixel of the IGA frame must
+/// hold `expected` (premultiplied, opaque).
+std::array<std::array<int, 3>, 2> centreByBothMappers(Scene& scene, const double* expected)
+{
+  std::array<std::array<int, 3>, 2> centres;
+  scene.render();
+  const auto& gbuffer = scene.mapper->GetLastGBuffer();
+  const auto& colours = scene.mapper->GetLastColours();
+  int covered = 0;
+  for (int p = 0; p < gbuffer.width * gbuffer.height; ++p)
+  {
+    if (!gbuffer.firstHit(p % gbuffer.width, p / gbuffer.width))
+      continue;
+    ++covered;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(colours[4 * size_t(p) + c], expected[c], 1e-6) << "pixel " << p;
+  }
+  EXPECT_GT(covered, 5000);
+  const int i = 100, j = 80;
+  for (int c = 0; c < 3; ++c)
+    centres[0][c] = scene.pixel(i, j)[c];
+  scene.isosurface->SetMapper(igatest::sphereMapper(0, 0, 0, 1));
+  scene.render();
+  for (int c = 0; c < 3; ++c)
+    centres[1][c] = scene.pixel(i, j)[c];
+  scene.isosurface->SetMapper(scene.mapper);
+  return centres;
+}
+
+TEST(IsosurfaceMapper, UnlitWithoutLightsOrLightingAsVTKDrawsItsOwnSurfaces)
+{
+  Scene scene;
+  vtkProperty* property = scene.isosurface->GetProperty();
+  property->SetColor(0.2, 0.6, 0.9);
+  property->SetAmbient(0.25);
+  property->SetDiffuse(0.5);
+  property->SetSpecular(0.5);
+  const double expected[3] = { 0.75 * 0.2, 0.75 * 0.6, 0.75 * 0.9 };
+  // ParaView's view with its light kit and headlight off: no light in the renderer.
+  scene.renderer->AutomaticLightCreationOff();
+  scene.renderer->RemoveAllLights();
+  auto centres = centreByBothMappers(scene, expected);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(centres[0][c], centres[1][c], 1) << "no lights, channel " << c;
+  // A light, but lighting off in the property.
+  scene.renderer->AutomaticLightCreationOn();
+  property->LightingOff();
+  centres = centreByBothMappers(scene, expected);
+  EXPECT_GT(scene.renderer->GetLights()->GetNumberOfItems(), 0);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(centres[0][c], centres[1][c], 1) << "lighting off, channel " << c;
 }
 
 } // namespace
