@@ -5,8 +5,10 @@
  *
  * The output is a vtkUnstructuredGrid of VTK_BEZIER_HEXAHEDRON / VTK_BEZIER_QUADRILATERAL cells
  * with the NURBS description in field and cell data (see vtkIGANurbsData). The file is parsed
- * once per change of FileName or of the file's modification time. Files with several time steps
- * advertise them (TIME_STEPS) and the requested one is put out.
+ * once per change of FileName or of the file's modification time. The G+Smo and GeoPDEs files
+ * read so far hold one state of the geometry, so no time steps are advertised; ParaView makes a
+ * numbered series of files a time series by wrapping the readers in vtkFileSeriesReader (the
+ * plugin's reader proxies do).
  *
  * Problems with the file are reported once, by vtkErrorMacro, as "FILE:LINE: problem" (LINE is
  * left out where the file as a whole is at fault), and RequestData then returns 0; so is a

@@ -1,10 +1,11 @@
 """pvpython: the IGAView plugin's readers and deformation filters as ParaView proxies: file
-dialog extensions, Bezier cells out, time steps for the animation toolbar, deformations that
-undo each other, and a NURBS file drawn by the "IGA Isosurface" representation.
+dialog extensions, Bezier cells out, numbered files as a time series for the animation toolbar,
+deformations that undo each other, and a NURBS file drawn by the "IGA Isosurface" representation.
 
 Usage: pvpython test_readers_filters.py PLUGIN DATA_DIR WORK_DIR"""
 import builtins  # pvpython scripts see numpy_interface's sum/max in their namespace
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -134,7 +135,54 @@ simple.SaveScreenshot(boundary_png, view, ImageResolution=[200, 160], Transparen
 boundary_pixels = builtins.sum(1 for j in range(h) for i in range(w) if px(i, j) != background)
 assert boundary_pixels > 1000, boundary_pixels
 
+# A numbered series of files opened together is a time series, a step a file, as ParaView's own
+# readers make one: the G+Smo ring 1, 2 and 3 high, its animation steps drawn taller and taller.
+with open(os.path.join(data_dir, "gismo_quarter_ring.xml")) as f:
+    ring_text = f.read()
+coefs = re.search(r"<coefs[^>]*>(.*?)</coefs>", ring_text, re.S)
+rows = [[float(v) for v in line.split()] for line in coefs.group(1).strip().splitlines()]
+ring_files = []
+for k in range(3):
+    ring_files.append(os.path.join(work_dir, f"ring_{k:03d}.xml"))
+    net = "".join(f"   {x!r} {y!r} {z * (k + 1)!r}\n" for x, y, z in rows)
+    with open(ring_files[-1], "w") as f:
+        f.write(ring_text[:coefs.start(1)] + "\n" + net + "  " + ring_text[coefs.end(1):])
+ring_series = simple.OpenDataFile(ring_files)
+assert ring_series.GetXMLName() == "AAIGAGismoReader", ring_series.GetXMLName()
+steps = list(ring_series.TimestepValues)
+assert steps == [0.0, 1.0, 2.0], steps
+for k, t in enumerate(steps):
+    ring_series.UpdatePipeline(t)
+    top = ring_series.GetDataInformation().GetBounds()[5]
+    assert abs(top - (k + 1)) < 1e-12, (t, top)
+for shown in simple.GetSources().values():
+    simple.Hide(shown, view)
+series_display = simple.Show(ring_series, view)
+series_display.SetRepresentationType("IGA Surface")
+iga_scene.place_camera(view, ([8.0, -8.0, 3.0], [1.0, 1.0, 1.5], [0.0, 0.0, 1.0]))
+scene = simple.GetAnimationScene()
+scene.UpdateAnimationUsingDataTimeSteps()
+series_pixels = []
+for t in steps:
+    scene.AnimationTime = t
+    png = os.path.join(work_dir, f"ring_series_{int(t)}.png")
+    simple.SaveScreenshot(png, view, ImageResolution=[200, 160], TransparentBackground=0)
+    (w, h), px = iga_scene.read_rgb(png)
+    series_pixels.append(builtins.sum(1 for j in range(h) for i in range(w) if px(i, j) != background))
+assert series_pixels[0] > 500 and series_pixels[0] < series_pixels[1] < series_pixels[2], series_pixels
+# GeoPDEs files make a series the same way.
+geopdes_files = []
+for k in range(2):
+    geopdes_files.append(os.path.join(work_dir, f"ring_{k:03d}.txt"))
+    with open(os.path.join(data_dir, "geopdes_quarter_ring.txt")) as src, \
+            open(geopdes_files[-1], "w") as dst:
+        dst.write(src.read())
+geopdes_series = simple.OpenDataFile(geopdes_files)
+assert geopdes_series.GetXMLName() == "AAIGAGeoPDEsReader", geopdes_series.GetXMLName()
+assert list(geopdes_series.TimestepValues) == [0.0, 1.0], list(geopdes_series.TimestepValues)
+
 print(f"boundary of the two blocks: 14 Bezier quadrilaterals, {boundary_pixels} pixels")
+print(f"numbered G+Smo series: steps {steps}, pixels covered {series_pixels}")
 print(f"readers: quarter ring bounds {bounds}; isosurface z = 0.5 covers {covered} pixels; "
       f"grouped with the two blocks {len(grouped)}, the ring alone then {len(ring_alone)}; "
       f"bend at time 1 bounds {bent}, displaced back to {restored}")
