@@ -9,6 +9,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataObjectTreeIterator.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
@@ -707,6 +708,7 @@ struct vtkIGAIsosurfaceMapper::Frame
 {
   vtkDataObject* Input = nullptr;
   int Width = 0, Height = 0;
+  double Aspect = 1; ///< of the viewport, as the camera's projection takes it
   std::vector<ShadingLight> Lights;
   /// Everything the frame depends on: modification times of the objects owned here, values
   /// of those VTK touches every render (camera, matrices, lights, clipping planes).
@@ -724,21 +726,42 @@ struct vtkIGAIsosurfaceMapper::Frame
 
 void vtkIGAIsosurfaceMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 {
+  int size[2], origin[2];
+  renderer->GetTiledSizeAndOrigin(&size[0], &size[1], &origin[0], &origin[1]);
+  if (this->UpdateFrame(renderer, actor, size, renderer->GetTiledAspectRatio()))
+  {
+    this->DrawFrame(renderer, actor, this->GetInputDataObject(0, 0));
+  }
+}
+
+bool vtkIGAIsosurfaceMapper::ComputeImage(
+  vtkRenderer* renderer, vtkActor* actor, int width, int height)
+{
+  const int size[2] = { width, height };
+  return height > 0 && this->UpdateFrame(renderer, actor, size, double(width) / height);
+}
+
+bool vtkIGAIsosurfaceMapper::UpdateFrame(
+  vtkRenderer* renderer, vtkActor* actor, const int size[2], double aspect)
+{
   Frame frame;
+  frame.Width = size[0];
+  frame.Height = size[1];
+  frame.Aspect = aspect;
   if (!this->CollectInput(frame) || !this->DescribeFrame(renderer, actor, frame))
   {
-    return;
+    return false;
   }
   this->Internal->LastRefusal.clear();
   if (!this->SameFrame(frame.Key))
   {
     if (!this->ComputeFrame(actor, frame))
     {
-      return;
+      return false;
     }
     this->ShadeFrame(actor, frame);
   }
-  this->DrawFrame(renderer, actor, frame.Input);
+  return true;
 }
 
 bool vtkIGAIsosurfaceMapper::CollectInput(Frame& frame)
@@ -916,6 +939,79 @@ void vtkIGAIsosurfaceMapper::PatchSource(int patch, vtkIdType& cell, unsigned in
   block = in.PatchBlock[owner];
 }
 
+void vtkIGAIsosurfaceMapper::CellParameter(const iga::sst::Hit& hit, double uvw[3]) const
+{
+  // A boundary face's hit is at (s, t) of the face; its cell is the volume the face bounds.
+  const Internals& in = *this->Internal;
+  const size_t firstFace = (in.DrewVolumes ? in.Set.patches.size() : 0) + in.Quads.size();
+  const size_t k = size_t(hit.patch);
+  if (this->DrawMode != DRAW_SURFACES || k < firstFace)
+  {
+    std::copy(&hit.uvw[0], &hit.uvw[0] + 3, uvw);
+    return;
+  }
+  iga::faceParameterInVolume(in.Faces[k - firstFace], false, hit.uvw[0], hit.uvw[1], uvw);
+}
+
+void vtkIGAIsosurfaceMapper::HitAttributes(const iga::sst::Hit& hit, double* values) const
+{
+  // CSG numbers the volumes alone; the other modes the engine scene's patches (its surfaces
+  // carry the volumes' channels).
+  const Internals& in = *this->Internal;
+  const auto patch = this->DrawMode == DRAW_CSG ? in.Set.patches[size_t(hit.patch)].view()
+                                                : this->EngineScene(true)[size_t(hit.patch)];
+  std::vector<double> channels(size_t(patch.channels));
+  iga::evaluateHomogeneous(patch, &hit.uvw[0], channels.data(), static_cast<double*>(nullptr));
+  for (size_t a = 0; a < in.Set.attributeNames.size(); ++a)
+  {
+    values[a] = channels[iga::kFirstAttributeChannel + a] / channels[iga::kWeightChannel];
+  }
+}
+
+int vtkIGAIsosurfaceMapper::GetNumberOfAttributes() const
+{
+  return int(this->Internal->Set.attributeNames.size());
+}
+
+const char* vtkIGAIsosurfaceMapper::GetAttributeName(int index) const
+{
+  const auto& names = this->Internal->Set.attributeNames;
+  return index >= 0 && size_t(index) < names.size() ? names[size_t(index)].c_str() : nullptr;
+}
+
+vtkIdType vtkIGAIsosurfaceMapper::ProbePixel(
+  int x, int y, double position[3], double uvw[3], vtkFieldData* attributes)
+{
+  const iga::sst::GBuffer& gbuffer = this->Internal->GBuffer;
+  if (x < 0 || y < 0 || x >= gbuffer.width || y >= gbuffer.height)
+  {
+    return -1;
+  }
+  const iga::sst::Hit* hit = gbuffer.firstHit(x, y);
+  if (!hit)
+  {
+    return -1;
+  }
+  vtkIdType cell = -1;
+  this->PatchSource(hit->patch, cell, this->LastProbedBlock);
+  std::copy(&hit->position[0], &hit->position[0] + 3, position);
+  this->CellParameter(*hit, uvw);
+  if (attributes)
+  {
+    std::vector<double> values(size_t(this->GetNumberOfAttributes()));
+    this->HitAttributes(*hit, values.data());
+    attributes->Initialize();
+    for (size_t a = 0; a < values.size(); ++a)
+    {
+      vtkNew<vtkDoubleArray> value;
+      value->SetName(this->GetAttributeName(int(a)));
+      value->InsertNextValue(values[a]);
+      attributes->AddArray(value);
+    }
+  }
+  return cell;
+}
+
 bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* actor, Frame& frame)
 {
   Internals& in = *this->Internal;
@@ -932,15 +1028,12 @@ bool vtkIGAIsosurfaceMapper::DescribeFrame(vtkRenderer* renderer, vtkActor* acto
     this->DrawNothing(why);
     return false;
   }
-  int origin[2];
-  renderer->GetTiledSizeAndOrigin(&frame.Width, &frame.Height, &origin[0], &origin[1]);
   if (frame.Width < 1 || frame.Height < 1)
   {
     return false;
   }
   vtkCamera* camera = renderer->GetActiveCamera();
-  vtkMatrix4x4* worldToClip =
-    camera->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1, 1);
+  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(frame.Aspect, -1, 1);
   frame.Key = { double(this->GetMTime()), double(frame.Input->GetMTime()),
     double(actor->GetProperty()->GetMTime()), double(this->GetLookupTable()->GetMTime()),
     double(frame.Width), double(frame.Height), double(this->Backend),
@@ -1382,6 +1475,8 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
   {
     lut->SetRange(this->ScalarRange);
   }
+  // A table no render has built yet (a frame computed without a window) maps every value to 0.
+  lut->Build();
   double baseColour[3];
   property->GetDiffuseColor(baseColour);
   const int width = frame.Width, height = frame.Height;

@@ -113,6 +113,7 @@ class Scene;
 #include <vector> // for std::vector
 
 class vtkDataObject;
+class vtkFieldData;
 class vtkHardwareSelector;
 class vtkMatrix4x4;
 class vtkOpenGLRenderPass;
@@ -333,12 +334,49 @@ public:
   vtkIdType GetLastUnresolvedPixels() const { return this->LastUnresolvedPixels; }
 
 #ifndef __VTK_WRAP__
+  /// Every point attribute at a hit of the last frame (GetAttributeName's order), evaluated from
+  /// its patch; `values` holds GetNumberOfAttributes() entries.
+  void HitAttributes(const iga::sst::Hit& hit, double* values) const;
+  /// The input cell and composite block (flat index) a hit's patch (the engine's numbering)
+  /// came from.
+  void PatchSource(int patch, vtkIdType& cell, unsigned int& block) const;
+  /// A hit's parameter in that cell (a boundary face's hit lies on the face of its volume).
+  void CellParameter(const iga::sst::Hit& hit, double uvw[3]) const;
+
   /// The last frame's G-buffer (its first hits; every hit of a translucent surface) and the
   /// first hits' shaded colours (RGBA, premultiplied, row 0 at the bottom), e.g. for an OpenEXR
   /// export of what was drawn.
   const iga::sst::GBuffer& GetLastGBuffer() const;
   const std::vector<float>& GetLastColours() const;
 #endif
+
+  /// Computes, with no OpenGL and no render window, what Render draws for `renderer`'s active
+  /// camera and lights and `actor`'s matrix and property at width x height pixels: afterwards
+  /// GetLastGBuffer, GetLastColours and ProbePixel describe that frame (vtkIGAIsosurfaceImage
+  /// runs on it). The renderer's lights are taken as they are (a headlight follows the camera
+  /// only once vtkRenderer::UpdateLightsGeometryToFollowCamera has run). False when nothing was
+  /// computed: nothing to draw, or refused (GetLastRefusal says why).
+  bool ComputeImage(vtkRenderer* renderer, vtkActor* actor, int width, int height);
+
+  ///@{
+  /// The point attributes of the last input drawn (ProbePixel's values), by name.
+  int GetNumberOfAttributes() const;
+  const char* GetAttributeName(int index) const;
+  ///@}
+
+  /// Probing: the first hit of pixel (x, y) of the last frame computed (x from the left, y from
+  /// the bottom of the viewport), exactly: its world position, its parameter in its Bézier
+  /// cell and, when `attributes` is given, every point attribute evaluated from that cell at
+  /// the parameter (not interpolated from pixels), one array of one value per attribute, named
+  /// as the input's. Returns the cell's id in its grid (the block's, for composite input:
+  /// GetLastProbedBlock), or -1 where the pixel has no hit or lies outside the frame; then
+  /// nothing is written.
+  vtkIdType ProbePixel(int x, int y, double position[3], double uvw[3], vtkFieldData* attributes);
+  /// The composite block (flat index; 0 for a grid) of the cell the last ProbePixel returned.
+  unsigned int GetLastProbedBlock() const
+  {
+    return this->LastProbedBlock;
+  }
 
   void Render(vtkRenderer* renderer, vtkActor* actor) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
@@ -357,6 +395,10 @@ protected:
 private:
   vtkIGAIsosurfaceMapper(const vtkIGAIsosurfaceMapper&) = delete;
   void operator=(const vtkIGAIsosurfaceMapper&) = delete;
+
+  /// The frame Render draws and ComputeImage computes: computed again when what it depends on
+  /// changed. False when there is nothing to draw.
+  bool UpdateFrame(vtkRenderer* renderer, vtkActor* actor, const int size[2], double aspect);
 
   /// Brings the input up to date (its producer's pipeline).
   void UpdateInput();
@@ -384,8 +426,6 @@ private:
   void ColourByCurvature(bool identity, const Frame& frame);
   /// The scene the engine draws, in world space.
   iga::sst::Scene EngineScene(bool identity) const;
-  /// The cell and composite block a hit's patch (the engine's numbering) came from.
-  void PatchSource(int patch, vtkIdType& cell, unsigned int& block) const;
   /// Size, view, lights, clipping planes and engine settings of the frame, and its key.
   bool DescribeFrame(vtkRenderer* renderer, vtkActor* actor, Frame& frame);
   void DescribeLights(vtkRenderer* renderer, Frame& frame);
@@ -439,6 +479,7 @@ private:
   double LastEngineTime = 0;
   vtkIdType LastUnresolvedPixels = 0;
   vtkIdType LastRayCompositionPatches = 0, LastSstPatches = 0;
+  unsigned int LastProbedBlock = 0;
 };
 
 #endif
