@@ -20,6 +20,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNew.h"
@@ -70,7 +71,8 @@ view: shows them in an interactive window: drag to rotate (trackball), right-dra
 zoom, middle-drag to pan; Up/Down raise/lower the isovalue by 2% of the attribute's range,
 Right/Left step the time (inputs with time steps: the default dataset, a .pvd series), r resets
 the camera,
-q quits. The corner shows the isovalue, the time and the last frame's engine and frame time.
+q quits. The corner shows the isovalue, the time, the last frame's engine and frame time, and
+the hit under the cursor (its cell, position, parameter and attributes, exact).
 With no INPUT both use the bundled default dataset (a twisted rational tube of 8 tri-quadratic
 patches, deforming over the time steps 0..1).
 
@@ -141,6 +143,9 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
                          slices numbered after the operands)
   --deep-exr FILE        also write every layer (every hit of every pixel, front to back) as a
                          deep OpenEXR image: Z, P, N, u v w, patch, operand, entering (render)
+  --probe X,Y            print the first hit at pixel (X, Y) (from the lower left), exactly:
+                         its cell, world position, parameter in the cell and every attribute
+                         there (repeatable; view shows the same under the cursor)
   --keys K1,K2,...       view: press these keys (Up, Down, Left, Right, r), print the state after
                          each, write -o if given, and exit without opening a window (scripts, tests)
   -h, --help             this text
@@ -154,6 +159,7 @@ struct Options
   std::string csg; ///< --csg as typed
   std::vector<std::array<double, 4>> slices, clips;
   std::vector<std::string> keys;
+  std::vector<std::array<int, 2>> probes; ///< --probe pixels
   bool hasOutput = false;
   std::string input;
   std::vector<double> isovalues;
@@ -472,6 +478,16 @@ bool parseViewOption(const std::string& arg, const OptionValue& value, Options& 
       fail("--size expects WxH with 1..16384 pixels each, got '" + text + "'");
     }
   }
+  else if (arg == "--probe")
+  {
+    const std::string text = value();
+    double pixel[2];
+    parseNumbers(text, arg, 2, "X,Y", pixel);
+    if (pixel[0] != std::floor(pixel[0]) || pixel[1] != std::floor(pixel[1]) || pixel[0] < 0 ||
+        pixel[1] < 0 || pixel[0] > 16383 || pixel[1] > 16383)
+      fail("--probe expects a pixel X,Y of whole numbers in 0..16383, got '" + text + "'");
+    options.probes.push_back({ int(pixel[0]), int(pixel[1]) });
+  }
   else if (arg == "--camera-position")
     parseTriple(value(), arg, options.position), options.hasPosition = true;
   else if (arg == "--focal-point")
@@ -533,6 +549,11 @@ Options parseArguments(int argc, char** argv)
   checkAlgebraic(options);
   checkImageBudget(options);
   checkOutputs(options);
+  for (const auto& pixel : options.probes)
+    if (pixel[0] >= options.size[0] || pixel[1] >= options.size[1])
+      fail("--probe " + std::to_string(pixel[0]) + "," + std::to_string(pixel[1]) +
+           " lies outside the " + std::to_string(options.size[0]) + "x" +
+           std::to_string(options.size[1]) + " image");
   return options;
 }
 
@@ -819,6 +840,30 @@ iga::Camera chooseCamera(const Options& options, const Input& input)
 
 /// The interactive viewer's state and keys: isovalues shift by a step, time moves over the
 /// input's time steps, and a corner text shows them with the last frame's times.
+/// The first hit at pixel (x, y) of the mapper's last frame, exactly (ProbePixel), on one line.
+std::string probeText(vtkIGAIsosurfaceMapper* mapper, int x, int y)
+{
+  double position[3], uvw[3];
+  vtkNew<vtkFieldData> attributes;
+  const vtkIdType cell = mapper->ProbePixel(x, y, position, uvw, attributes);
+  char text[256];
+  std::snprintf(text, sizeof(text), "pixel %d,%d: ", x, y);
+  if (cell < 0)
+    return text + std::string("no hit");
+  std::string line = text;
+  std::snprintf(text, sizeof(text),
+    "cell %lld, position (%.9g, %.9g, %.9g), uvw (%.9g, %.9g, %.9g)", static_cast<long long>(cell),
+    position[0], position[1], position[2], uvw[0], uvw[1], uvw[2]);
+  line += text;
+  for (int a = 0; a < attributes->GetNumberOfArrays(); ++a)
+  {
+    std::snprintf(text, sizeof(text), ", %s = %.9g", attributes->GetArrayName(a),
+      attributes->GetArray(a)->GetComponent(0, 0));
+    line += text;
+  }
+  return line;
+}
+
 struct Viewer
 {
   vtkAlgorithm* producer;
@@ -831,6 +876,7 @@ struct Viewer
   double isoStep;
   std::vector<double> times;
   size_t timeIndex = 0;
+  std::string probe; ///< the hit under the cursor, as probeText says it
 
   /// Reads the step; a bad one is said on one line and leaves nothing drawn, the viewer open.
   void setTime()
@@ -903,7 +949,8 @@ struct Viewer
   /// The corner text, after a frame: the state, then the outcome.
   void updateReadout()
   {
-    this->readout->SetInput((this->state() + "\n" + this->outcome()).c_str());
+    const std::string probe = this->probe.empty() ? "" : "\n" + this->probe;
+    this->readout->SetInput((this->state() + "\n" + this->outcome() + probe).c_str());
   }
 };
 
@@ -951,6 +998,19 @@ void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
         interactor->Render();
     });
   interactor->AddObserver(vtkCommand::KeyPressEvent, onKey);
+  // The hit under the cursor; the frame is the mapper's last, so only the readout is redrawn.
+  vtkNew<vtkCallbackCommand> onMove;
+  onMove->SetClientData(&viewer);
+  onMove->SetCallback(
+    [](vtkObject* caller, unsigned long, void* data, void*)
+    {
+      auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
+      auto* viewer = static_cast<Viewer*>(data);
+      const int* at = interactor->GetEventPosition();
+      viewer->probe = probeText(viewer->mapper, at[0], at[1]);
+      interactor->Render();
+    });
+  interactor->AddObserver(vtkCommand::MouseMoveEvent, onMove);
   vtkNew<vtkCallbackCommand> onFrame;
   onFrame->SetClientData(&viewer);
   onFrame->SetCallback([](vtkObject*, unsigned long, void* data, void*)
@@ -1245,6 +1305,8 @@ void writeOutputs(const Options& options, const Drawing& drawing, vtkRenderWindo
   }
   std::printf("igaview: %zu pixels covered in %.1f ms (%s, %s)\n", gbuffer.coveredPixels(),
     mapper->GetLastEngineTime(), enginePaths(mapper).c_str(), mapper->GetLastBackend());
+  for (const auto& pixel : options.probes)
+    std::printf("igaview: probe %s\n", probeText(mapper, pixel[0], pixel[1]).c_str());
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->ReadFrontBufferOff();
