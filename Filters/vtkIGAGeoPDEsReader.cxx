@@ -1,15 +1,14 @@
 #include "vtkIGAGeoPDEsReader.h"
 
 #include "IGAReadError.h"
+#include "IGATextLines.h"
 
 #include "vtkIGANurbsData.h"
 #include "vtkObjectFactory.h"
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <sstream>
 #include <stdexcept>
@@ -18,166 +17,43 @@ vtkStandardNewMacro(vtkIGAGeoPDEsReader);
 
 namespace
 {
-struct Line
+/// The major version a comment names ("nurbs geometry v.2.1", "nurbs mesh v.0.7"), or -1.
+/// Searched by hand: std::regex recurses once per character matched, and a line of a hundred
+/// thousand digits overflowed the stack.
+int versionOf(const std::string& line, long number)
 {
-  long number = 0;
-  std::string text;
-};
-
-/// The file's data lines (no comments, no blank lines) and, from the comments, its version.
-class GeoPDEsLines
-{
-public:
-  explicit GeoPDEsLines(const std::string& text)
+  for (const char* kind : { "nurbs geometry v.", "nurbs mesh v." })
   {
-    std::istringstream in(text);
-    std::string line;
-    for (long number = 1; std::getline(in, line); ++number)
+    const size_t at = line.find(kind);
+    if (at == std::string::npos)
     {
-      if (!line.empty() && line.back() == '\r')
-      {
-        line.pop_back();
-      }
-      const size_t first = line.find_first_not_of(" \t");
-      if (first == std::string::npos)
-      {
-        continue;
-      }
-      if (line[first] == '#')
-      {
-        if (this->Major < 0)
-        {
-          this->Major = versionOf(line, number);
-        }
-        continue;
-      }
-      this->Lines.push_back({ number, line });
+      continue;
     }
-    this->LastLine = 0;
-    std::istringstream count(text);
-    while (std::getline(count, line))
+    const size_t begin = at + std::strlen(kind);
+    size_t end = begin;
+    while (end < line.size() && end - begin <= 4 && std::isdigit((unsigned char)line[end]))
     {
-      ++this->LastLine;
+      ++end;
     }
+    if (end == begin)
+    {
+      continue;
+    }
+    if (end - begin > 4)
+    {
+      throw IGAReadError(number, "'" + line.substr(at, 24) + "...' names no GeoPDEs version");
+    }
+    return std::stoi(line.substr(begin, end - begin));
   }
-
-  /// The major version a comment names ("nurbs geometry v.2.1", "nurbs mesh v.0.7"), or -1.
-  /// Searched by hand: std::regex recurses once per character matched, and a line of a hundred
-  /// thousand digits overflowed the stack.
-  static int versionOf(const std::string& line, long number)
-  {
-    for (const char* kind : { "nurbs geometry v.", "nurbs mesh v." })
-    {
-      const size_t at = line.find(kind);
-      if (at == std::string::npos)
-      {
-        continue;
-      }
-      const size_t begin = at + std::strlen(kind);
-      size_t end = begin;
-      while (end < line.size() && end - begin <= 4 && std::isdigit((unsigned char)line[end]))
-      {
-        ++end;
-      }
-      if (end == begin)
-      {
-        continue;
-      }
-      if (end - begin > 4)
-      {
-        throw IGAReadError(number, "'" + line.substr(at, 24) + "...' names no GeoPDEs version");
-      }
-      return std::stoi(line.substr(begin, end - begin));
-    }
-    return -1;
-  }
-
-  /// -1 when the comments name no version.
-  int major() const { return this->Major; }
-  bool atEnd() const { return this->Next >= this->Lines.size(); }
-  const Line& peek(const char* what) const
-  {
-    if (this->atEnd())
-    {
-      throw IGAReadError(
-        this->LastLine, std::string("the file ends where ") + what + " should follow");
-    }
-    return this->Lines[this->Next];
-  }
-  const Line& take(const char* what)
-  {
-    const Line& line = this->peek(what);
-    ++this->Next;
-    return line;
-  }
-
-  /// The numbers of the next line: exactly `count` of them (any count when -1).
-  std::vector<double> numbers(const char* what, long count = -1)
-  {
-    const Line& line = this->take(what);
-    std::vector<double> values;
-    if (!parseNumbers(line.text, values))
-    {
-      throw IGAReadError(
-        line.number, std::string(what) + ": '" + line.text + "' is not a line of finite numbers");
-    }
-    if (count >= 0 && static_cast<long>(values.size()) != count)
-    {
-      throw IGAReadError(line.number, std::string(what) + ": " + std::to_string(values.size()) +
-                                        " values, expected " + std::to_string(count));
-    }
-    return values;
-  }
-
-  /// Integers of the next line, each in [lo, hi].
-  std::vector<int> integers(const char* what, long count, long lo, long hi)
-  {
-    const long number = this->peek(what).number;
-    std::vector<int> result;
-    for (double value : this->numbers(what, count))
-    {
-      if (value != std::floor(value) || value < lo || value > hi)
-      {
-        throw IGAReadError(number, std::string(what) + ": " + std::to_string(value) +
-                                     " is not an integer in " + std::to_string(lo) + ".." +
-                                     std::to_string(hi));
-      }
-      result.push_back(static_cast<int>(value));
-    }
-    return result;
-  }
-
-  static bool parseNumbers(const std::string& text, std::vector<double>& values)
-  {
-    std::istringstream in(text);
-    std::string token;
-    while (in >> token)
-    {
-      errno = 0;
-      char* end = nullptr;
-      const double value = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
-      {
-        return false;
-      }
-      values.push_back(value);
-    }
-    return !values.empty();
-  }
-
-private:
-  std::vector<Line> Lines;
-  size_t Next = 0;
-  int Major = -1;
-  long LastLine = 0;
-};
+  return -1;
+}
 
 template<int Dim>
-void readPatch(GeoPDEsLines& lines, int rdim, iga::BSplinePatch<double, Dim>& patch)
+void readPatch(IGATextLines& lines, int rdim, iga::BSplinePatch<double, Dim>& patch)
 {
   // An optional name line ("PATCH 1"): anything that is not a line of numbers.
   std::vector<double> probe;
-  if (!GeoPDEsLines::parseNumbers(lines.peek("a patch").text, probe))
+  if (!IGATextLines::parseNumbers(lines.peek("a patch").text, probe))
   {
     lines.take("a patch name");
   }
@@ -231,7 +107,7 @@ void readPatch(GeoPDEsLines& lines, int rdim, iga::BSplinePatch<double, Dim>& pa
 const char* const kSectionKinds[4] = { "PATCH", "INTERFACE", "SUBDOMAIN", "BOUNDARY" };
 
 /// The kind (index in kSectionKinds) a section's name line begins with, or -1 for free text.
-int sectionKind(const Line& line)
+int sectionKind(const IGATextLine& line)
 {
   std::istringstream in(line.text);
   std::string word;
@@ -241,7 +117,7 @@ int sectionKind(const Line& line)
 }
 
 /// One side "patch side" of an interface or boundary, checked against the patches.
-void readSide(GeoPDEsLines& lines, const char* what, int ndim, int patches)
+void readSide(IGATextLines& lines, const char* what, int ndim, int patches)
 {
   const long number = lines.peek(what).number;
   const auto side = lines.integers(what, 2, 1, 1000000);
@@ -257,13 +133,13 @@ void readSide(GeoPDEsLines& lines, const char* what, int ndim, int patches)
 /// then boundaries to the end (a name, a count, the sides). Names are free text (GeoPDEs' own
 /// files have "EXTERNAL BOUNDARY"); one that begins a kind of section where the counts say
 /// another follows means the header's counts are wrong, and says so.
-void checkSections(GeoPDEsLines& lines, int ndim, int patches, int interfaces, int subdomains)
+void checkSections(IGATextLines& lines, int ndim, int patches, int interfaces, int subdomains)
 {
   const int counts[3] = { patches, interfaces, subdomains };
   const char* const plural[4] = { "patches", "interfaces", "subdomains", "boundaries" };
   // A section named for a kind the file should be past means the header counted too few of it;
   // one named for a kind still to come means it counted too many of the current one.
-  const auto checkName = [&](const Line& name, int expected, int found)
+  const auto checkName = [&](const IGATextLine& name, int expected, int found)
   {
     const int kind = sectionKind(name);
     if (kind >= 0 && kind < expected)
@@ -321,11 +197,17 @@ std::string vtkIGAGeoPDEsReader::ReadNurbs(const std::string& text, vtkIGANurbsD
   set.attributeNames = iga::geometryAttributeNames();
   try
   {
-    GeoPDEsLines lines(text);
+    int major = -1; // the version the first comment naming one names
+    IGATextLines lines(text, '#',
+      [&major](const std::string& comment, long number)
+      {
+        if (major < 0)
+          major = versionOf(comment, number);
+      });
     const long headerLine = lines.peek("the header (dimensions and number of patches)").number;
     const auto header = lines.integers("header (dimensions and number of patches)", -1, 0, 1000000);
     // v.0.x: "N Np [Ni Ns]"; v.1 and later: "ndim rdim Np [Ni Ns]".
-    const bool old = lines.major() == 0;
+    const bool old = major == 0;
     const size_t dims = old ? 1 : 2;
     if (header.size() < dims || header.size() > dims + 3)
     {
