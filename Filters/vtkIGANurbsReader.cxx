@@ -50,7 +50,7 @@ int vtkIGANurbsReader::RequestInformation(
   const std::string file = this->FileName ? this->FileName : "";
   const std::string stamp = file + "\n" +
                             std::to_string(vtksys::SystemTools::ModifiedTime(file.c_str())) + "\n" +
-                            std::to_string(this->MemoryLimitMB);
+                            std::to_string(this->MemoryLimitMB) + "\n" + this->InputStamp();
   if (stamp != this->ParsedFile)
   {
     this->ParsedFile = stamp;

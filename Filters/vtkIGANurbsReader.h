@@ -68,6 +68,9 @@ protected:
   virtual std::string ReadNurbs(const std::string& text, vtkIGANurbsData* data) = 0;
   /// Whether the first 64 KiB of a file are in this reader's format.
   virtual bool IsOwnFormat(const std::string& head) const = 0;
+  /// What, besides FileName, its modification time and MemoryLimitMB, a parse depends on
+  /// (further files and their modification times): the file is parsed again when it changes.
+  virtual std::string InputStamp() const { return std::string(); }
 
   char* FileName = nullptr;
   double MemoryLimitMB = 0;

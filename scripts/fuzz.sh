@@ -11,7 +11,7 @@ flags="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-omit-
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DBUILD_TESTING=OFF -DIGAVIEW_FUZZ=ON -DIGAVIEW_ENABLE_CUDA=OFF \
   "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_C_FLAGS=$flags" >/dev/null
-targets=(igaFuzzVTU igaFuzzGismo igaFuzzGeoPDEs igaFuzzSeries igaFuzzEngine igaFuzzCsg
+targets=(igaFuzzVTU igaFuzzGismo igaFuzzGeoPDEs igaFuzzMFEM igaFuzzSeries igaFuzzEngine igaFuzzCsg
   igaFuzzAlgebraic)
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 
@@ -27,6 +27,8 @@ seed() { # corpus directory, then seed files (missing ones skipped)
 seed "$build/corpus/vtu" "$root"/Data/*.vtu "$root"/Testing/Fuzz/regressions/*.vtu
 seed "$build/corpus/gismo" "$root"/Data/gismo_*.xml "$root"/Testing/Fuzz/gismo/*.xml "$shared"/gismo/*.xml
 seed "$build/corpus/geopdes" "$root"/Data/geopdes_*.txt "$shared"/geopdes/*.txt
+seed "$build/corpus/mfem" "$root"/Data/mfem_*.mesh "$root"/Data/mfem_*.gf "$root"/Testing/Data/mfem/*.mesh \
+  "$shared"/mfem/*.mesh
 seed "$build/corpus/series" "$root"/Testing/Fuzz/series/*.pvd
 seed "$build/corpus/engine" "$root"/Testing/Fuzz/engine/*
 seed "$build/corpus/csg" "$root"/Testing/Fuzz/csg/*.txt
@@ -56,6 +58,7 @@ run() { # target, corpus, dictionary (optional)
 run igaFuzzVTU "$build/corpus/vtu" "$root/Testing/Fuzz/xml.dict"
 run igaFuzzGismo "$build/corpus/gismo" "$root/Testing/Fuzz/xml.dict"
 run igaFuzzGeoPDEs "$build/corpus/geopdes" "$root/Testing/Fuzz/geopdes.dict"
+run igaFuzzMFEM "$build/corpus/mfem" "$root/Testing/Fuzz/mfem.dict"
 run igaFuzzSeries "$build/corpus/series" "$root/Testing/Fuzz/xml.dict"
 run igaFuzzEngine "$build/corpus/engine"
 run igaFuzzCsg "$build/corpus/csg" "$root/Testing/Fuzz/csg.dict"

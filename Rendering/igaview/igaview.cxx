@@ -13,6 +13,7 @@
 #include "vtkIGAGBufferImage.h"
 #include "vtkIGAGeoPDEsReader.h"
 #include "vtkIGAGismoReader.h"
+#include "vtkIGAMFEMReader.h"
 
 #include "vtkIGAIsosurfaceMapper.h"
 
@@ -40,6 +41,7 @@
 #include "iga/BernsteinRoots.h"
 #include "iga/Bounds.h"
 #include "iga/Csg.h"
+#include "iga/NurbsSet.h"
 #include "iga/sst/Engine.h"
 
 #include <sys/stat.h>
@@ -79,8 +81,12 @@ patches, deforming over the time steps 0..1).
 INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDRON and
                          VTK_BEZIER_QUADRILATERAL cells with RationalWeights (and
                          HigherOrderDegrees where a cell's degrees differ), a .pvd collection of
-                         such files (a time series: one file a time step), or a G+Smo XML or
-                         GeoPDEs text geometry (geometry only: drawn as surfaces by default)
+                         such files (a time series: one file a time step), a G+Smo XML or
+                         GeoPDEs text geometry (geometry only: drawn as surfaces by default), or
+                         an MFEM NURBS mesh (.mesh), each format known by its content
+  --field FILE           an MFEM GridFunction (.gf) on the MFEM mesh given as INPUT, an attribute
+                         named after the file (repeatable); isosurfaces of the first are drawn
+                         unless --surface or --surface-by says otherwise
   --algebraic EXPR       instead of INPUT, the algebraic surface EXPR = 0: a polynomial in x, y,
                          z (+ - * ^ by whole exponents, / by constants, parentheses, decimal
                          constants; total degree up to 16) over --box, as the exact Bernstein
@@ -160,6 +166,7 @@ struct Options
   std::vector<std::array<double, 4>> slices, clips;
   std::vector<std::string> keys;
   std::vector<std::array<int, 2>> probes; ///< --probe pixels
+  std::vector<std::string> fields;        ///< --field files
   bool hasOutput = false;
   std::string input;
   std::vector<double> isovalues;
@@ -372,6 +379,8 @@ bool parseDrawingOption(const std::string& arg, const OptionValue& value, Option
     options.surfaceBy = value();
   else if (arg == "--color-by")
     options.colorBy = value();
+  else if (arg == "--field")
+    options.fields.push_back(value());
   else if (arg == "--time")
     options.time = parseNumber(value(), arg);
   else if (arg == "--series" && !options.view)
@@ -558,12 +567,14 @@ Options parseArguments(int argc, char** argv)
 }
 
 /// The input: its producer, updated, and its patches; `geometry` says whether it came from a
-/// geometry-only format (G+Smo, GeoPDEs), whose attributes are the readers' coordinates.
+/// geometry-only file (G+Smo, GeoPDEs, MFEM without --field), whose attributes are the readers'
+/// coordinates.
 struct Input
 {
   vtkSmartPointer<vtkAlgorithm> producer;
   vtkIGABezierHexahedra::Patches patches;
   bool geometry = false;
+  std::string field;      ///< the first --field's attribute: the default surface attribute
   bool algebraic = false; ///< an algebraic surface: attribute f, drawn at 0
 };
 
@@ -656,6 +667,10 @@ Input loadInput(const Options& options)
   std::string name = options.input;
   vtkNew<vtkIGAGismoReader> gismo;
   vtkNew<vtkIGAGeoPDEsReader> geopdes;
+  vtkNew<vtkIGAMFEMReader> mfem;
+  if (!options.fields.empty() && !mfem->CanReadFile(options.input.c_str()))
+    fail("--field reads MFEM GridFunctions on an MFEM NURBS mesh, and '" + options.input +
+         "' is none");
   if (!options.algebraic.empty() || !options.gallery.empty())
   {
     auto source = vtkSmartPointer<vtkIGAAlgebraicSource>::New();
@@ -693,6 +708,18 @@ Input loadInput(const Options& options)
   else if (geopdes->CanReadFile(options.input.c_str()))
   {
     readGeometry(geopdes, options.input, input, warnings);
+  }
+  else if (mfem->CanReadFile(options.input.c_str()))
+  {
+    for (const auto& field : options.fields)
+      mfem->AddGridFunctionFileName(field.c_str());
+    readGeometry(mfem, options.input, input, warnings);
+    input.geometry = options.fields.empty();
+    const auto geometryNames = iga::geometryAttributeNames();
+    for (const auto& name : input.patches.volumes.attributeNames)
+      if (input.field.empty() &&
+          std::find(geometryNames.begin(), geometryNames.end(), name) == geometryNames.end())
+        input.field = name;
   }
   else if (vtkIGABezierSeriesReader::CanReadFile(options.input.c_str()))
   {
@@ -1096,8 +1123,8 @@ Drawing chooseDrawing(const Options& options, const Input& input)
          "draws its shape");
   if (!drawing.surfaces && !drawing.csg)
   {
-    drawing.surface =
-      options.surfaceBy.empty() ? 0 : attributeIndex(input, options.surfaceBy, "--surface-by");
+    const std::string& surfaceBy = options.surfaceBy.empty() ? input.field : options.surfaceBy;
+    drawing.surface = surfaceBy.empty() ? 0 : attributeIndex(input, surfaceBy, "--surface-by");
     attributeRange(input, drawing.surface, false, drawing.surfaceRange);
     drawing.isovalues = options.isovalues;
     if (drawing.isovalues.empty() && input.algebraic)
@@ -1428,7 +1455,7 @@ int main(int argc, char** argv)
       : drawing.surfaces ? "surfaces"
                          : names[drawing.surface];
     Viewer viewer{ input.producer, mapper, renderer, readout, drawn, drawing.isovalues,
-      0.02 * (drawing.surfaceRange[1] - drawing.surfaceRange[0]), {}, 0 };
+      0.02 * (drawing.surfaceRange[1] - drawing.surfaceRange[0]), {}, 0, {} };
     runViewer(options, viewer, window);
     if (options.keys.empty() || !options.hasOutput)
       return 0;

@@ -6,6 +6,7 @@
 #include "vtkIGABezierHexahedra.h"
 #include "vtkIGAGeoPDEsReader.h"
 #include "vtkIGAGismoReader.h"
+#include "vtkIGAMFEMReader.h"
 #include "vtkIGANurbsData.h"
 
 #include "vtkBase64Utilities.h"
@@ -124,6 +125,12 @@ TEST(NurbsReaders, EachReaderKnowsItsOwnFormat)
   EXPECT_EQ(gismo->CanReadFile((kData + "/CMakeLists.txt").c_str()), 0);
   EXPECT_EQ(gismo->CanReadFile("/nonexistent.xml"), 0);
   EXPECT_EQ(gismo->CanReadFile(nullptr), 0);
+  vtkNew<vtkIGAMFEMReader> mfem;
+  const std::string mesh = kData + "/mfem_quarter_ring.mesh";
+  EXPECT_EQ(mfem->CanReadFile(mesh.c_str()), 1);
+  EXPECT_EQ(mfem->CanReadFile(txt.c_str()), 0);
+  EXPECT_EQ(gismo->CanReadFile(mesh.c_str()), 0);
+  EXPECT_EQ(geopdes->CanReadFile(mesh.c_str()), 0);
 }
 
 TEST(NurbsReaders, GismoQuarterRing)
@@ -609,3 +616,154 @@ TEST(NurbsReaders, GismoBase64NumbersAreRead)
 }
 
 } // namespace
+
+// MFEM: the quarter ring of Data/ (hand-written in both of MFEM's forms) with fields known
+// exactly, MFEM's own exact unit ball (faces shared in every orientation), MFEM's files in
+// ../shared/data, and damaged files.
+
+/// The MFEM quarter ring with its GridFunctions: radius 1 + v on the exact arcs, z = w,
+/// pressure = 3x - 2z + 1 and position = (x, y, z) wherever evaluated.
+TEST(NurbsReaders, MFEMQuarterRingWithItsFields)
+{
+  vtkIGAMFEMReader* reader = nullptr;
+  std::vector<std::string> errors;
+  auto grid = read<vtkIGAMFEMReader>(kData + "/mfem_quarter_ring.mesh", &errors, &reader);
+  ASSERT_TRUE(errors.empty()) << errors[0];
+  reader->AddGridFunctionFileName((kData + "/mfem_quarter_ring_pressure.gf").c_str());
+  reader->AddGridFunctionFileName((kData + "/mfem_quarter_ring_position.gf").c_str());
+  reader->Update();
+  grid->ShallowCopy(reader->GetOutput());
+  reader->Delete();
+  ASSERT_EQ(grid->GetNumberOfCells(), 1);
+  // Named after the files.
+  const std::string stem = "mfem_quarter_ring_";
+  const std::vector<std::string> fields = { stem + "pressure", stem + "position_0",
+    stem + "position_1", stem + "position_2" };
+  for (const auto& name : fields)
+    ASSERT_NE(grid->GetPointData()->GetArray(name.c_str()), nullptr) << name;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int s = 0; s < 50; ++s)
+  {
+    const double pcoords[3] = { unit(rng), unit(rng), unit(rng) };
+    const auto value = evaluateCell(grid, 0, pcoords, fields);
+    EXPECT_NEAR(std::hypot(value[0], value[1]), 1 + pcoords[1], 1e-13);
+    EXPECT_NEAR(value[2], pcoords[2], 1e-13);
+    EXPECT_NEAR(value[3], 3 * value[0] - 2 * value[2] + 1, 1e-12);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(value[4 + c], value[c], 1e-13);
+  }
+}
+
+TEST(NurbsReaders, MFEMPatchesFormEqualsTheTopologyForm)
+{
+  const auto topology = readNurbs<vtkIGAMFEMReader>(kData + "/mfem_quarter_ring.mesh").first;
+  const auto patches = readNurbs<vtkIGAMFEMReader>(kData + "/mfem_quarter_ring_patches.mesh").first;
+  ASSERT_EQ(topology.volumes.size(), 1u);
+  ASSERT_EQ(patches.volumes.size(), 1u);
+  const auto& a = topology.volumes[0].net;
+  const auto& b = patches.volumes[0].net;
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k)
+    EXPECT_NEAR(a[k], b[k], 1e-15) << k;
+}
+
+/// MFEM's data/ball-nurbs.mesh: 7 patches of degree 4 (a cube and six shells), every face
+/// interior shared by two patches in its own orientation. The boundary is the unit sphere and
+/// closes up; the inner faces match (else they would be boundary too).
+TEST(NurbsReaders, MFEMExactUnitBall)
+{
+  const std::string file = std::string(IGAVIEW_SOURCE_DIR) + "/Testing/Data/mfem/ball-nurbs.mesh";
+  const auto grid = readNurbs<vtkIGAMFEMReader>(file).second;
+  ASSERT_EQ(grid->GetNumberOfCells(), 7);
+  iga::VolumeSet<double> set;
+  std::string error;
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(vtkIGABezierHexahedra::FromUnstructuredGrid(grid, set, error, warnings)) << error;
+  const auto boundary = iga::boundaryFaces(set.patches);
+  ASSERT_EQ(boundary.size(), 6u);
+  EXPECT_EQ(igatest::openBoundaryEdges(set.patches, boundary), 0u);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> unit(0, 1);
+  double worst = 0;
+  for (const auto& face : boundary)
+    for (int s = 0; s < 40; ++s)
+    {
+      double pcoords[3] = { unit(rng), unit(rng), unit(rng) };
+      pcoords[face.direction] = face.side;
+      const auto x = evaluateCell(grid, face.patch, pcoords, {});
+      worst = std::max(worst, std::abs(std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - 1));
+    }
+  EXPECT_LT(worst, 1e-13);
+}
+
+TEST(NurbsReadersRealFiles, MFEMCubeBeamAndCurves)
+{
+  const std::string cube = kShared + "/mfem/cube-nurbs.mesh",
+                    beam = kShared + "/mfem/beam-hex-nurbs.mesh",
+                    curves = kShared + "/mfem/nurbs-segments3d-patches.mesh";
+  REQUIRE_SHARED(cube);
+  double bounds[6];
+  readNurbs<vtkIGAMFEMReader>(cube).second->GetBounds(bounds);
+  EXPECT_EQ(std::vector<double>(bounds, bounds + 6), std::vector<double>({ 0, 1, 0, 1, 0, 1 }));
+  const auto [set, grid] = readNurbs<vtkIGAMFEMReader>(beam);
+  EXPECT_EQ(set.volumes.size(), 2u);
+  EXPECT_EQ(grid->GetNumberOfCells(), 8); // 4 elements along each patch
+  grid->GetBounds(bounds);
+  EXPECT_EQ(std::vector<double>(bounds, bounds + 6), std::vector<double>({ 0, 8, 0, 1, 0, 1 }));
+  std::mt19937 rng(13);
+  EXPECT_LT(compareWithCoxDeBoor(set, grid, rng, 100), 1e-12);
+  std::vector<std::string> errors;
+  EXPECT_EQ(read<vtkIGAMFEMReader>(curves, &errors)->GetNumberOfCells(), 0);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find(":12: dimension 1: NURBS curves are not drawn"), std::string::npos)
+    << errors[0];
+}
+
+TEST(NurbsReaders, DamagedMFEMFilesGiveOneError)
+{
+  const std::string ring = slurp(kData + "/mfem_quarter_ring.mesh");
+  expectError<vtkIGAMFEMReader>("title.mesh", replaced(ring, "v1.0", "v9"),
+    "1: 'MFEM NURBS mesh v9' is not an MFEM NURBS mesh");
+  expectError<vtkIGAMFEMReader>("edge.mesh", replaced(ring, "\n2 3 7\n", "\n2 3 6\n"),
+    "its edge 3-7 is not in the edges section");
+  expectError<vtkIGAMFEMReader>("knots.mesh", replaced(ring, "2 3 0 0 0 1 1 1", "2 3 0 0 1 1 1"),
+    "knot vector 0: knot vector has 5 knots, expected 6");
+  expectError<vtkIGAMFEMReader>(
+    "weight.mesh", replaced(ring, "weights\n1\n", "weights\n-1\n"), "weight 0 is -1");
+  expectError<vtkIGAMFEMReader>(
+    "short.mesh", ring.substr(0, ring.size() - 12), "the file ends where nodes should follow");
+  expectError<vtkIGAMFEMReader>(
+    "kv.mesh", replaced(ring, "\n0 0 1\n", "\n7 0 1\n"), "names knot vector 7 of 3");
+  expectError<vtkIGAMFEMReader>("geometry.mesh", replaced(ring, "1 5 0 1", "1 3 0 1"),
+    "element 0 has geometry 3, a mesh of dimension 3 needs 5");
+}
+
+TEST(NurbsReaders, DamagedMFEMGridFunctionsGiveOneError)
+{
+  const std::string gf = slurp(kData + "/mfem_quarter_ring_pressure.gf");
+  for (const auto& [name, text, expected] : std::vector<std::array<std::string, 3>>{
+         { "order.gf", replaced(gf, "NURBS2", "NURBS3"), "its space is NURBS3, the mesh's NURBS2" },
+         { "few.gf", gf.substr(0, gf.size() - 4), "the file ends where values should follow" },
+         { "many.gf", gf + "7\n", "more values than the mesh's 12 control points take" } })
+  {
+    const std::string file = testing::TempDir() + "/" + name;
+    std::ofstream(file, std::ios::binary) << text;
+    vtkNew<vtkIGAMFEMReader> reader;
+    std::vector<std::string> errors;
+    vtkNew<vtkCallbackCommand> onError;
+    onError->SetClientData(&errors);
+    onError->SetCallback(
+      [](vtkObject*, unsigned long, void* client, void* call) {
+        static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call));
+      });
+    reader->AddObserver(vtkCommand::ErrorEvent, onError);
+    reader->SetFileName((kData + "/mfem_quarter_ring.mesh").c_str());
+    reader->AddGridFunctionFileName(file.c_str());
+    reader->Update();
+    EXPECT_EQ(reader->GetOutput()->GetNumberOfCells(), 0) << name;
+    ASSERT_GE(errors.size(), 1u) << name;
+    EXPECT_NE(errors[0].find("GridFunction " + file + ":"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[0].find(expected), std::string::npos) << errors[0];
+  }
+}

@@ -24,6 +24,7 @@ factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
 filters = factory.GetSupportedFileTypes(servermanager.ActiveConnection.Session)
 assert "G+Smo NURBS geometry (*.xml)" in filters, filters
 assert "GeoPDEs NURBS geometry (*.txt)" in filters, filters
+assert "MFEM NURBS mesh (*.mesh)" in filters, filters
 
 # OpenDataFile picks our readers for their own files, and ParaView's for other .xml and .txt.
 csv = os.path.join(work_dir, "table.txt")
@@ -34,6 +35,7 @@ with open(other_xml, "w") as f:
     f.write('<?xml version="1.0"?>\n<CityModel></CityModel>\n')
 for path, expected in ((os.path.join(data_dir, "gismo_quarter_ring.xml"), "AAIGAGismoReader"),
                        (os.path.join(data_dir, "geopdes_quarter_ring.txt"), "AAIGAGeoPDEsReader"),
+                       (os.path.join(data_dir, "mfem_quarter_ring.mesh"), "AAIGAMFEMReader"),
                        (csv, "CSVReader"), (other_xml, "CityGML Reader")):
     opened = simple.OpenDataFile(path)
     assert opened.GetXMLName() == expected, (path, opened.GetXMLName())
@@ -183,6 +185,27 @@ assert list(geopdes_series.TimestepValues) == [0.0, 1.0], list(geopdes_series.Ti
 
 print(f"boundary of the two blocks: 14 Bezier quadrilaterals, {boundary_pixels} pixels")
 print(f"numbered G+Smo series: steps {steps}, pixels covered {series_pixels}")
+
+# MFEM: the quarter ring with a GridFunction, the field a point array named after its file, its
+# isosurface pressure = 3 (the plane 3x - 2z = 2 through the ring) drawn.
+mfem = simple.IGAMFEMReader(FileName=os.path.join(data_dir, "mfem_quarter_ring.mesh"),
+                            GridFunctionFileNames=[os.path.join(data_dir,
+                                                                "mfem_quarter_ring_pressure.gf")])
+mfem.UpdatePipeline()
+assert "mfem_quarter_ring_pressure" in mfem.PointData.keys(), mfem.PointData.keys()
+pressure_range = mfem.PointData["mfem_quarter_ring_pressure"].GetRange()
+assert pressure_range == (-1.0, 7.0), pressure_range  # 3x - 2z + 1 at the control points
+for shown in simple.GetSources().values():
+    simple.Hide(shown, view)
+iga_scene.show_surface(mfem, view, "mfem_quarter_ring_pressure", 3.0)
+simple.ResetCamera(view)
+mfem_png = os.path.join(work_dir, "mfem_field.png")
+simple.SaveScreenshot(mfem_png, view, ImageResolution=[200, 160], TransparentBackground=0)
+(w, h), px = iga_scene.read_rgb(mfem_png)
+mfem_pixels = builtins.sum(1 for j in range(h) for i in range(w) if px(i, j) != background)
+assert mfem_pixels > 300, mfem_pixels
+print(f"MFEM quarter ring: pressure over the control points {pressure_range}, isosurface 3 "
+      f"covers {mfem_pixels} pixels")
 print(f"readers: quarter ring bounds {bounds}; isosurface z = 0.5 covers {covered} pixels; "
       f"grouped with the two blocks {len(grouped)}, the ring alone then {len(ring_alone)}; "
       f"bend at time 1 bounds {bent}, displaced back to {restored}")

@@ -181,6 +181,29 @@ std::vector<T> grevilleAbscissae(const std::vector<T>& knots, int degree, int co
   return xi;
 }
 
+/// Adds `count` attributes to a patch whose net is set: `values` holds `count` values per
+/// control point (Euclidean, as a solver's coefficients are), in the net's order; each is
+/// weighted into a channel of its own after the patch's attributes.
+template<class T, int Dim>
+void appendAttributes(BSplinePatch<T, Dim>& patch, const std::vector<T>& values, int count)
+{
+  const size_t points = controlPointCount(patch);
+  const int channels = patch.channels + count;
+  std::vector<T> net(points * channels);
+  for (size_t p = 0; p < points; ++p)
+  {
+    const T* from = patch.net.data() + p * patch.channels;
+    T* to = net.data() + p * channels;
+    std::copy(from, from + patch.channels, to);
+    for (int a = 0; a < count; ++a)
+    {
+      to[patch.channels + a] = from[kWeightChannel] * values[p * count + a];
+    }
+  }
+  patch.net = std::move(net);
+  patch.channels = channels;
+}
+
 /// Names of the attributes geometryNet() adds, in channel order.
 inline std::vector<std::string> geometryAttributeNames()
 {
