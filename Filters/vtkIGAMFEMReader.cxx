@@ -543,9 +543,14 @@ void readTopologyForm(IGATextLines& lines, const Topology& topology, iga::NurbsS
   const auto knotVectors = readKnotVectors(lines);
   const ControlPointNumbering numbering(topology, knotVectors);
   total = numbering.total();
-  expectWord(lines, "weights");
-  const long weightsLine = lines.peek("the weights").number;
-  const auto weights = readValues(lines, "weights", total);
+  // "weights", or MFEM's keywords for all weights 1.
+  const IGATextLine& keyword = lines.take("weights");
+  const std::string weightsKind = trimmed(keyword.text);
+  if (weightsKind != "weights" && weightsKind != "unitweights" && weightsKind != "autoweights")
+    throw IGAReadError(keyword.number, "'" + weightsKind + "' where 'weights' should be");
+  const long weightsLine = weightsKind == "weights" ? lines.peek("the weights").number : 0;
+  const auto weights = weightsKind == "weights" ? readValues(lines, "weights", total)
+                                                : std::vector<double>(total, 1.0);
   checkWeights(weights, weightsLine);
   const long spaceLine = lines.peek("FiniteElementSpace").number;
   space = readSpaceHeader(lines);

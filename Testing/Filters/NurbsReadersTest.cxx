@@ -697,6 +697,35 @@ TEST(NurbsReaders, MFEMExactUnitBall)
   EXPECT_LT(worst, 1e-13);
 }
 
+/// MFEM's data/disc-nurbs.mesh: 5 quadrilateral patches (a square and four around it) whose
+/// outer sides lie on the circle of radius 2 sqrt(2), exactly.
+TEST(NurbsReaders, MFEMDiscOfQuadrilaterals)
+{
+  const std::string file = std::string(IGAVIEW_SOURCE_DIR) + "/Testing/Data/mfem/disc-nurbs.mesh";
+  const auto grid = readNurbs<vtkIGAMFEMReader>(file).second;
+  ASSERT_EQ(grid->GetNumberOfCells(), 5);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int onCircle = 0;
+  for (vtkIdType c = 0; c < 5; ++c)
+  {
+    EXPECT_EQ(grid->GetCellType(c), VTK_BEZIER_QUADRILATERAL);
+    for (int side = 0; side < 4; ++side)
+    {
+      double worst = 0;
+      for (int s = 0; s < 20; ++s)
+      {
+        double pcoords[3] = { unit(rng), unit(rng), 0 };
+        pcoords[side / 2] = side % 2;
+        const auto x = evaluateCell(grid, c, pcoords, {});
+        worst = std::max(worst, std::abs(std::hypot(x[0], x[1]) - 2 * std::sqrt(2.0)));
+      }
+      onCircle += worst < 1e-13 ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(onCircle, 4);
+}
+
 TEST(NurbsReadersRealFiles, MFEMCubeBeamAndCurves)
 {
   const std::string cube = kShared + "/mfem/cube-nurbs.mesh",
@@ -737,6 +766,22 @@ TEST(NurbsReaders, DamagedMFEMFilesGiveOneError)
     "kv.mesh", replaced(ring, "\n0 0 1\n", "\n7 0 1\n"), "names knot vector 7 of 3");
   expectError<vtkIGAMFEMReader>("geometry.mesh", replaced(ring, "1 5 0 1", "1 3 0 1"),
     "element 0 has geometry 3, a mesh of dimension 3 needs 5");
+}
+
+// MFEM's "unitweights" in place of the weights: every weight 1.
+TEST(NurbsReaders, MFEMUnitWeights)
+{
+  std::string ring = slurp(kData + "/mfem_quarter_ring.mesh");
+  const size_t from = ring.find("weights\n"), to = ring.find("FiniteElementSpace");
+  ring.replace(from, to - from, "unitweights\n\n");
+  const std::string file = testing::TempDir() + "/unitweights.mesh";
+  std::ofstream(file, std::ios::binary) << ring;
+  const auto grid = readNurbs<vtkIGAMFEMReader>(file).second;
+  ASSERT_EQ(grid->GetNumberOfCells(), 1);
+  double range[2];
+  grid->GetPointData()->GetRationalWeights()->GetRange(range);
+  EXPECT_EQ(range[0], 1.0);
+  EXPECT_EQ(range[1], 1.0);
 }
 
 TEST(NurbsReaders, DamagedMFEMGridFunctionsGiveOneError)
