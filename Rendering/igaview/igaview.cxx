@@ -30,12 +30,14 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
+#include "vtkScalarBarActor.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkTrivialProducer.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkWindowToImageFilter.h"
+#include "vtksys/SystemTools.hxx"
 
 #include "iga/AlgebraicGallery.h"
 #include "iga/BernsteinRoots.h"
@@ -152,6 +154,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --probe X,Y            print the first hit at pixel (X, Y) (from the lower left), exactly:
                          its cell, world position, parameter in the cell and every attribute
                          there (repeatable; view shows the same under the cursor)
+  --no-annotations       without the title and colour bar a run with no INPUT draws (the default
+                         dataset coloured by radius, framed from above)
   --keys K1,K2,...       view: press these keys (Up, Down, Left, Right, r), print the state after
                          each, write -o if given, and exit without opening a window (scripts, tests)
   -h, --help             this text
@@ -162,7 +166,8 @@ struct Options
   bool view = false;   ///< `igaview view`
   bool series = false; ///< --series
   bool surface = false, edges = false;
-  std::string csg; ///< --csg as typed
+  bool noAnnotations = false; ///< --no-annotations
+  std::string csg;            ///< --csg as typed
   std::vector<std::array<double, 4>> slices, clips;
   std::vector<std::string> keys;
   std::vector<std::array<int, 2>> probes; ///< --probe pixels
@@ -357,6 +362,8 @@ bool parseDrawingOption(const std::string& arg, const OptionValue& value, Option
     options.isovalues.push_back(parseNumber(value(), arg));
   else if (arg == "--surface")
     options.surface = true;
+  else if (arg == "--no-annotations")
+    options.noAnnotations = true;
   else if (arg == "--edges")
     options.edges = true;
   else if (arg == "--csg")
@@ -576,6 +583,8 @@ struct Input
   bool geometry = false;
   std::string field;      ///< the first --field's attribute: the default surface attribute
   bool algebraic = false; ///< an algebraic surface: attribute f, drawn at 0
+  bool demo = false;      ///< the default dataset: coloured by radius, seen from above, annotated
+  std::string name;       ///< what the title calls it
 };
 
 /// Runs `request` (a pipeline update returning whether it succeeded), failing with the first
@@ -695,6 +704,7 @@ Input loadInput(const Options& options)
     source->SetTime(options.time);
     source->Update();
     input.producer = source;
+    input.demo = true;
     name = "default dataset";
     std::printf("igaview: no input given, rendering the default dataset (twisted rational tube, "
                 "8 tri-quadratic patches, time %g)\n",
@@ -742,6 +752,7 @@ Input loadInput(const Options& options)
   {
     std::fprintf(stderr, "igaview: warning: %s: %s\n", name.c_str(), warning.c_str());
   }
+  input.name = options.input.empty() ? name : vtksys::SystemTools::GetFilenameName(options.input);
   return input;
 }
 
@@ -812,9 +823,50 @@ void sampledAttributeRange(const Input& input, int attribute, double* range)
 }
 
 /// The bounds of the input's patches; with --series, of every time step's.
-void inputBounds(const Options& options, const Input& input, double* bounds)
+/// What a run draws: isosurfaces of an attribute at isovalues, or the surfaces; the colouring
+/// attribute (-1: none) and its range.
+struct Drawing
+{
+  bool surfaces = false;
+  bool csg = false;       ///< --csg, --slice or --clip: the mapper's DRAW_CSG
+  std::string expression; ///< the solid drawn: --csg intersected with the --clip half-spaces
+  int surface = 0;
+  std::vector<double> isovalues;
+  double surfaceRange[2] = { 0, 1 };
+  int colour = -1;        ///< the attribute coloured by, -1 for none (or a curvature)
+  std::string colourName; ///< the attribute's name or a curvature's, empty for none
+  bool curvature = false; ///< coloured by curvature_mean or curvature_gauss
+  double colourRange[2] = { 0, 1 };
+};
+
+/// Bounds of what a step draws: where its isosurfaces may lie when it draws only isosurfaces of
+/// volumes (pieces of the patches after a few halvings: the view frames the surface, not the
+/// volume holding it), else its patches'.
+void drawnBounds(const Input& input, const Drawing& drawing, double* bounds)
 {
   iga::sst::patchBounds(sceneOf(input), bounds);
+  const auto& volumes = input.patches.volumes.patches;
+  if (drawing.surfaces || drawing.csg || !input.patches.surfaces.empty() || volumes.empty())
+    return;
+  // Five halvings for a few patches (pieces 1/32 of theirs on a side), fewer for more.
+  const int depth = volumes.size() > 256 ? 1 : volumes.size() > 32 ? 3 : 5;
+  iga::Box3<double> box{ { 0, 0, 0 }, { 0, 0, 0 } };
+  bool found = false;
+  for (const auto& patch : volumes)
+    found = iga::growByIsosurfaces(patch.view(), iga::kFirstAttributeChannel + drawing.surface,
+              drawing.isovalues, depth, box) ||
+            found;
+  for (int a = 0; found && a < 3; ++a)
+  {
+    bounds[2 * a] = std::max(bounds[2 * a], box.lo[a]);
+    bounds[2 * a + 1] = std::min(bounds[2 * a + 1], box.hi[a]);
+  }
+}
+
+/// What is drawn's bounds; with --series, over every step.
+void inputBounds(const Options& options, const Input& input, const Drawing& drawing, double* bounds)
+{
+  drawnBounds(input, drawing, bounds);
   if (!options.series)
     return;
   for (double time : timeSteps(input.producer))
@@ -825,7 +877,7 @@ void inputBounds(const Options& options, const Input& input, double* bounds)
     std::vector<std::string> warnings; // said when the step was read first
     convertOutput(input.producer, "time " + std::to_string(time), step.patches, warnings);
     double stepBounds[6];
-    iga::sst::patchBounds(sceneOf(step), stepBounds);
+    drawnBounds(step, drawing, stepBounds);
     for (int a = 0; a < 3; ++a)
     {
       bounds[2 * a] = std::min(bounds[2 * a], stepBounds[2 * a]);
@@ -834,13 +886,16 @@ void inputBounds(const Options& options, const Input& input, double* bounds)
   }
 }
 
-iga::Camera chooseCamera(const Options& options, const Input& input)
+iga::Camera chooseCamera(const Options& options, const Input& input, const Drawing& drawing)
 {
   double bounds[6];
-  inputBounds(options, input, bounds);
-  // Default view: from the front right and above, z up, framing the data like ResetCamera.
-  iga::Camera camera =
-    iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, options.viewAngle);
+  inputBounds(options, input, drawing, bounds);
+  // Default view: from the front right and above (the default dataset's sheet, across its tube,
+  // from higher up), z up, the box of what is drawn just fitting the image (5% margin).
+  const glm::dvec3 direction =
+    input.demo ? glm::dvec3(-0.2, 0.25, -0.95) : glm::dvec3(-0.55, 0.65, -0.5);
+  iga::Camera camera = iga::frameBounds(bounds, direction, { 0, 0, 1 }, options.viewAngle);
+  iga::fitBounds(camera, bounds, double(options.size[0]) / options.size[1], 0.05);
   if (options.hasFocal)
     camera.focalPoint = glm::make_vec3(options.focal);
   if (options.hasPosition)
@@ -1048,22 +1103,6 @@ void runViewer(const Options& options, Viewer& viewer, vtkRenderWindow* window)
   interactor->Start();
 }
 
-/// What a run draws: isosurfaces of an attribute at isovalues, or the surfaces; the colouring
-/// attribute (-1: none) and its range.
-struct Drawing
-{
-  bool surfaces = false;
-  bool csg = false;       ///< --csg, --slice or --clip: the mapper's DRAW_CSG
-  std::string expression; ///< the solid drawn: --csg intersected with the --clip half-spaces
-  int surface = 0;
-  std::vector<double> isovalues;
-  double surfaceRange[2] = { 0, 1 };
-  int colour = -1;        ///< the attribute coloured by, -1 for none (or a curvature)
-  std::string colourName; ///< the attribute's name or a curvature's, empty for none
-  bool curvature = false; ///< coloured by curvature_mean or curvature_gauss
-  double colourRange[2] = { 0, 1 };
-};
-
 /// Isosurfaces when asked for (--iso, --surface-by) or when the input holds volumes of a field;
 /// the surfaces when asked for (--surface), for geometry files and for input without volumes.
 /// The solid of --csg and --clip, its attributes checked against the input's.
@@ -1136,13 +1175,14 @@ Drawing chooseDrawing(const Options& options, const Input& input)
       drawing.isovalues.push_back(0.5 * (taken[0] + taken[1]));
     }
   }
-  drawing.curvature = options.colorBy == "curvature_mean" || options.colorBy == "curvature_gauss";
+  // The default dataset shows its radius unless told otherwise.
+  const std::string colorBy = options.colorBy.empty() && input.demo ? "radius" : options.colorBy;
+  drawing.curvature = colorBy == "curvature_mean" || colorBy == "curvature_gauss";
   if (drawing.curvature && (drawing.surfaces || drawing.csg))
-    fail("--color-by " + options.colorBy + ": the curvature of isosurfaces only");
-  drawing.colour = options.colorBy.empty() || drawing.curvature
-                     ? -1
-                     : attributeIndex(input, options.colorBy, "--color-by");
-  drawing.colourName = options.colorBy;
+    fail("--color-by " + colorBy + ": the curvature of isosurfaces only");
+  drawing.colour =
+    colorBy.empty() || drawing.curvature ? -1 : attributeIndex(input, colorBy, "--color-by");
+  drawing.colourName = colorBy;
   if (drawing.colour >= 0)
   {
     attributeRange(input, drawing.colour, true, drawing.colourRange);
@@ -1201,6 +1241,52 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
 
 /// --color-by curvature_*: the colour map spans the curvature's values at the first frame's
 /// hits (2nd to 98th percentile, so that a few points of high curvature do not wash it out).
+void frameTheHitsOnce(vtkRenderWindow* window, vtkRenderer* renderer,
+  vtkIGAIsosurfaceMapper* mapper, double width, double fill)
+{
+  window->Render();
+  const iga::sst::GBuffer& gbuffer = mapper->GetLastGBuffer();
+  int lo[2] = { gbuffer.width, gbuffer.height }, hi[2] = { -1, -1 };
+  for (int j = 0; j < gbuffer.height; ++j)
+    for (int i = 0; i < gbuffer.width; ++i)
+      if (gbuffer.hitCount(i, j) > 0)
+      {
+        lo[0] = std::min(lo[0], i), hi[0] = std::max(hi[0], i);
+        lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
+      }
+  if (hi[0] < 0)
+    return;
+  vtkCamera* camera = renderer->GetActiveCamera();
+  glm::dvec3 position, focal, up, forward;
+  camera->GetPosition(glm::value_ptr(position));
+  camera->GetFocalPoint(glm::value_ptr(focal));
+  camera->GetViewUp(glm::value_ptr(up));
+  forward = glm::normalize(focal - position);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, up));
+  up = glm::cross(right, forward);
+  // World units a pixel spans in the focal plane; the covered box's centre moved to the image's.
+  const double pixel = 2 * glm::length(focal - position) *
+                       std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2) /
+                       gbuffer.height;
+  const double centre[2] = { 0.5 * width * gbuffer.width, 0.5 * gbuffer.height };
+  const glm::dvec3 shift = pixel * ((0.5 * (lo[0] + hi[0] + 1) - centre[0]) * right +
+                                     (0.5 * (lo[1] + hi[1] + 1) - centre[1]) * up);
+  camera->SetPosition(glm::value_ptr(position + shift));
+  camera->SetFocalPoint(glm::value_ptr(focal + shift));
+  camera->Dolly(fill * std::min(width * gbuffer.width / (hi[0] - lo[0] + 1),
+                         double(gbuffer.height) / (hi[1] - lo[1] + 1)));
+  renderer->ResetCameraClippingRange();
+}
+
+/// Centres the pixels a frame covers in the part of the image left of the colour bar and fills
+/// `fill` of it with them, by panning and moving the camera along its view direction: what is
+/// seen is framed, not a box around it. Twice: a move changes the perspective a little.
+void frameTheHits(vtkRenderWindow* window, vtkRenderer* renderer, vtkIGAIsosurfaceMapper* mapper)
+{
+  for (int pass = 0; pass < 2; ++pass)
+    frameTheHitsOnce(window, renderer, mapper, 0.85, 0.85);
+}
+
 void fitCurvatureRange(vtkRenderWindow* window, vtkIGAIsosurfaceMapper* mapper,
   vtkColorTransferFunction* coolToWarm, Drawing& drawing)
 {
@@ -1402,6 +1488,50 @@ void renderSeries(const Options& options, const Input& input, const Drawing& dra
   }
 }
 
+/// The default dataset's title (dataset, what is drawn, the colouring) and colour bar.
+void annotate(
+  const Input& input, const Drawing& drawing, vtkRenderer* renderer, vtkScalarsToColors* colours)
+{
+  const auto& names = input.patches.volumes.attributeNames;
+  std::string title = input.name + ": ";
+  if (drawing.surfaces || drawing.csg)
+    title += drawing.csg ? "solid " + drawing.expression : "surfaces";
+  else
+  {
+    title += names[size_t(drawing.surface)] + " =";
+    for (double iso : drawing.isovalues)
+    {
+      char value[32];
+      std::snprintf(value, sizeof(value), " %g", iso);
+      title += value;
+    }
+  }
+  if (!drawing.colourName.empty())
+    title += ", coloured by " + drawing.colourName;
+  vtkNew<vtkTextActor> text;
+  text->SetInput(title.c_str());
+  text->GetTextProperty()->SetFontSize(
+    std::max(10, renderer->GetRenderWindow()->GetSize()[1] / 30));
+  text->GetTextProperty()->SetColor(0.95, 0.95, 0.95);
+  text->GetTextProperty()->SetVerticalJustificationToTop();
+  text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  text->GetPositionCoordinate()->SetValue(0.02, 0.97);
+  renderer->AddActor2D(text);
+  if (drawing.colourName.empty())
+    return;
+  vtkNew<vtkScalarBarActor> bar;
+  bar->SetLookupTable(colours);
+  bar->SetTitle(drawing.colourName.c_str());
+  bar->SetNumberOfLabels(5);
+  bar->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  bar->GetPositionCoordinate()->SetValue(0.88, 0.15);
+  bar->SetWidth(0.1);
+  bar->SetHeight(0.7);
+  renderer->AddActor2D(bar);
+  std::printf("igaview: colour bar %s from %g to %g\n", drawing.colourName.c_str(),
+    drawing.colourRange[0], drawing.colourRange[1]);
+}
+
 /// VTK's X window aborts the process when no X server answers: say so first where none is named.
 void checkDisplay(vtkRenderWindow* window)
 {
@@ -1428,11 +1558,15 @@ int main(int argc, char** argv)
   configureActor(options, actor);
   vtkNew<vtkRenderer> renderer;
   renderer->AddActor(actor);
-  configureRenderer(chooseCamera(options, input), renderer);
+  configureRenderer(chooseCamera(options, input, drawing), renderer);
   window->SetOffScreenRendering(1);
   window->AddRenderer(renderer);
   window->SetSize(options.size[0], options.size[1]);
   describe(options, input, drawing);
+  if (input.demo && !options.noAnnotations)
+    annotate(input, drawing, renderer, coolToWarm);
+  if (input.demo && !options.hasPosition && !options.hasFocal)
+    frameTheHits(window, renderer, mapper);
   if (drawing.curvature)
     fitCurvatureRange(window, mapper, coolToWarm, drawing);
   if (options.series)

@@ -3,6 +3,8 @@
 #include "TestPatches.h"
 
 #include "iga/Bounds.h"
+#include "iga/Camera.h"
+#include "iga/Datasets.h"
 #include "iga/Newton.h"
 
 using namespace igatest;
@@ -210,6 +212,54 @@ TYPED_TEST(BoundsTest, SubdivisionEventuallyCertifiesCurvedPatches)
     level.swap(next);
   }
   EXPECT_EQ(fraction, 1.0);
+}
+
+/// The sphere x^2 + y^2 + z^2 = 1 inside the Marsden volume [-1.5, 1.5]^3: the bounds of where
+/// it may lie contain [-1, 1]^3 and shrink onto it as the depth grows; an isovalue the field
+/// never takes has none.
+TEST(IsosurfaceBounds, ShrinkOntoTheMarsdenSphere)
+{
+  const auto sphere = iga::makeMarsdenSphere<double>(2).patches[0];
+  const int attribute = iga::kFirstAttributeChannel;
+  double previous = 1.5;
+  for (int depth = 0; depth <= 5; ++depth)
+  {
+    iga::Box3<double> box{ { 0, 0, 0 }, { 0, 0, 0 } };
+    ASSERT_TRUE(iga::growByIsosurfaces(sphere.view(), attribute, { 0.0 }, depth, box));
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_LE(box.lo[a], -1.0);
+      EXPECT_GE(box.hi[a], 1.0);
+      EXPECT_LE(box.hi[a], previous + 1e-12);
+    }
+    previous = box.hi[0];
+  }
+  EXPECT_LT(previous, 1.1); // pieces of 3/32 on a side at depth 5
+  iga::Box3<double> none{ { 7, 7, 7 }, { 7, 7, 7 } };
+  EXPECT_FALSE(iga::growByIsosurfaces(sphere.view(), attribute, { 10.0 }, 3, none));
+  EXPECT_EQ(none.lo[0], 7.0);
+}
+
+/// A fitted camera shows a box's corners inside the viewport, the outermost at its margin.
+TEST(FitBounds, CornersReachTheMarginAndNoFurther)
+{
+  const double bounds[6] = { -1, 3, 0, 0.5, 2, 2.2 };
+  for (const double aspect : { 0.5, 1.0, 16.0 / 9.0 })
+  {
+    iga::Camera camera = iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+    iga::fitBounds(camera, bounds, aspect, 0.05);
+    iga::fitClippingRange(camera, bounds);
+    const glm::dmat4 toClip = iga::worldToClip(camera, aspect);
+    double most = 0;
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const glm::dvec4 clip =
+        toClip * glm::dvec4(bounds[(corner & 1)], bounds[2 + ((corner >> 1) & 1)],
+                   bounds[4 + ((corner >> 2) & 1)], 1.0);
+      most = std::max({ most, std::abs(clip.x / clip.w), std::abs(clip.y / clip.w) });
+    }
+    EXPECT_NEAR(most, 0.95, 1e-9) << "aspect " << aspect;
+  }
 }
 
 } // namespace

@@ -11,6 +11,9 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include <algorithm>
+#include <vector>
+
 namespace iga
 {
 
@@ -119,6 +122,51 @@ IGA_HD bool mayContainIsovalue(const PatchView<const T, Dim>& patch, int attribu
     return true;
   }
   return lo <= isovalue && isovalue <= hi;
+}
+
+/// Where the isosurfaces attribute = isovalue (any of `isovalues`) of a volume lie: the union of
+/// the control-point boxes of its pieces after `depth` midpoint halvings along every direction,
+/// pieces that cannot hold one (mayContainIsovalue) dropped as soon as they appear, so the box
+/// shrinks onto the surfaces as depth grows. Grows `box` by it and returns true; returns false
+/// (box untouched) when no piece may hold one. Host only.
+template<class T>
+bool growByIsosurfaces(const PatchView<const T, 3>& patch, int attribute,
+  const std::vector<T>& isovalues, int depth, Box3<T>& box)
+{
+  const int size = patch.valueCount();
+  std::vector<std::vector<T>> pieces{ std::vector<T>(patch.coeffs, patch.coeffs + size) };
+  bool found = false;
+  for (int level = 0; level <= depth && !pieces.empty(); ++level)
+  {
+    std::vector<std::vector<T>> next;
+    for (const auto& piece : pieces)
+    {
+      const PatchView<const T, 3> view(piece.data(), patch.degree, patch.channels);
+      const bool holds = std::any_of(isovalues.begin(), isovalues.end(),
+        [&](T isovalue) { return mayContainIsovalue(view, attribute, isovalue); });
+      if (!holds)
+        continue;
+      if (level < depth)
+      {
+        std::vector<T> children(size_t(8 * size));
+        splitMidpoint(view, children.data());
+        for (int c = 0; c < 8; ++c)
+          next.emplace_back(children.begin() + c * size, children.begin() + (c + 1) * size);
+        continue;
+      }
+      Box3<T> part;
+      if (projectedBounds(view, part) != ProjectionStatus::InFront)
+        continue;
+      for (int a = 0; a < 3; ++a)
+      {
+        box.lo[a] = found || box.lo[a] < part.lo[a] ? std::min(box.lo[a], part.lo[a]) : part.lo[a];
+        box.hi[a] = std::max(box.hi[a], part.hi[a]);
+      }
+      found = true;
+    }
+    pieces = std::move(next);
+  }
+  return found;
 }
 
 /// One equation of a pixel problem: the rational function numerator/denominator of two channels.

@@ -110,6 +110,38 @@ inline Camera frameBounds(
   return camera;
 }
 
+/// Moves the camera along its view direction, its focal point at the box's centre, so that the
+/// box's corners just fit a viewport of the given width/height aspect with `margin` (a fraction
+/// of its half-size, e.g. 0.05) left free on the tighter side: tighter than frameBounds'
+/// enclosing sphere. A parallel camera gets the scale that fits instead.
+inline void fitBounds(Camera& camera, const double* bounds, double aspect, double margin)
+{
+  const glm::dvec3 forward = viewDirection(camera);
+  const glm::dvec3 right = normalizedOrZero(glm::cross(forward, camera.viewUp));
+  const glm::dvec3 up = glm::cross(right, forward);
+  glm::dvec3 centre;
+  for (int d = 0; d < 3; ++d)
+    centre[d] = 0.5 * bounds[2 * d] + 0.5 * bounds[2 * d + 1];
+  const double tanY = std::tan(camera.viewAngle * 3.14159265358979323846 / 360.0) * (1 - margin);
+  const double tanX = tanY * aspect;
+  double distance = 0, halfHeight = 0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    glm::dvec3 offset;
+    for (int d = 0; d < 3; ++d)
+      offset[d] = bounds[2 * d + ((corner >> d) & 1)] - centre[d];
+    const double x = std::abs(glm::dot(offset, right)), y = std::abs(glm::dot(offset, up));
+    const double towardsEye = -glm::dot(offset, forward);
+    distance = std::max({ distance, towardsEye + x / tanX, towardsEye + y / tanY });
+    halfHeight = std::max({ halfHeight, x / aspect, y });
+  }
+  if (!(distance > 0))
+    distance = 1;
+  camera.focalPoint = centre;
+  camera.position = centre - distance * forward;
+  camera.parallelScale = halfHeight > 0 ? halfHeight / (1 - margin) : 1;
+}
+
 /// Tight near/far planes around `bounds` seen from the camera (vtkRenderer's
 /// ResetCameraClippingRange, simplified to the box's corners).
 inline void fitClippingRange(Camera& camera, const double* bounds)
