@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 #include <unistd.h>
@@ -43,10 +44,12 @@ std::string slurp(const std::string& path)
   return text.str();
 }
 
-/// Runs a reader on a file; collects the reader's error messages.
+/// Runs a reader on a file, `configure` called on it first; collects the reader's error
+/// messages.
 template<class Reader>
 vtkSmartPointer<vtkUnstructuredGrid> read(const std::string& file,
-  std::vector<std::string>* errors = nullptr, Reader** keep = nullptr, double memoryLimitMB = 0)
+  std::vector<std::string>* errors = nullptr, Reader** keep = nullptr, double memoryLimitMB = 0,
+  const std::function<void(Reader*)>& configure = {})
 {
   static std::vector<std::string> ignored;
   auto reader = vtkSmartPointer<Reader>::New();
@@ -58,6 +61,8 @@ vtkSmartPointer<vtkUnstructuredGrid> read(const std::string& file,
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->SetFileName(file.c_str());
   reader->SetMemoryLimitMB(memoryLimitMB);
+  if (configure)
+    configure(reader);
   reader->Update();
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   grid->ShallowCopy(reader->GetOutput());
@@ -625,15 +630,14 @@ TEST(NurbsReaders, GismoBase64NumbersAreRead)
 /// pressure = 3x - 2z + 1 and position = (x, y, z) wherever evaluated.
 TEST(NurbsReaders, MFEMQuarterRingWithItsFields)
 {
-  vtkIGAMFEMReader* reader = nullptr;
   std::vector<std::string> errors;
-  auto grid = read<vtkIGAMFEMReader>(kData + "/mfem_quarter_ring.mesh", &errors, &reader);
+  const auto grid = read<vtkIGAMFEMReader>(kData + "/mfem_quarter_ring.mesh", &errors, nullptr, 0,
+    [](vtkIGAMFEMReader* reader)
+    {
+      reader->AddGridFunctionFileName((kData + "/mfem_quarter_ring_pressure.gf").c_str());
+      reader->AddGridFunctionFileName((kData + "/mfem_quarter_ring_position.gf").c_str());
+    });
   ASSERT_TRUE(errors.empty()) << errors[0];
-  reader->AddGridFunctionFileName((kData + "/mfem_quarter_ring_pressure.gf").c_str());
-  reader->AddGridFunctionFileName((kData + "/mfem_quarter_ring_position.gf").c_str());
-  reader->Update();
-  grid->ShallowCopy(reader->GetOutput());
-  reader->Delete();
   ASSERT_EQ(grid->GetNumberOfCells(), 1);
   // Named after the files.
   const std::string stem = "mfem_quarter_ring_";
@@ -794,19 +798,10 @@ TEST(NurbsReaders, DamagedMFEMGridFunctionsGiveOneError)
   {
     const std::string file = testing::TempDir() + "/" + name;
     std::ofstream(file, std::ios::binary) << text;
-    vtkNew<vtkIGAMFEMReader> reader;
     std::vector<std::string> errors;
-    vtkNew<vtkCallbackCommand> onError;
-    onError->SetClientData(&errors);
-    onError->SetCallback(
-      [](vtkObject*, unsigned long, void* client, void* call) {
-        static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call));
-      });
-    reader->AddObserver(vtkCommand::ErrorEvent, onError);
-    reader->SetFileName((kData + "/mfem_quarter_ring.mesh").c_str());
-    reader->AddGridFunctionFileName(file.c_str());
-    reader->Update();
-    EXPECT_EQ(reader->GetOutput()->GetNumberOfCells(), 0) << name;
+    const auto grid = read<vtkIGAMFEMReader>(kData + "/mfem_quarter_ring.mesh", &errors, nullptr, 0,
+      [&file](vtkIGAMFEMReader* reader) { reader->AddGridFunctionFileName(file.c_str()); });
+    EXPECT_EQ(grid->GetNumberOfCells(), 0) << name;
     ASSERT_GE(errors.size(), 1u) << name;
     EXPECT_NE(errors[0].find("GridFunction " + file + ":"), std::string::npos) << errors[0];
     EXPECT_NE(errors[0].find(expected), std::string::npos) << errors[0];

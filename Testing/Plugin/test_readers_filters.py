@@ -127,14 +127,22 @@ assert builtins.all(faces.GetCellType(c) == VTK_BEZIER_QUADRILATERAL for c in ra
 assert faces.GetBounds() == servermanager.Fetch(blocks).GetBounds(), faces.GetBounds()
 assert faces.GetPointData().GetRationalWeights() is not None
 assert faces.GetCellData().GetArray("BoundaryFace") is not None
-for shown in simple.GetSources().values():
-    simple.Hide(shown, view)
-simple.Show(boundary, view).SetRepresentationType("Surface")
-simple.ResetCamera(view)
-boundary_png = os.path.join(work_dir, "boundary_surface.png")
-simple.SaveScreenshot(boundary_png, view, ImageResolution=[200, 160], TransparentBackground=0)
-(w, h), px = iga_scene.read_rgb(boundary_png)
-boundary_pixels = builtins.sum(1 for j in range(h) for i in range(w) if px(i, j) != background)
+
+
+def drawn_alone(show, name):
+    """Pixels off the background when `show` alone shows something in the view."""
+    for shown in simple.GetSources().values():
+        simple.Hide(shown, view)
+    show()
+    simple.ResetCamera(view)
+    png = os.path.join(work_dir, name + ".png")
+    simple.SaveScreenshot(png, view, ImageResolution=[200, 160], TransparentBackground=0)
+    (w, h), px = iga_scene.read_rgb(png)
+    return builtins.sum(1 for j in range(h) for i in range(w) if px(i, j) != background)
+
+
+boundary_pixels = drawn_alone(
+    lambda: simple.Show(boundary, view).SetRepresentationType("Surface"), "boundary_surface")
 assert boundary_pixels > 1000, boundary_pixels
 
 # A numbered series of files opened together is a time series, a step a file, as ParaView's own
@@ -195,14 +203,8 @@ mfem.UpdatePipeline()
 assert "mfem_quarter_ring_pressure" in mfem.PointData.keys(), mfem.PointData.keys()
 pressure_range = mfem.PointData["mfem_quarter_ring_pressure"].GetRange()
 assert pressure_range == (-1.0, 7.0), pressure_range  # 3x - 2z + 1 at the control points
-for shown in simple.GetSources().values():
-    simple.Hide(shown, view)
-iga_scene.show_surface(mfem, view, "mfem_quarter_ring_pressure", 3.0)
-simple.ResetCamera(view)
-mfem_png = os.path.join(work_dir, "mfem_field.png")
-simple.SaveScreenshot(mfem_png, view, ImageResolution=[200, 160], TransparentBackground=0)
-(w, h), px = iga_scene.read_rgb(mfem_png)
-mfem_pixels = builtins.sum(1 for j in range(h) for i in range(w) if px(i, j) != background)
+mfem_pixels = drawn_alone(
+    lambda: iga_scene.show_surface(mfem, view, "mfem_quarter_ring_pressure", 3.0), "mfem_field")
 assert mfem_pixels > 300, mfem_pixels
 print(f"MFEM quarter ring: pressure over the control points {pressure_range}, isosurface 3 "
       f"covers {mfem_pixels} pixels")
