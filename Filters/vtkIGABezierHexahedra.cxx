@@ -40,6 +40,33 @@ std::string arrayName(vtkDataArray* array)
   return array && array->GetName() ? array->GetName() : "";
 }
 
+/// Consecutive point arrays NAME_0, NAME_1, NAME_2 (a vector field's components, as the readers
+/// name them) also as one 3-component array NAME, which filters taking vectors take (e.g.
+/// vtkIGADisplaceControlPoints' displacement); the components stay the attributes drawn.
+void addVectorArrays(vtkPointData* data)
+{
+  const int count = data->GetNumberOfArrays();
+  for (int a = 0; a + 2 < count; ++a)
+  {
+    const std::string name = data->GetArrayName(a) ? data->GetArrayName(a) : "";
+    if (name.size() < 3 || name.compare(name.size() - 2, 2, "_0") != 0)
+      continue;
+    const std::string stem = name.substr(0, name.size() - 2);
+    vtkDataArray* parts[3] = { data->GetArray(a), data->GetArray(a + 1), data->GetArray(a + 2) };
+    if (arrayName(parts[1]) != stem + "_1" || arrayName(parts[2]) != stem + "_2" ||
+        data->GetArray(stem.c_str()))
+      continue;
+    vtkNew<vtkDoubleArray> vector;
+    vector->SetName(stem.c_str());
+    vector->SetNumberOfComponents(3);
+    vector->SetNumberOfTuples(parts[0]->GetNumberOfTuples());
+    for (vtkIdType t = 0; t < vector->GetNumberOfTuples(); ++t)
+      for (int c = 0; c < 3; ++c)
+        vector->SetComponent(t, c, parts[c]->GetComponent(t, 0));
+    data->AddArray(vector);
+  }
+}
+
 /// What is wrong with a point that iga::firstInvalidPoint refused, in the file's terms: its id,
 /// and the array or coordinate by name.
 std::string pointProblem(vtkUnstructuredGrid* grid, vtkIdType id, vtkDataArray* weights,
@@ -412,6 +439,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(v
   {
     grid->GetCellData()->SetHigherOrderDegrees(degrees);
   }
+  addVectorArrays(grid->GetPointData());
   return grid;
 }
 
@@ -446,6 +474,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGABezierHexahedra::ToUnstructuredGrid(
   {
     AppendQuadrilateral(grid, surface.view(), attributes);
   }
+  addVectorArrays(grid->GetPointData());
   return grid;
 }
 

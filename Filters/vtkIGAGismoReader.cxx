@@ -200,6 +200,42 @@ public:
   void readPatch(
     vtkXMLDataElement* geometry, bool rational, iga::BSplinePatch<double, Dim>& patch) const
   {
+    const auto weights = this->readBasis(geometry, rational, patch);
+    const size_t points = iga::controlPointCount(patch);
+    vtkXMLDataElement* coefs = this->child(geometry, "coefs");
+    const int geoDim = this->integerAttribute(coefs, "geoDim");
+    if (geoDim != 2 && geoDim != 3)
+    {
+      this->fail(coefs, "geoDim " + std::to_string(geoDim) + " is not 2 or 3");
+    }
+    const auto values = this->coefficients(coefs, points, geoDim);
+    std::vector<double> euclidean(3 * points, 0.0);
+    for (size_t p = 0; p < points; ++p)
+    {
+      std::copy_n(values.begin() + p * geoDim, geoDim, euclidean.begin() + 3 * p);
+    }
+    iga::setGeometryNet(patch, euclidean, weights);
+  }
+
+  /// `points` rows of geoDim values.
+  std::vector<double> coefficients(vtkXMLDataElement* coefs, size_t points, int geoDim) const
+  {
+    auto values = this->numbers(coefs);
+    if (values.size() != points * geoDim)
+    {
+      this->fail(coefs, "has " + std::to_string(values.size()) + " values, expected " +
+                          std::to_string(points * geoDim) + " (" + std::to_string(points) +
+                          " control points of geoDim " + std::to_string(geoDim) + ")");
+    }
+    return values;
+  }
+
+  /// The patch's degrees, knots and net size from the Geometry's Basis; its weights (all 1 for a
+  /// B-spline).
+  template<int Dim>
+  std::vector<double> readBasis(
+    vtkXMLDataElement* geometry, bool rational, iga::BSplinePatch<double, Dim>& patch) const
+  {
     vtkXMLDataElement* basis = this->child(geometry, "Basis");
     vtkXMLDataElement* weightsElement = nullptr;
     if (rational)
@@ -246,24 +282,6 @@ public:
         "has " + std::to_string(found) + " direction bases, expected " + std::to_string(Dim));
     }
     const size_t points = iga::controlPointCount(patch);
-    vtkXMLDataElement* coefs = this->child(geometry, "coefs");
-    const int geoDim = this->integerAttribute(coefs, "geoDim");
-    if (geoDim != 2 && geoDim != 3)
-    {
-      this->fail(coefs, "geoDim " + std::to_string(geoDim) + " is not 2 or 3");
-    }
-    const auto values = this->numbers(coefs);
-    if (values.size() != points * geoDim)
-    {
-      this->fail(coefs, "has " + std::to_string(values.size()) + " values, expected " +
-                          std::to_string(points * geoDim) + " (" + std::to_string(points) +
-                          " control points of geoDim " + std::to_string(geoDim) + ")");
-    }
-    std::vector<double> euclidean(3 * points, 0.0);
-    for (size_t p = 0; p < points; ++p)
-    {
-      std::copy_n(values.begin() + p * geoDim, geoDim, euclidean.begin() + 3 * p);
-    }
     std::vector<double> weights(points, 1.0);
     if (weightsElement)
     {
@@ -282,40 +300,54 @@ public:
         }
       }
     }
-    iga::setGeometryNet(patch, euclidean, weights);
+    return weights;
   }
 
-  /// The Geometry elements to read: the first MultiPatch's, or all top-level ones.
-  std::vector<vtkXMLDataElement*> selectGeometries(vtkXMLDataElement* root) const
+  /// The file's top-level Geometry elements, by id, and its MultiPatch elements.
+  struct Contents
   {
-    std::vector<vtkXMLDataElement*> geometries;
+    std::vector<vtkXMLDataElement*> geometries, multiPatches;
     std::map<long long, vtkXMLDataElement*> byId;
-    vtkXMLDataElement* multiPatch = nullptr;
+  };
+
+  Contents contents(vtkXMLDataElement* root) const
+  {
+    Contents found;
     for (int n = 0; n < root->GetNumberOfNestedElements(); ++n)
     {
       vtkXMLDataElement* element = root->GetNestedElement(n);
       const std::string name = element->GetName();
       if (name == "Geometry")
       {
-        geometries.push_back(element);
+        found.geometries.push_back(element);
         if (element->GetAttribute("id"))
         {
-          byId[this->integerAttribute(element, "id")] = element;
+          found.byId[this->integerAttribute(element, "id")] = element;
         }
       }
-      else if (name == "MultiPatch" && !multiPatch)
+      else if (name == "MultiPatch")
       {
-        multiPatch = element;
+        found.multiPatches.push_back(element);
       }
     }
-    if (!multiPatch)
+    if (found.geometries.empty() && found.multiPatches.empty())
     {
-      if (geometries.empty())
-      {
-        this->fail(root, "has no <Geometry> or <MultiPatch> element");
-      }
-      return geometries;
+      this->fail(root, "has no <Geometry> or <MultiPatch> element");
     }
+    return found;
+  }
+
+  /// The Geometry elements of the geometry: the first MultiPatch's, or all top-level ones.
+  std::vector<vtkXMLDataElement*> selectGeometries(const Contents& contents) const
+  {
+    return contents.multiPatches.empty() ? contents.geometries
+                                         : this->patchesOf(contents.multiPatches[0], contents);
+  }
+
+  /// A MultiPatch's Geometry elements: nested in it, then those its <patches> name.
+  std::vector<vtkXMLDataElement*> patchesOf(
+    vtkXMLDataElement* multiPatch, const Contents& contents) const
+  {
     std::vector<vtkXMLDataElement*> selected;
     for (int n = 0; n < multiPatch->GetNumberOfNestedElements(); ++n)
     {
@@ -327,39 +359,10 @@ public:
     }
     if (vtkXMLDataElement* patches = multiPatch->FindNestedElementWithName("patches"))
     {
-      const std::string type = patches->GetAttribute("type") ? patches->GetAttribute("type") : "";
-      std::vector<long long> ids;
-      for (double value : this->numbers(patches))
+      for (long long id : this->patchIds(patches))
       {
-        if (value != std::floor(value) || !(std::abs(value) <= 9007199254740992.0))
-        {
-          char number[32];
-          std::snprintf(number, sizeof number, "%.17g", value);
-          this->fail(patches, std::string("id ") + number + " is not an integer in -2^53..2^53");
-        }
-        ids.push_back(static_cast<long long>(value));
-      }
-      if (type == "id_range")
-      {
-        if (ids.size() != 2 || ids[1] < ids[0] || ids[1] - ids[0] > 1000000)
-        {
-          this->fail(patches, "of type id_range needs two ids, first <= last");
-        }
-        const long long first = ids[0], last = ids[1];
-        ids.clear();
-        for (long long id = first; id <= last; ++id)
-        {
-          ids.push_back(id);
-        }
-      }
-      else if (type != "id_index")
-      {
-        this->fail(patches, "type '" + type + "' is not id_range or id_index");
-      }
-      for (long long id : ids)
-      {
-        const auto geometry = byId.find(id);
-        if (geometry == byId.end())
+        const auto geometry = contents.byId.find(id);
+        if (geometry == contents.byId.end())
         {
           this->fail(patches,
             "refers to geometry id " + std::to_string(id) + ", which no top-level <Geometry> has");
@@ -372,6 +375,123 @@ public:
       this->fail(multiPatch, "lists no patches");
     }
     return selected;
+  }
+
+  /// The ids a <patches> element lists (id_range: first..last; id_index: each).
+  std::vector<long long> patchIds(vtkXMLDataElement* patches) const
+  {
+    const std::string type = patches->GetAttribute("type") ? patches->GetAttribute("type") : "";
+    std::vector<long long> ids;
+    for (double value : this->numbers(patches))
+    {
+      if (value != std::floor(value) || !(std::abs(value) <= 9007199254740992.0))
+      {
+        char number[32];
+        std::snprintf(number, sizeof number, "%.17g", value);
+        this->fail(patches, std::string("id ") + number + " is not an integer in -2^53..2^53");
+      }
+      ids.push_back(static_cast<long long>(value));
+    }
+    if (type == "id_range")
+    {
+      if (ids.size() != 2 || ids[1] < ids[0] || ids[1] - ids[0] > 1000000)
+      {
+        this->fail(patches, "of type id_range needs two ids, first <= last");
+      }
+      const long long first = ids[0], last = ids[1];
+      ids.clear();
+      for (long long id = first; id <= last; ++id)
+      {
+        ids.push_back(id);
+      }
+    }
+    else if (type != "id_index")
+    {
+      this->fail(patches, "type '" + type + "' is not id_range or id_index");
+    }
+    return ids;
+  }
+
+  /// Every MultiPatch after the geometry's with a patch per geometry patch in the geometry's
+  /// basis (G+Smo writes a solution so): its coefficients, geoDim of them per control point, as
+  /// attributes named by its label (field1, field2, ... without one), a vector's components
+  /// NAME_0, NAME_1, ... `order[k]` says where geometry patch k went: (volume?, index).
+  void readFields(const Contents& contents, const std::vector<std::pair<bool, size_t>>& order,
+    iga::NurbsSet<double>& set) const
+  {
+    for (size_t f = 1; f < contents.multiPatches.size(); ++f)
+    {
+      vtkXMLDataElement* multiPatch = contents.multiPatches[f];
+      const auto patches = this->patchesOf(multiPatch, contents);
+      if (patches.size() != order.size())
+      {
+        this->fail(multiPatch, "has " + std::to_string(patches.size()) + " patches, the geometry " +
+                                 std::to_string(order.size()) +
+                                 ": a field has one patch per geometry patch");
+      }
+      const char* label = multiPatch->GetAttribute("label");
+      const std::string name = label && *label ? label : "field" + std::to_string(f);
+      int components = 0;
+      for (size_t k = 0; k < patches.size(); ++k)
+      {
+        const int found =
+          order[k].first ? this->readField(patches[k], set.volumes[order[k].second], components)
+                         : this->readField(patches[k], set.surfaces[order[k].second], components);
+        components = found;
+      }
+      for (int c = 0; c < components; ++c)
+      {
+        set.attributeNames.push_back(components == 1 ? name : name + "_" + std::to_string(c));
+      }
+    }
+  }
+
+  /// One patch of a field onto geometry patch `target`: its basis must be the target's; returns
+  /// its geoDim (which must equal `components` when that is set).
+  template<int Dim>
+  int readField(
+    vtkXMLDataElement* geometry, iga::BSplinePatch<double, Dim>& target, int components) const
+  {
+    const std::string type = geometry->GetAttribute("type") ? geometry->GetAttribute("type") : "";
+    const std::string dim = std::to_string(Dim);
+    if (type != "TensorBSpline" + dim && type != "TensorNurbs" + dim)
+    {
+      this->fail(geometry, "a field patch of type '" + type + "' on a geometry patch of " + dim +
+                             " parameters (TensorBSpline" + dim + ", TensorNurbs" + dim + ")");
+    }
+    iga::BSplinePatch<double, Dim> field;
+    const auto weights = this->readBasis(geometry, type == "TensorNurbs" + dim, field);
+    for (int d = 0; d < Dim; ++d)
+    {
+      if (field.degree[d] != target.degree[d] || field.knots[d] != target.knots[d])
+      {
+        this->fail(geometry, "a field patch whose basis is not its geometry patch's (direction " +
+                               std::to_string(d) + ")");
+      }
+    }
+    // Its rational basis is the geometry's when the weights agree (to a common factor).
+    const size_t points = iga::controlPointCount(target);
+    const double scale = weights[0] / target.net[iga::kWeightChannel];
+    for (size_t p = 0; p < points; ++p)
+    {
+      const double mine = weights[p],
+                   theirs = target.net[p * target.channels + iga::kWeightChannel];
+      if (std::abs(mine - scale * theirs) > 1e-12 * std::abs(mine))
+      {
+        this->fail(geometry, "a field patch whose weights are not its geometry patch's (control "
+                             "point " +
+                               std::to_string(p + 1) + "): not in the geometry's basis");
+      }
+    }
+    vtkXMLDataElement* coefs = this->child(geometry, "coefs");
+    const int geoDim = this->integerAttribute(coefs, "geoDim");
+    if (geoDim < 1 || geoDim > 3 || (components > 0 && geoDim != components))
+    {
+      this->fail(coefs, "geoDim " + std::to_string(geoDim) + " is not 1..3" +
+                          (components > 0 ? " and the field's " + std::to_string(components) : ""));
+    }
+    iga::appendAttributes(target, this->coefficients(coefs, points, geoDim), geoDim);
+    return geoDim;
   }
 
 private:
@@ -405,10 +525,16 @@ std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsDat
   set.attributeNames = iga::geometryAttributeNames();
   try
   {
-    for (vtkXMLDataElement* geometry : gismo.selectGeometries(parser->GetRootElement()))
+    const auto contents = gismo.contents(parser->GetRootElement());
+    std::vector<std::pair<bool, size_t>> order; // where each geometry patch went
+    for (vtkXMLDataElement* geometry : gismo.selectGeometries(contents))
     {
+      const size_t volumes = set.volumes.size();
       gismo.readGeometry(geometry, set);
+      order.emplace_back(set.volumes.size() > volumes,
+        set.volumes.size() > volumes ? volumes : set.surfaces.size() - 1);
     }
+    gismo.readFields(contents, order, set);
   }
   catch (const IGAReadError& e)
   {

@@ -10,9 +10,16 @@
  * type="id_index" a list of ids, or Geometry elements nested in it); otherwise every top-level
  * <Geometry>. Volumes become VTK_BEZIER_HEXAHEDRON cells, surfaces VTK_BEZIER_QUADRILATERAL.
  *
- * G+Smo files carry geometry only, so the reader adds attributes that can be contoured
- * (iga::setGeometryNet): "x", "y", "z" (exact everywhere) and "parameter_u/v/w" (exact on
- * polynomial patches). Errors name the file, the line of the offending element and the problem.
+ * The reader adds attributes that can be contoured (iga::setGeometryNet): "x", "y", "z" (exact
+ * everywhere) and "parameter_u/v/w" (exact on polynomial patches). Solutions: G+Smo writes a
+ * field as a further MultiPatch whose patches share the geometry's basis (fd << geometry <<
+ * solution, fd.addWithLabel for a name); every MultiPatch after the geometry's becomes
+ * attributes, named by its label ("field1", "field2", ... without one), a vector field's
+ * components NAME_0, NAME_1, NAME_2 (and, from the grid, a 3-component array NAME, e.g. for
+ * vtkIGADisplaceControlPoints). A field patch must have its geometry patch's degrees, knots and
+ * weights (to a common factor): a B-spline field on a NURBS geometry is not in the geometry's
+ * rational basis and is refused. Errors name the file, the line of the offending element and
+ * the problem.
  */
 #ifndef vtkIGAGismoReader_h
 #define vtkIGAGismoReader_h

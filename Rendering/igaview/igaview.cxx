@@ -84,8 +84,9 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
                          VTK_BEZIER_QUADRILATERAL cells with RationalWeights (and
                          HigherOrderDegrees where a cell's degrees differ), a .pvd collection of
                          such files (a time series: one file a time step), a G+Smo XML or
-                         GeoPDEs text geometry (geometry only: drawn as surfaces by default), or
-                         an MFEM NURBS mesh (.mesh), each format known by its content
+                         GeoPDEs text geometry, or an MFEM NURBS mesh (.mesh), each format known
+                         by its content: drawn as surfaces, or isosurfaces of the first solution
+                         field (G+Smo MultiPatches after the geometry's, MFEM --field)
   --field FILE           an MFEM GridFunction (.gf) on the MFEM mesh given as INPUT, an attribute
                          named after the file (repeatable); isosurfaces of the first are drawn
                          unless --surface or --surface-by says otherwise
@@ -574,14 +575,14 @@ Options parseArguments(int argc, char** argv)
 }
 
 /// The input: its producer, updated, and its patches; `geometry` says whether it came from a
-/// geometry-only file (G+Smo, GeoPDEs, MFEM without --field), whose attributes are the readers'
+/// geometry-only file (G+Smo or MFEM without fields, GeoPDEs), whose attributes are the readers'
 /// coordinates.
 struct Input
 {
   vtkSmartPointer<vtkAlgorithm> producer;
   vtkIGABezierHexahedra::Patches patches;
   bool geometry = false;
-  std::string field;      ///< the first --field's attribute: the default surface attribute
+  std::string field;      ///< a NURBS file's first field (solution, GridFunction): drawn by default
   bool algebraic = false; ///< an algebraic surface: attribute f, drawn at 0
   bool demo = false;      ///< the default dataset: coloured by radius, seen from above, annotated
   std::string name;       ///< what the title calls it
@@ -642,8 +643,14 @@ void readGeometry(vtkIGANurbsReader* reader, const std::string& file, Input& inp
   reader->SetFileName(file.c_str());
   requestOrFail("'" + file + "'", [&] { return reader->Update(0, nullptr) != 0; });
   input.producer = reader;
-  input.geometry = true;
   convertOutput(reader, "'" + file + "'", input.patches, warnings);
+  // A field besides the reader's coordinates (a solution, a GridFunction) is what is drawn.
+  const auto geometryNames = iga::geometryAttributeNames();
+  for (const auto& name : input.patches.volumes.attributeNames)
+    if (input.field.empty() &&
+        std::find(geometryNames.begin(), geometryNames.end(), name) == geometryNames.end())
+      input.field = name;
+  input.geometry = input.field.empty();
 }
 
 /// A .pvd series at its time step nearest --time.
@@ -724,12 +731,6 @@ Input loadInput(const Options& options)
     for (const auto& field : options.fields)
       mfem->AddGridFunctionFileName(field.c_str());
     readGeometry(mfem, options.input, input, warnings);
-    input.geometry = options.fields.empty();
-    const auto geometryNames = iga::geometryAttributeNames();
-    for (const auto& name : input.patches.volumes.attributeNames)
-      if (input.field.empty() &&
-          std::find(geometryNames.begin(), geometryNames.end(), name) == geometryNames.end())
-        input.field = name;
   }
   else if (vtkIGABezierSeriesReader::CanReadFile(options.input.c_str()))
   {

@@ -4,6 +4,7 @@
 #include "BoundaryChecks.h"
 #include "NurbsTestUtilities.h"
 #include "vtkIGABezierHexahedra.h"
+#include "vtkIGADisplaceControlPoints.h"
 #include "vtkIGAGeoPDEsReader.h"
 #include "vtkIGAGismoReader.h"
 #include "vtkIGAMFEMReader.h"
@@ -621,6 +622,63 @@ TEST(NurbsReaders, GismoBase64NumbersAreRead)
 }
 
 } // namespace
+
+// G+Smo solutions: a MultiPatch per field in the geometry's basis, as G+Smo writes them.
+TEST(NurbsReaders, GismoSolutionFieldsAreAttributes)
+{
+  const auto grid = read<vtkIGAGismoReader>(kData + "/gismo_quarter_ring_solution.xml");
+  ASSERT_EQ(grid->GetNumberOfCells(), 1);
+  const std::vector<std::string> fields = { "temperature", "displacement_0", "displacement_1",
+    "displacement_2" };
+  for (const auto& name : fields)
+    ASSERT_NE(grid->GetPointData()->GetArray(name.c_str()), nullptr) << name;
+  vtkDataArray* vector = grid->GetPointData()->GetArray("displacement");
+  ASSERT_NE(vector, nullptr);
+  ASSERT_EQ(vector->GetNumberOfComponents(), 3);
+  // The vector moves the control points a quarter turn's worth: the cells then hold x + (-y, x, 0).
+  vtkNew<vtkIGADisplaceControlPoints> displace;
+  displace->SetInputData(grid);
+  displace->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "displacement");
+  displace->Update();
+  vtkUnstructuredGrid* moved = displace->GetOutput();
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int s = 0; s < 50; ++s)
+  {
+    const double pcoords[3] = { unit(rng), unit(rng), unit(rng) };
+    const auto value = evaluateCell(grid, 0, pcoords, fields);
+    EXPECT_NEAR(value[3], value[0] - 2 * value[2], 1e-13);
+    EXPECT_NEAR(value[4], -value[1], 1e-13);
+    EXPECT_NEAR(value[5], value[0], 1e-13);
+    EXPECT_NEAR(value[6], 0.0, 1e-13);
+    const auto after = evaluateCell(moved, 0, pcoords, {});
+    EXPECT_NEAR(after[0], value[0] - value[1], 1e-13);
+    EXPECT_NEAR(after[1], value[1] + value[0], 1e-13);
+    EXPECT_NEAR(after[2], value[2], 1e-13);
+  }
+}
+
+TEST(NurbsReaders, GismoFieldsOutsideTheGeometrysBasisGiveOneError)
+{
+  const std::string file = slurp(kData + "/gismo_quarter_ring_solution.xml");
+  // The temperature's patch (the second Geometry) with weights 1, as a B-spline field on the
+  // NURBS ring would have, or another knot vector: not the geometry's basis.
+  const size_t second = file.find("<Geometry", file.find("<Geometry") + 1);
+  const std::string head = file.substr(0, second), tail = file.substr(second);
+  const std::string weights = "1 0.70710678118654757 1 1 0.70710678118654757 1 1 "
+                              "0.70710678118654757 1 1 0.70710678118654757 1";
+  expectError<vtkIGAGismoReader>("weights-field.xml",
+    head + replaced(tail, weights, "1 1 1 1 1 1 1 1 1 1 1 1"),
+    "a field patch whose weights are not its geometry patch's (control point 2)");
+  expectError<vtkIGAGismoReader>("knots-field.xml",
+    head + replaced(tail, "0 0 0 1 1 1", "0 0 0 2 2 2"),
+    "a field patch whose basis is not its geometry patch's (direction 0)");
+  expectError<vtkIGAGismoReader>("count-field.xml",
+    replaced(
+      file, "<patches type=\"id_range\">2 2</patches>", "<patches type=\"id_index\">2 4</patches>"),
+    "has 2 patches, the geometry 1: a field has one patch per geometry patch");
+}
 
 // MFEM: the quarter ring of Data/ (hand-written in both of MFEM's forms) with fields known
 // exactly, MFEM's own exact unit ball (faces shared in every orientation), MFEM's files in
