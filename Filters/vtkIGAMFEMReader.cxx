@@ -299,6 +299,7 @@ public:
         links.faces[f] = this->FaceIndex(corners, links.faceOrientation[f]);
       }
       this->Links.push_back(links);
+      this->CheckParallelEdges(int(p));
     }
     // Offsets: edges, faces, then the patches' interiors, in numbering order.
     for (const auto& edge : this->EdgeCounts)
@@ -399,6 +400,28 @@ private:
     return { this->EdgeCounts[size_t(links.edges[0])],
       this->EdgeCounts[size_t(links.edges[volume ? 3 : 1])],
       volume ? this->EdgeCounts[size_t(links.edges[8])] : 0 };
+  }
+
+  /// A patch's parallel edges must have as many control points (MFEM's CheckPatches).
+  void CheckParallelEdges(int p) const
+  {
+    static const int kHexParallel[3][4] = { { 0, 2, 4, 6 }, { 1, 3, 5, 7 }, { 8, 9, 10, 11 } };
+    static const int kQuadParallel[2][4] = { { 0, 2, 0, 2 }, { 1, 3, 1, 3 } };
+    const bool volume = this->Topo.dimension == 3;
+    const PatchLinks& links = this->Links[size_t(p)];
+    for (int d = 0; d < this->Topo.dimension; ++d)
+    {
+      const int* edges = volume ? kHexParallel[d] : kQuadParallel[d];
+      const int count = this->EdgeCounts[size_t(links.edges[edges[0]])];
+      for (int e = 1; e < 4; ++e)
+      {
+        const int other = this->EdgeCounts[size_t(links.edges[edges[e]])];
+        if (other != count)
+          throw IGAReadError(0, "element " + std::to_string(p) + ": its edges along direction " +
+                                  std::to_string(d) + " have " + std::to_string(count + 2) +
+                                  " and " + std::to_string(other + 2) + " control points");
+      }
+    }
   }
 
   static int Along(int n, int count, bool forward) { return forward ? n : count - 1 - n; }

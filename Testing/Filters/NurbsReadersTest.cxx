@@ -826,6 +826,8 @@ TEST(NurbsReaders, DamagedMFEMFilesGiveOneError)
     "short.mesh", ring.substr(0, ring.size() - 12), "the file ends where nodes should follow");
   expectError<vtkIGAMFEMReader>(
     "kv.mesh", replaced(ring, "\n0 0 1\n", "\n7 0 1\n"), "names knot vector 7 of 3");
+  expectError<vtkIGAMFEMReader>("parallel.mesh", replaced(ring, "\n0 3 2\n", "\n1 3 2\n"),
+    "element 0: its edges along direction 0 have 3 and 2 control points");
   expectError<vtkIGAMFEMReader>("geometry.mesh", replaced(ring, "1 5 0 1", "1 3 0 1"),
     "element 0 has geometry 3, a mesh of dimension 3 needs 5");
 }
