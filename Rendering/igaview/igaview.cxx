@@ -56,6 +56,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -851,7 +852,8 @@ void drawnBounds(const Input& input, const Drawing& drawing, double* bounds)
     return;
   // Five halvings for a few patches (pieces 1/32 of theirs on a side), fewer for more.
   const int depth = volumes.size() > 256 ? 1 : volumes.size() > 32 ? 3 : 5;
-  iga::Box3<double> box{ { 0, 0, 0 }, { 0, 0, 0 } };
+  constexpr double kHuge = std::numeric_limits<double>::max();
+  iga::Box3<double> box{ { kHuge, kHuge, kHuge }, { -kHuge, -kHuge, -kHuge } };
   bool found = false;
   for (const auto& patch : volumes)
     found = iga::growByIsosurfaces(patch.view(), iga::kFirstAttributeChannel + drawing.surface,

@@ -5,7 +5,9 @@
 #include "iga/Bounds.h"
 #include "iga/Camera.h"
 #include "iga/Datasets.h"
+
 #include "iga/Newton.h"
+#include <limits>
 
 using namespace igatest;
 
@@ -224,7 +226,8 @@ TEST(IsosurfaceBounds, ShrinkOntoTheMarsdenSphere)
   double previous = 1.5;
   for (int depth = 0; depth <= 5; ++depth)
   {
-    iga::Box3<double> box{ { 0, 0, 0 }, { 0, 0, 0 } };
+    constexpr double kHuge = std::numeric_limits<double>::max();
+    iga::Box3<double> box{ { kHuge, kHuge, kHuge }, { -kHuge, -kHuge, -kHuge } };
     ASSERT_TRUE(iga::growByIsosurfaces(sphere.view(), attribute, { 0.0 }, depth, box));
     for (int a = 0; a < 3; ++a)
     {

@@ -127,8 +127,9 @@ IGA_HD bool mayContainIsovalue(const PatchView<const T, Dim>& patch, int attribu
 /// Where the isosurfaces attribute = isovalue (any of `isovalues`) of a volume lie: the union of
 /// the control-point boxes of its pieces after `depth` midpoint halvings along every direction,
 /// pieces that cannot hold one (mayContainIsovalue) dropped as soon as they appear, so the box
-/// shrinks onto the surfaces as depth grows. Grows `box` by it and returns true; returns false
-/// (box untouched) when no piece may hold one. Host only.
+/// shrinks onto the surfaces as depth grows. Grows `box` by it (start from an empty box, lo
+/// above hi) and returns true; returns false (box untouched) when no piece may hold one. Host
+/// only.
 template<class T>
 bool growByIsosurfaces(const PatchView<const T, 3>& patch, int attribute,
   const std::vector<T>& isovalues, int depth, Box3<T>& box)
@@ -159,7 +160,7 @@ bool growByIsosurfaces(const PatchView<const T, 3>& patch, int attribute,
         continue;
       for (int a = 0; a < 3; ++a)
       {
-        box.lo[a] = found || box.lo[a] < part.lo[a] ? std::min(box.lo[a], part.lo[a]) : part.lo[a];
+        box.lo[a] = std::min(box.lo[a], part.lo[a]);
         box.hi[a] = std::max(box.hi[a], part.hi[a]);
       }
       found = true;
