@@ -40,6 +40,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include "iga/AlgebraicGallery.h"
+#include "iga/AttributeRange.h"
 #include "iga/BernsteinRoots.h"
 #include "iga/Bounds.h"
 #include "iga/Csg.h"
@@ -122,8 +123,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --clip a,b,c,d         keep the part a x + b y + c z + d >= 0, its cut face drawn (repeatable):
                          the volumes, or the --csg solid, intersected with the half-space, and
                          the slices cut by it
-  --iso V                isovalue (repeatable; default: the middle of the attribute's values
-                         at the patches' corners and centres)
+  --iso V                isovalue (repeatable; default: the middle of the range the attribute
+                         takes, found by subdivision to 1e-5 of its spread)
   --surface-by NAME      attribute that defines the surface (default: the first one)
   --color-by NAME        attribute that colours the surface (default: a plain colour), or
                          curvature_mean / curvature_gauss: the isosurface's mean or Gaussian
@@ -778,50 +779,18 @@ iga::sst::Scene sceneOf(const Input& input)
   return iga::sst::Scene(input.patches.volumes.patches, input.patches.surfaces);
 }
 
-/// Range of an attribute over the volumes, and the surfaces with `surfaces` (Bernstein
-/// coefficients bound the field).
+/// The range an attribute takes over the volumes, and the surfaces with `surfaces`, to 1e-5 of its
+/// spread (iga::attributeExtremes); empty (lo above hi) without patches. Control values may pass
+/// the field by far: the Marsden sphere's f = r^2 - 1 over [-1.5, 1.5]^3 takes -1 .. 5.75, its
+/// control values -7.75 .. 5.75, whose middle, the minimum -1, is a single point.
 void attributeRange(const Input& input, int attribute, bool surfaces, double* range)
 {
-  range[0] = INFINITY;
-  range[1] = -INFINITY;
   const iga::sst::Scene scene = sceneOf(input);
-  const size_t count = surfaces ? scene.size() : scene.volumeCount();
-  for (size_t p = 0; p < count; ++p)
-  {
-    double lo, hi;
-    iga::rationalRange<double, 3>(
-      scene[p], iga::kFirstAttributeChannel + attribute, iga::kWeightChannel, lo, hi);
-    range[0] = std::min(range[0], lo);
-    range[1] = std::max(range[1], hi);
-  }
-}
-
-/// The volume attribute's values at the patches' corners and centres: values the field takes,
-/// so that the middle of their range has an isosurface. The Bernstein bounds may pass the field
-/// by far: the Marsden sphere's f = r^2 - 1 over [-1.5, 1.5]^3 takes -1 .. 5.75 and has bounds
-/// -7.75 .. 5.75, whose middle, its minimum -1, is a single point.
-void sampledAttributeRange(const Input& input, int attribute, double* range)
-{
-  range[0] = INFINITY;
-  range[1] = -INFINITY;
-  const iga::sst::Scene scene = sceneOf(input);
-  std::vector<double> values;
-  for (size_t p = 0; p < scene.volumeCount(); ++p)
-  {
-    const auto patch = scene[p];
-    values.resize(size_t(patch.channels));
-    for (int corner = 0; corner <= 8; ++corner) // 8: the centre
-    {
-      double u[3];
-      for (int d = 0; d < 3; ++d)
-        u[d] = corner == 8 ? 0.5 : double((corner >> d) & 1);
-      iga::evaluateHomogeneous<double, 3>(patch, u, values.data(), nullptr);
-      const double value =
-        values[size_t(iga::kFirstAttributeChannel + attribute)] / values[iga::kWeightChannel];
-      range[0] = std::min(range[0], value);
-      range[1] = std::max(range[1], value);
-    }
-  }
+  const long count = long(surfaces ? scene.size() : scene.volumeCount());
+  const auto extremes = iga::attributeExtremes<double, 3>(
+    count, [&](long p) { return scene[size_t(p)]; }, iga::kFirstAttributeChannel + attribute);
+  range[0] = extremes.empty() ? INFINITY : extremes.min.value;
+  range[1] = extremes.empty() ? -INFINITY : extremes.max.value;
 }
 
 /// The bounds of the input's patches; with --series, of every time step's.
@@ -1172,11 +1141,7 @@ Drawing chooseDrawing(const Options& options, const Input& input)
     if (drawing.isovalues.empty() && input.algebraic)
       drawing.isovalues.push_back(0.0);
     if (drawing.isovalues.empty())
-    {
-      double taken[2];
-      sampledAttributeRange(input, drawing.surface, taken);
-      drawing.isovalues.push_back(0.5 * (taken[0] + taken[1]));
-    }
+      drawing.isovalues.push_back(0.5 * (drawing.surfaceRange[0] + drawing.surfaceRange[1]));
   }
   // The default dataset shows its radius unless told otherwise.
   const std::string colorBy = options.colorBy.empty() && input.demo ? "radius" : options.colorBy;
