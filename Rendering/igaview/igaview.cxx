@@ -789,6 +789,11 @@ void attributeRange(const Input& input, int attribute, bool surfaces, double* ra
   const long count = long(surfaces ? scene.size() : scene.volumeCount());
   const auto extremes = iga::attributeExtremes<double, 3>(
     count, [&](long p) { return scene[size_t(p)]; }, iga::kFirstAttributeChannel + attribute);
+  if (!extremes.complete)
+    std::fprintf(stderr,
+      "igaview: warning: the range of '%s' is the values found; its subdivision budget ran out "
+      "before 1e-5 of the spread\n",
+      input.patches.volumes.attributeNames[size_t(attribute)].c_str());
   range[0] = extremes.empty() ? INFINITY : extremes.min.value;
   range[1] = extremes.empty() ? -INFINITY : extremes.max.value;
 }
