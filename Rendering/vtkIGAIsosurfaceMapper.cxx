@@ -35,6 +35,7 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtk_glew.h"
 
+#include "iga/AttributeRange.h"
 #include "iga/Boundary.h"
 #include "iga/Csg.h"
 #include "iga/Curvature.h"
@@ -977,6 +978,28 @@ const char* vtkIGAIsosurfaceMapper::GetAttributeName(int index) const
 {
   const auto& names = this->Internal->Set.attributeNames;
   return index >= 0 && size_t(index) < names.size() ? names[size_t(index)].c_str() : nullptr;
+}
+
+bool vtkIGAIsosurfaceMapper::GetAttributeRange(const char* name, double range[2]) const
+{
+  const Internals& in = *this->Internal;
+  const auto& names = in.Set.attributeNames;
+  const auto named = name ? std::find(names.begin(), names.end(), name) : names.end();
+  if (named == names.end())
+  {
+    return false;
+  }
+  const iga::sst::Scene scene(in.Set.patches, in.Quads);
+  const auto extremes = iga::attributeExtremes<double, 3>(
+    long(scene.size()), [&](long p) { return scene[size_t(p)]; },
+    iga::kFirstAttributeChannel + int(named - names.begin()));
+  if (extremes.empty())
+  {
+    return false;
+  }
+  range[0] = extremes.min.value;
+  range[1] = extremes.max.value;
+  return true;
 }
 
 vtkIdType vtkIGAIsosurfaceMapper::ProbePixel(

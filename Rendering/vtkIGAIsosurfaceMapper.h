@@ -364,6 +364,12 @@ public:
   const char* GetAttributeName(int index) const;
   ///@}
 
+  /// The range the named point attribute of the last input drawn takes over its hexahedra and
+  /// quadrilaterals, found by subdivision to 1e-5 of its spread (iga::attributeExtremes): for a
+  /// lookup table's range, where the array's own range, its control values', may pass the
+  /// field's by far. False (range untouched) without such an attribute or patches.
+  bool GetAttributeRange(const char* name, double range[2]) const;
+
   /// Probing: the first hit of pixel (x, y) of the last frame computed (x from the left, y from
   /// the bottom of the viewport), exactly: its world position, its parameter in its Bézier
   /// cell and, when `attributes` is given, every point attribute evaluated from that cell at

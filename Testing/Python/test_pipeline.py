@@ -87,3 +87,11 @@ for j in range(0, height, 7):
         assert abs(attributes.GetArray("z").GetValue(0) - point[2]) < 1e-9
 print(f"probed {probed} pixels")
 assert probed > 100, probed
+
+# The exact range of x over the ring, 0 .. the outer radius, next to the control points' bounds.
+x_range = [0.0, 0.0]
+assert mapper.GetAttributeRange("x", x_range)
+bounds = reader.GetOutput().GetBounds()
+print(f"x takes {x_range}, control points span {bounds[0:2]}")
+assert abs(x_range[0] - bounds[0]) < 1e-12 and abs(x_range[1] - bounds[1]) < 1e-12, (x_range, bounds)
+assert not mapper.GetAttributeRange("no such array", x_range)

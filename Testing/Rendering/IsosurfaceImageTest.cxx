@@ -108,6 +108,14 @@ TEST(IsosurfaceImage, ProbeIsExactOnTheMarsdenSphere)
   scene.window->Render();
   ASSERT_EQ(scene.mapper->GetNumberOfAttributes(), 1);
   EXPECT_STREQ(scene.mapper->GetAttributeName(0), "sphere");
+  // f = r^2 - 1 over [-1.5, 1.5]^3 takes -1 (the centre) .. 5.75 (the corners); its control
+  // values reach down to -7.75.
+  double range[2] = { 0, 0 };
+  ASSERT_TRUE(scene.mapper->GetAttributeRange("sphere", range));
+  EXPECT_NEAR(range[0], -1.0, 1e-12);
+  EXPECT_NEAR(range[1], 5.75, 1e-12);
+  EXPECT_LT(sphere->GetPointData()->GetArray("sphere")->GetRange()[0], -1.5);
+  EXPECT_FALSE(scene.mapper->GetAttributeRange("bogus", range));
   int probed = 0;
   for (int j = 0; j < 120; j += 3)
     for (int i = 0; i < 160; i += 3)
