@@ -1,7 +1,7 @@
 // The range a rational attribute takes over patches, and where its extremes lie: values the field
 // takes (corners of pieces) narrowed against Bernstein bounds by midpoint subdivision. The
-// control points' range alone may pass the field's by far (the unit sphere's x has control
-// values +-1.28 in a quadratic rational patch). Host only.
+// control points' range alone may pass the field's by far (the Marsden sphere's f = r^2 - 1
+// takes -1 .. 5.75, its control values reach -7.75). Host only.
 #pragma once
 
 #include "iga/Bounds.h"
@@ -19,6 +19,17 @@ struct AttributeExtreme
   T value = T(0);
   long patch = -1;
   T u[3] = {};
+
+  template<int Dim>
+  void set(T at, long where, const T* parameter)
+  {
+    this->value = at;
+    this->patch = where;
+    for (int d = 0; d < 3; ++d)
+    {
+      this->u[d] = d < Dim ? parameter[d] : T(0);
+    }
+  }
 };
 
 /// The least and greatest values found so far, and whether every patch narrowed them to its
@@ -36,18 +47,13 @@ struct AttributeExtremes
   void see(T value, long patch, const T* u)
   {
     const bool first = this->empty();
-    for (AttributeExtreme<T>* e : { &this->min, &this->max })
+    if (first || value < this->min.value)
     {
-      const bool better = e == &this->min ? value < e->value : value > e->value;
-      if (first || better)
-      {
-        e->value = value;
-        e->patch = patch;
-        for (int d = 0; d < 3; ++d)
-        {
-          e->u[d] = d < Dim ? u[d] : T(0);
-        }
-      }
+      this->min.template set<Dim>(value, patch, u);
+    }
+    if (first || value > this->max.value)
+    {
+      this->max.template set<Dim>(value, patch, u);
     }
   }
 };
@@ -66,11 +72,12 @@ struct RangePiece
   int depth;
 };
 
-/// Offers the attribute's values at the piece's corners (exact: a Bézier patch interpolates its
-/// corner control points) to `extremes`.
+/// Offers the attribute (channel `numerator` over channel `denominator`) at the patch's corners
+/// to `extremes` (exact: a Bézier patch interpolates its corner control points); the patch covers
+/// the box of parameters from `origin` spanning `extent`.
 template<class T, int Dim>
-void seeCorners(const PatchView<const T, Dim>& piece, const RangePiece<T, Dim>& where, long patch,
-  AttributeExtremes<T>& extremes)
+void seeCorners(const PatchView<const T, Dim>& patch, int numerator, int denominator,
+  const T* origin, const T* extent, long patchIndex, AttributeExtremes<T>& extremes)
 {
   for (int corner = 0; corner < (1 << Dim); ++corner)
   {
@@ -79,12 +86,12 @@ void seeCorners(const PatchView<const T, Dim>& piece, const RangePiece<T, Dim>& 
     for (int d = 0; d < Dim; ++d)
     {
       const int bit = (corner >> d) & 1;
-      index += bit * piece.degree[d] * step;
-      step *= piece.order(d);
-      u[d] = where.origin[d] + T(bit) * where.extent[d];
+      index += bit * patch.degree[d] * step;
+      step *= patch.order(d);
+      u[d] = origin[d] + T(bit) * extent[d];
     }
-    const T* point = piece.point(index);
-    extremes.template see<Dim>(point[0] / point[1], patch, u);
+    const T* point = patch.point(index);
+    extremes.template see<Dim>(point[numerator] / point[denominator], patchIndex, u);
   }
 }
 
@@ -96,18 +103,18 @@ template<class T, int Dim>
 void sampleExtremes(const PatchView<const T, Dim>& patch, int numerator, int denominator,
   long patchIndex, AttributeExtremes<T>& extremes)
 {
-  std::vector<T> values(size_t(patch.channels));
-  for (int corner = 0; corner <= (1 << Dim); ++corner) // the last: the centre
+  T origin[Dim], extent[Dim], centre[Dim];
+  for (int d = 0; d < Dim; ++d)
   {
-    T u[Dim];
-    for (int d = 0; d < Dim; ++d)
-    {
-      u[d] = corner == (1 << Dim) ? T(0.5) : T((corner >> d) & 1);
-    }
-    evaluateHomogeneous<T, Dim>(patch, u, values.data(), nullptr);
-    extremes.template see<Dim>(
-      values[size_t(numerator)] / values[size_t(denominator)], patchIndex, u);
+    origin[d] = T(0);
+    extent[d] = T(1);
+    centre[d] = T(0.5);
   }
+  detail::seeCorners(patch, numerator, denominator, origin, extent, patchIndex, extremes);
+  std::vector<T> values(size_t(patch.channels));
+  evaluateHomogeneous<T, Dim>(patch, centre, values.data(), nullptr);
+  extremes.template see<Dim>(
+    values[size_t(numerator)] / values[size_t(denominator)], patchIndex, centre);
 }
 
 /// Narrows `extremes` to within `tolerance` of the attribute's extremes over the patch (those
@@ -159,7 +166,7 @@ void narrowExtremes(const PatchView<const T, Dim>& patch, int numerator, int den
       extremes.complete = false;
       return;
     }
-    detail::seeCorners(view, piece, patchIndex, extremes);
+    detail::seeCorners(view, 0, 1, piece.origin, piece.extent, patchIndex, extremes);
     // Halving each direction in turn keeps the pieces cubes of the parameter domain.
     const int dir = piece.depth % Dim;
     Piece upperHalf = piece;
