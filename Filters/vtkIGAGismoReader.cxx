@@ -434,10 +434,9 @@ public:
       int components = 0;
       for (size_t k = 0; k < patches.size(); ++k)
       {
-        const int found =
-          order[k].first ? this->readField(patches[k], set.volumes[order[k].second], components)
-                         : this->readField(patches[k], set.surfaces[order[k].second], components);
-        components = found;
+        components = order[k].first
+                       ? this->readField(patches[k], set.volumes[order[k].second], components)
+                       : this->readField(patches[k], set.surfaces[order[k].second], components);
       }
       for (int c = 0; c < components; ++c)
       {
@@ -531,8 +530,8 @@ std::string vtkIGAGismoReader::ReadNurbs(const std::string& text, vtkIGANurbsDat
     {
       const size_t volumes = set.volumes.size();
       gismo.readGeometry(geometry, set);
-      order.emplace_back(set.volumes.size() > volumes,
-        set.volumes.size() > volumes ? volumes : set.surfaces.size() - 1);
+      const bool volume = set.volumes.size() > volumes;
+      order.emplace_back(volume, volume ? volumes : set.surfaces.size() - 1);
     }
     gismo.readFields(contents, order, set);
   }
