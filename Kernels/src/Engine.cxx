@@ -311,8 +311,7 @@ private:
               current.assign(arena.begin() + node.coeff, arena.begin() + node.coeff + count);
               arena.resize(node.coeff);
               node.coeff = 0;
-              if (!boxCoversPixel(node.info.box, i, j) ||
-                  !s.frame.hits.mayMatter(node.info.box.lo[2], best))
+              if (!mayHitPixel(node, uint32_t(p), best, s.frame))
               {
                 continue;
               }

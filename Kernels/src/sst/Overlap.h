@@ -42,7 +42,7 @@ void overlapStage(LoopState<Exec>& s)
   auto boxOf = [=] IGA_HD(size_t n) { return nodes[n].info.box; };
   s.exec.forEachCoveredPixel(counts, nodeCount, candidates, frame, boxOf,
     [=] IGA_HD(uint32_t n, size_t k, size_t p)
-    { taken[k] = roundTakesPixel(nodes[n], best[p], items, begin[p], end[p], frame) ? 1 : 0; });
+    { taken[k] = roundTakesPixel(nodes[n], p, best[p], items, begin[p], end[p], frame) ? 1 : 0; });
   s.exec.scan(taken, candidates);
   const uint64_t itemCount = s.ItemNodes.size();
   const uint64_t held = loopBytes(itemCount, nodeCount, s.Pool.size(), s.TupleCount);

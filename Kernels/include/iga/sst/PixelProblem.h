@@ -141,6 +141,49 @@ IGA_HD PatchView<const T, Dim> patchOf(const VolumeView<const T>& node)
   }
 }
 
+/// Two slabs that hold a node's projected control points, across its projected u and v edges
+/// (normals of unit 1-norm, zero where an edge is degenerate or the projection is not valid).
+/// With the window box they bound a node lying askew on screen much more tightly: a piece at 45
+/// degrees fills half its box.
+template<class T>
+struct PixelSlabs
+{
+  float normal[2][2]; ///< single precision: the test uses the same normals as the range
+  T lo[2], hi[2];
+};
+
+/// The node's slabs (PixelSlabs), from its control points after the perspective division.
+template<class T>
+IGA_HD PixelSlabs<T> projectedSlabs(const VolumeView<const T>& node, bool inFront)
+{
+  PixelSlabs<T> slabs;
+  const T* origin = node.point(0);
+  const int edgeEnds[2] = { node.degree[0], node.degree[1] * (node.degree[0] + 1) };
+  for (int d = 0; d < 2; ++d)
+  {
+    const T* end = node.point(edgeEnds[d]);
+    const T ex = end[kScreenX] / end[kScreenW] - origin[kScreenX] / origin[kScreenW];
+    const T ey = end[kScreenY] / end[kScreenW] - origin[kScreenY] / origin[kScreenW];
+    const T length = absValue(ex) + absValue(ey);
+    const bool usable = inFront && length > T(0) && isFinite(length);
+    slabs.normal[d][0] = usable ? float(-ey / length) : 0.0f;
+    slabs.normal[d][1] = usable ? float(ex / length) : 0.0f;
+    slabs.lo[d] = slabs.hi[d] = T(0);
+  }
+  for (int p = 0; p < node.pointCount(); ++p)
+  {
+    const T* cp = node.point(p);
+    const T x = cp[kScreenX] / cp[kScreenW], y = cp[kScreenY] / cp[kScreenW];
+    for (int d = 0; d < 2; ++d)
+    {
+      const T h = T(slabs.normal[d][0]) * x + T(slabs.normal[d][1]) * y;
+      slabs.lo[d] = p == 0 ? h : minValue(slabs.lo[d], h);
+      slabs.hi[d] = p == 0 ? h : maxValue(slabs.hi[d], h);
+    }
+  }
+  return slabs;
+}
+
 /// What a node of a subdivision tree knows about itself for the pixel problem. A surface's
 /// problem has two unknowns: it uses the leading 2x2 blocks of the matrices and the first two
 /// entries of the centre.
@@ -148,6 +191,7 @@ template<class T>
 struct NodeInfo
 {
   Box3<T> box;             ///< window x, y (pixels) and NDC depth, valid when status is InFront
+  PixelSlabs<T> slabs;     ///< a tighter window bound, with the box (nodeCoversPixel)
   ProjectionStatus status; ///< where the node lies relative to the eye plane
   bool mayContainSurface;  ///< a surface, or the attribute's Bernstein range holds the isovalue
   /// The attribute is constant (within rounding) and equal to the isovalue: its level set is a
@@ -173,6 +217,7 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(
 {
   NodeInfo<T> info;
   info.status = projectedBounds(node, info.box);
+  info.slabs = projectedSlabs(node, info.status == ProjectionStatus::InFront);
   T lo = T(0), hi = T(0);
   const bool known =
     !isSurface(node) && rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi);
@@ -467,6 +512,31 @@ IGA_HD bool boxCoversPixel(const Box3<T>& box, int i, int j)
   const T margin = T(1e-6) + T(8) * Epsilon<T>::value * (absValue(x) + absValue(y));
   return box.lo[0] - margin <= x && x <= box.hi[0] + margin && box.lo[1] - margin <= y &&
          y <= box.hi[1] + margin;
+}
+
+/// The pixel centre lies in the node's slabs (widened by a rounding margin).
+template<class T>
+IGA_HD bool slabsCoverPixel(const PixelSlabs<T>& slabs, int i, int j)
+{
+  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
+  const T margin = T(1e-6) + T(16) * Epsilon<T>::value * (absValue(x) + absValue(y));
+  for (int d = 0; d < 2; ++d)
+  {
+    const T h = T(slabs.normal[d][0]) * x + T(slabs.normal[d][1]) * y;
+    if (h < slabs.lo[d] - margin || h > slabs.hi[d] + margin)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The pixel centre lies in the node's window box and slabs: else the node's piece of the patch
+/// cannot hold the pixel's root.
+template<class T>
+IGA_HD bool nodeCoversPixel(const NodeInfo<T>& info, int i, int j)
+{
+  return boxCoversPixel(info.box, i, j) && slabsCoverPixel(info.slabs, i, j);
 }
 
 /// The same proof along better directions, for a node with centre data: the rows of

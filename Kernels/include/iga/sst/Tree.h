@@ -339,11 +339,11 @@ IGA_HD inline bool readyForTuples(const Node& node, const FrameConstants& frame)
          node.level >= frame.maxSubdivisionDepth || node.overBudget;
 }
 
-/// Whether a node's box holds the pixel and may matter to it (the hit policy).
+/// Whether a node's box and slabs hold the pixel and the node may matter to it (the hit policy).
 IGA_HD inline bool mayHitPixel(
   const Node& node, uint32_t pixel, double bestDepth, const FrameConstants& frame)
 {
-  return boxCoversPixel(node.info.box, int(pixel % frame.width), int(pixel / frame.width)) &&
+  return nodeCoversPixel(node.info, int(pixel % frame.width), int(pixel / frame.width)) &&
          frame.hits.mayMatter(node.info.box.lo[2], bestDepth);
 }
 
@@ -485,13 +485,15 @@ IGA_HD double solvePixelTuples(const Tuple* tuples, uint32_t first, uint32_t las
   return best;
 }
 
-/// Whether a pixel its box covers takes a tuple of an implicit node this round: the node's
-/// initial node is among the pixel's work items [begin, end) and the node may matter to it.
-IGA_HD inline bool roundTakesPixel(const Node& node, double bestDepth, const uint32_t* items,
-  uint32_t begin, uint32_t end, const FrameConstants& frame)
+/// Whether a pixel its box covers takes a tuple of an implicit node this round: the node may
+/// matter to it, its initial node is among the pixel's work items [begin, end) and its slabs
+/// hold the pixel.
+IGA_HD inline bool roundTakesPixel(const Node& node, size_t pixel, double bestDepth,
+  const uint32_t* items, uint32_t begin, uint32_t end, const FrameConstants& frame)
 {
   return frame.hits.mayMatter(node.info.box.lo[2], bestDepth) &&
-         inGroup(items, begin, end, node.initial);
+         inGroup(items, begin, end, node.initial) &&
+         slabsCoverPixel(node.info.slabs, int(pixel % frame.width), int(pixel / frame.width));
 }
 
 // ---- shading ---------------------------------------------------------------------------------
