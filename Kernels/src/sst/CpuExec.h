@@ -193,7 +193,9 @@ struct CpuExec
 
   /// Groups records by pixel, keeping their order within a pixel: a stable LSD radix sort on
   /// the pixel index, 11 bits a pass. O(records) whatever the image size, where a counting
-  /// sort over the pixels paid for every pixel of a large, sparsely covered image.
+  /// sort over the pixels paid for every pixel of a large, sparsely covered image. Each pass
+  /// counts and scatters contiguous parts of the records on all threads, part after part in
+  /// each digit's range, so the order within a pixel stays that of the input.
   template<class Record>
   void sortByPixel(Record* records, size_t n, size_t pixelCount) const
   {
@@ -207,25 +209,45 @@ struct CpuExec
     Buffer<Record> scratch(n);
     Record* from = records;
     Record* to = scratch.data();
-    std::vector<uint32_t> counts;
+    const size_t parts = n < kCheap ? 1 : size_t(this->threads);
+    std::vector<uint32_t> counts(parts * kDigits); // per part (apart: no shared cache lines)
     for (int shift = 0; (size_t(1) << shift) < pixelCount; shift += kRadixBits)
     {
       auto digit = [&](const Record& r) { return (r.pixel >> shift) & (kDigits - 1); };
-      counts.assign(kDigits, 0);
-      for (size_t k = 0; k < n; ++k)
+      std::fill(counts.begin(), counts.end(), 0u);
+      parallelParts(n, parts, this->threads,
+        [&](size_t part, size_t begin, size_t end)
+        {
+          uint32_t* partCounts = counts.data() + part * kDigits;
+          for (size_t k = begin; k < end; ++k)
+          {
+            ++partCounts[digit(from[k])];
+          }
+        });
+      uint32_t start = 0; // where each part's records of each digit go, digit by digit
+      for (uint32_t d = 0; d < kDigits; ++d)
       {
-        ++counts[digit(from[k])];
+        for (size_t part = 0; part < parts; ++part)
+        {
+          const uint32_t count = counts[part * kDigits + d];
+          counts[part * kDigits + d] = start;
+          start += count;
+        }
       }
-      this->scan(counts.data(), kDigits - 1);
-      for (size_t k = 0; k < n; ++k)
-      {
-        to[counts[digit(from[k])]++] = from[k];
-      }
+      parallelParts(n, parts, this->threads,
+        [&](size_t part, size_t begin, size_t end)
+        {
+          uint32_t* next = counts.data() + part * kDigits;
+          for (size_t k = begin; k < end; ++k)
+          {
+            to[next[digit(from[k])]++] = from[k];
+          }
+        });
       std::swap(from, to);
     }
     if (from != records)
     {
-      std::copy(from, from + n, records);
+      this->copy(from, n, records);
     }
   }
 

@@ -80,7 +80,8 @@ size_t chooseSplits(LoopState<Exec>& s)
   uint64_t* childValues = sized(s.ChildValues, nodeCount + 1);
   uint64_t* splitCost = sized(s.SplitCost, nodeCount + 1);
   uint64_t* carriedBytes = sized(s.NodeBytes, nodeCount + 1);
-  s.exec.forEach(nodeCount,
+  s.exec.forEach(
+    nodeCount,
     [=] IGA_HD(size_t n)
     {
       const bool waiting = nodes[n].implicit && readyForTuples(nodes[n], frame);
@@ -103,7 +104,8 @@ size_t chooseSplits(LoopState<Exec>& s)
       childValues[n] = splits ? uint64_t(children) * values : 0;
       splitCost[n] = splits ? splitBytes(values, children, failed[n]) : 0;
       carriedBytes[n] = nodes[n].implicit && (waiting || splits) ? nodeBytes(1, values) : 0;
-    });
+    },
+    kGrainNode); // splitAxes reads the node's coefficients
   s.exec.scan(splitIndex, nodeCount);
   s.exec.scan(childValues, nodeCount);
   s.exec.scan(splitCost, nodeCount);
