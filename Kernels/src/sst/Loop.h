@@ -82,7 +82,10 @@ void solveRound(LoopState<Exec>& s)
       {
         for (uint32_t i = begin[active[k]]; i < end[active[k]]; ++i)
         {
-          storeShared(&present[items[i]], 1);
+          if (!present[items[i]]) // stores only where needed: threads share the few flags
+          {
+            storeShared(&present[items[i]], 1);
+          }
         }
       });
     s.NodeCount = gatherNodes(
