@@ -4,6 +4,9 @@
 //   Array<T>                        growable array in the execution's memory (resize, data, swap)
 //   forEach(n, fn[, grain])         fn(k) for k in [0, n), in any order, each k once; `grain`
 //                                   the elements worth a thread (few for costly elements)
+//   forEachCounting<Local>(n, fn, flush[, grain])
+//                                   fn(k, local) as forEach, each thread's Local counts handed
+//                                   to flush(local) per chunk (CPU) or per element (GPU)
 //   forEachCoveredPixel(starts, owners, n, frame, boxOf, fn)
 //                                   fn(owner, item, pixel) for the n items, [starts[o],
 //                                   starts[o + 1]) those of owner o: the pixels its box covers
@@ -61,6 +64,27 @@ struct CpuExec
         {
           fn(k);
         }
+      },
+      grain);
+  }
+
+  /// forEach whose elements count into a Local (started as Local{}) that flush(local) receives
+  /// once per chunk of elements: counters that all threads share are added to a few times a
+  /// loop, not once an element, where their cache line moving between the cores cost more than
+  /// the elements' work.
+  template<class Local, class Fn, class Flush>
+  void forEachCounting(size_t n, Fn fn, Flush flush, size_t grain = kCheap) const
+  {
+    parallelFor(
+      n, this->threads,
+      [&](size_t begin, size_t end)
+      {
+        Local local{};
+        for (size_t k = begin; k < end; ++k)
+        {
+          fn(k, local);
+        }
+        flush(local);
       },
       grain);
   }

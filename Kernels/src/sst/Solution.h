@@ -28,9 +28,9 @@ void solutionStage(LoopState<Exec>& s)
   double* bestDepth = raw(s.BestDepth);
   uint32_t* certified = raw(s.PixelSolves);
   unsigned long long* tallies = raw(s.Tallies);
-  s.exec.forEach(
+  s.exec.template forEachCounting<NewtonWork>(
     tupleCount,
-    [=] IGA_HD(size_t first)
+    [=] IGA_HD(size_t first, NewtonWork & newton)
     {
       const uint32_t pixel = tuples[first].pixel;
       if (first > 0 && tuples[first - 1].pixel == pixel)
@@ -42,19 +42,21 @@ void solutionStage(LoopState<Exec>& s)
       {
         ++end;
       }
-      NewtonWork newton;
       bestDepth[pixel] = solvePixelTuples(
         tuples, uint32_t(first), uint32_t(end), pixel, nodes,
         [=](const Node& node) { return viewOf(node, pool, shapes); }, bestDepth[pixel], frame,
         outcome, solution, certified[pixel], newton);
+      for (size_t t = first; t < end; ++t)
+      {
+        hitIndex[t] = outcome[t] == Solved ? 1 : 0;
+      }
+    },
+    [=] IGA_HD(const NewtonWork& newton)
+    {
       if (newton.runs > 0)
       {
         addAtomically(&tallies[NewtonRuns], newton.runs);
         addAtomically(&tallies[NewtonEvaluations], newton.evaluations);
-      }
-      for (size_t t = first; t < end; ++t)
-      {
-        hitIndex[t] = outcome[t] == Solved ? 1 : 0;
       }
     },
     kGrainPixel);

@@ -74,6 +74,20 @@ struct CoveredPixelOfOwner
   }
 };
 
+/// An element of forEachCounting: its own counts, flushed at once.
+template<class Local, class Fn, class Flush>
+struct CountingElement
+{
+  Fn fn;
+  Flush flush;
+  IGA_HD void operator()(size_t k) const
+  {
+    Local local{};
+    fn(k, local);
+    flush(local);
+  }
+};
+
 struct ThrustExec
 {
   template<class T>
@@ -90,6 +104,12 @@ struct ThrustExec
     {
       thrust::for_each_n(exec(), thrust::counting_iterator<size_t>(0), n, fn);
     }
+  }
+
+  template<class Local, class Fn, class Flush>
+  void forEachCounting(size_t n, Fn fn, Flush flush, size_t = 1) const
+  {
+    this->forEach(n, CountingElement<Local, Fn, Flush>{ fn, flush });
   }
 
   /// A thread per (owner, pixel) item, which finds its owner by binary search and its pixel by
