@@ -462,7 +462,7 @@ struct Driver
         Node root = rootAt(r, volumeCount, isoCount);
         const PatchShape& shape = shapes[root.patch];
         const VolumeView<const double> view(screen + shape.screen, shape.degree, kScreenChannels);
-        root.info = analyzeNodeBounds(view, isovalueOf(root, frame), frame.clip);
+        analyzeNodeBounds(view, isovalueOf(root, frame), frame.clip, root.info);
         root.coeff = shape.screen;
         roots[r] = root;
         state[r] = !worthKeeping(root.info, frame)                 ? 0

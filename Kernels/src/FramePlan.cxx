@@ -101,7 +101,7 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
   auto straddles = [&](Node& node, const double* values)
   {
     const VolumeView<const double> view(values, degree, kScreenChannels);
-    node.info = analyzeNodeBounds(view, isovalue, plan.frame.clip);
+    analyzeNodeBounds(view, isovalue, plan.frame.clip, node.info);
     report.constantAttributeRoots += node.level == 0 && node.info.constantAttribute ? 1 : 0;
     if (!worthKeeping(node.info, plan.frame))
     {

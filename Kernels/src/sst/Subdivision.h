@@ -15,20 +15,25 @@ namespace iga
 namespace sst
 {
 
-/// Child c of a split node, its coefficients already at childPool + child.coeff: analysed,
-/// and whether it is kept. Explicit children are analysed further once they receive pixels.
-IGA_HD inline void finishChild(Node child, const double* childPool, const PatchShape* shapes,
-  const FrameConstants& frame, size_t k, Node* children, uint8_t* keep, unsigned int* firstTuple)
+/// Child c of a split node, its coefficients already at childPool + `coeff`: placed and
+/// analysed in its slot k (the parent's analysis is not copied), and whether it is kept.
+/// Explicit children are analysed further once they receive pixels.
+IGA_HD inline void finishChild(const Node& parent, int c, size_t coeff, const double* childPool,
+  const PatchShape* shapes, const FrameConstants& frame, size_t k, Node* children, uint8_t* keep,
+  unsigned int* firstTuple)
 {
+  Node& child = children[k];
+  static_cast<NodePlace&>(child) = parent;
+  halvePlace(child, parent.axes, c);
+  child.coeff = coeff;
   const auto view = viewOf(child, childPool, shapes);
-  child.info = analyzeNodeBounds(view, isovalueOf(child, frame), frame.clip);
+  analyzeNodeBounds(view, isovalueOf(child, frame), frame.clip, child.info);
   keep[k] = worthKeeping(child.info, frame) ? 1 : 0;
   firstTuple[k] = ~0u;
   if (child.implicit && keep[k])
   {
     analyzeNodeSolver(view, child.info);
   }
-  children[k] = child;
 }
 
 /// A child slot past a split node's childCount: never kept.
@@ -176,12 +181,8 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
   uint8_t* keep = sized(s.KeepFlags, slots);
   // The first tuple that moves to each child (the compaction's cap may stop those after it).
   unsigned int* firstTuple = sized(s.FirstTuple, slots);
-  auto childAt = [=] IGA_HD(uint32_t n, int c)
-  {
-    Node child = childOf(nodes[n], nodes[n].axes, c);
-    child.coeff = childValues[n] + size_t(c) * shapes[nodes[n].patch].screenValues;
-    return child;
-  };
+  auto coeffOf = [=] IGA_HD(uint32_t n, int c)
+  { return childValues[n] + size_t(c) * shapes[nodes[n].patch].screenValues; };
   if constexpr (Exec::kThreadPerChild)
   {
     s.exec.forEach(slots,
@@ -195,9 +196,9 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
           emptySlot(k, keep, firstTuple);
           return;
         }
-        const Node child = childAt(n, c);
-        nodeChild(parent, nodes[n].axes, c, childPool + child.coeff);
-        finishChild(child, childPool, shapes, frame, k, children, keep, firstTuple);
+        nodeChild(parent, nodes[n].axes, c, childPool + coeffOf(n, c));
+        finishChild(
+          nodes[n], c, coeffOf(n, c), childPool, shapes, frame, k, children, keep, firstTuple);
       });
   }
   else
@@ -211,8 +212,8 @@ void splitNodes(LoopState<Exec>& s, size_t allowed)
         splitNode(parent, nodes[n].axes, childPool + childValues[n]);
         for (int c = 0; c < kChildSlots; ++c)
         {
-          c < childCount(nodes[n].axes) ? finishChild(childAt(n, c), childPool, shapes, frame,
-                                            kChildSlots * k + c, children, keep, firstTuple)
+          c < childCount(nodes[n].axes) ? finishChild(nodes[n], c, coeffOf(n, c), childPool, shapes,
+                                            frame, kChildSlots * k + c, children, keep, firstTuple)
                                         : emptySlot(kChildSlots * k + c, keep, firstTuple);
         }
       },

@@ -212,10 +212,9 @@ struct NodeInfo
 /// The cheap part of a node's analysis: window box, eye-plane status, sign change (volumes),
 /// clip depth and clipping planes.
 template<class T>
-IGA_HD NodeInfo<T> analyzeNodeBounds(
-  const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip = ClipPlanes<T>())
+IGA_HD void analyzeNodeBounds(
+  const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip, NodeInfo<T>& info)
 {
-  NodeInfo<T> info;
   info.status = projectedBounds(node, info.box);
   info.slabs = projectedSlabs(node, info.status == ProjectionStatus::InFront);
   T lo = T(0), hi = T(0);
@@ -240,7 +239,6 @@ IGA_HD NodeInfo<T> analyzeNodeBounds(
   info.certified = false;
   info.canExclude = false;
   info.hasCentre = false;
-  return info;
 }
 
 enum class TupleOutcome
@@ -498,7 +496,8 @@ template<class T>
 IGA_HD NodeInfo<T> analyzeNode(
   const VolumeView<const T>& node, T isovalue, const ClipPlanes<T>& clip = ClipPlanes<T>())
 {
-  NodeInfo<T> info = analyzeNodeBounds(node, isovalue, clip);
+  NodeInfo<T> info;
+  analyzeNodeBounds(node, isovalue, clip, info);
   analyzeNodeSolver(node, info);
   analyzeNodeCentre(node, info);
   return info;

@@ -15,10 +15,11 @@ namespace iga
 namespace sst
 {
 
-/// A sub-patch of an input patch for one isovalue (a volume) or of a surface (iso -1): depths and
-/// integer offsets locate it in the input patch's parameter cube ([offset, offset + 1] /
-/// 2^depth along each direction; a surface's third stays 0).
-struct Node
+/// Where a node lies: a sub-patch of an input patch for one isovalue (a volume) or of a surface
+/// (iso -1), whose depths and integer offsets locate it in the input patch's parameter cube
+/// ([offset, offset + 1] / 2^depth along each direction; a surface's third stays 0), and its
+/// place in the SST loop.
+struct NodePlace
 {
   int patch;
   int iso;
@@ -26,11 +27,16 @@ struct Node
   int depth[3];      ///< halvings along each direction
   int64_t offset[3]; ///< which of the 2^depth[d] intervals along d it covers
   size_t coeff;      ///< start of its screen coefficients in the owning pool
+  uint32_t initial;  ///< the initial node (SAG work item) it descends from
+  bool implicit;     ///< SST: stands for all round pixels in its box, without tuples yet
+  bool overBudget;   ///< SST: an implicit node the memory cap did not let split
+  uint8_t axes;      ///< SST: the directions its split halves (splitAxes), once it is chosen
+};
+
+/// A node of a subdivision tree: its place and what it knows of itself.
+struct Node : NodePlace
+{
   NodeInfo<double> info;
-  uint32_t initial; ///< the initial node (SAG work item) it descends from
-  bool implicit;    ///< SST: stands for all round pixels in its box, without tuples yet
-  bool overBudget;  ///< SST: an implicit node the memory cap did not let split
-  uint8_t axes;     ///< SST: the directions its split halves (splitAxes), once it is chosen
 };
 
 /// A ray/isosurface root before shading.
@@ -213,19 +219,25 @@ IGA_HD inline int axesAtDepthCap(const Node& node, int cap)
   return axes;
 }
 
-/// Child `child` of a node's split along `axes` (splitNode).
-IGA_HD inline Node childOf(const Node& parent, int axes, int child)
+/// Halves a node's place along `axes`, to that of its child `child` (splitNode's order).
+IGA_HD inline void halvePlace(NodePlace& place, int axes, int child)
 {
-  Node node = parent;
   for (int d = 0; d < 3; ++d)
   {
     if ((axes >> d) & 1)
     {
-      ++node.depth[d];
-      node.offset[d] = 2 * parent.offset[d] + (upperHalf(axes, child, d) ? 1 : 0);
-      node.level = node.depth[d] > node.level ? node.depth[d] : node.level;
+      ++place.depth[d];
+      place.offset[d] = 2 * place.offset[d] + (upperHalf(axes, child, d) ? 1 : 0);
+      place.level = place.depth[d] > place.level ? place.depth[d] : place.level;
     }
   }
+}
+
+/// Child `child` of a node's split along `axes` (splitNode), with the parent's analysis.
+IGA_HD inline Node childOf(const Node& parent, int axes, int child)
+{
+  Node node = parent;
+  halvePlace(node, axes, child);
   return node;
 }
 
