@@ -64,7 +64,8 @@ size_t gatherNodes(LoopState<Exec>& s, const Node* first, const double* firstPoo
       {
         return;
       }
-      Node node = fromFirst ? first[n] : second[n - firstCount];
+      Node& node = nodes[index[n]];
+      node = fromFirst ? first[n] : second[n - firstCount];
       const double* source = (fromFirst ? firstPool : secondPool) + node.coeff;
       const int valueCount = shapes[node.patch].screenValues;
       for (int v = 0; v < valueCount; ++v)
@@ -86,7 +87,6 @@ size_t gatherNodes(LoopState<Exec>& s, const Node* first, const double* firstPoo
         analyzeNodeSolver(view, node.info);
         analyzeNodeCentre(view, node.info);
       }
-      nodes[index[n]] = node;
     },
     kGrainNode);
   s.Nodes.swap(s.NextNodes);
