@@ -156,6 +156,48 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
   }
 }
 
+/// Room for the roots of patches [begin, end) that lie in front of the eye (most do).
+void reserveRoots(FramePlan& part, const Scene& scene, size_t begin, size_t end, const Settings& s)
+{
+  size_t roots = 0, values = 0;
+  for (size_t p = begin; p < end; ++p)
+  {
+    const size_t count = size_t(rootsOf(scene[p].degree, s));
+    roots += count;
+    values += count * size_t(scene[p].pointCount()) * kScreenChannels;
+  }
+  part.initialNodes.reserve(roots);
+  part.initialPool.reserve(values);
+}
+
+/// The parts' roots and screen patches, one after another in part order, copied on all threads.
+void joinRoots(FramePlan& plan, const std::vector<FramePlan>& parts)
+{
+  std::vector<size_t> nodeStarts(parts.size() + 1, 0), valueStarts(parts.size() + 1, 0);
+  for (size_t k = 0; k < parts.size(); ++k)
+  {
+    nodeStarts[k + 1] = nodeStarts[k] + parts[k].initialNodes.size();
+    valueStarts[k + 1] = valueStarts[k] + parts[k].initialPool.size();
+  }
+  plan.initialNodes.resize(nodeStarts.back());
+  plan.initialPool.resize(valueStarts.back());
+  parallelFor(parts.size(), plan.threads,
+    [&](size_t begin, size_t end)
+    {
+      for (size_t k = begin; k < end; ++k)
+      {
+        std::copy(parts[k].initialPool.begin(), parts[k].initialPool.end(),
+          plan.initialPool.begin() + std::ptrdiff_t(valueStarts[k]));
+        Node* nodes = plan.initialNodes.data() + nodeStarts[k];
+        for (const Node& node : parts[k].initialNodes)
+        {
+          *nodes = node;
+          (nodes++)->coeff += valueStarts[k];
+        }
+      }
+    });
+}
+
 void analyzeRoots(FramePlan& plan, const Scene& scene)
 {
   parallelFor(plan.initialNodes.size(), plan.threads,
@@ -464,6 +506,7 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
       FramePlan& part = found[k];
       part.frame = plan.frame;
       FrameReport& partReport = partReports[k];
+      reserveRoots(part, scene, begin, end, s);
       std::vector<double> screen;
       for (size_t p = begin; p < end; ++p)
       {
@@ -481,18 +524,11 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
         }
       }
     });
-  for (size_t k = 0; k < parts; ++k)
+  joinRoots(plan, found);
+  for (const FrameReport& partReport : partReports)
   {
-    const size_t offset = plan.initialPool.size();
-    plan.initialPool.insert(
-      plan.initialPool.end(), found[k].initialPool.begin(), found[k].initialPool.end());
-    for (Node node : found[k].initialNodes)
-    {
-      node.coeff += offset;
-      plan.initialNodes.push_back(node);
-    }
-    report.droppedAtEyePlane += partReports[k].droppedAtEyePlane;
-    report.constantAttributeRoots += partReports[k].constantAttributeRoots;
+    report.droppedAtEyePlane += partReport.droppedAtEyePlane;
+    report.constantAttributeRoots += partReport.constantAttributeRoots;
   }
   return plan;
 }
