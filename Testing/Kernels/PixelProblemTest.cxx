@@ -21,13 +21,13 @@ struct ExclusionCounts
   int missesAlongRows = 0;  ///< of those, proved by excludesPixelAlongRows
   int missesByMean = 0;     ///< of those, proved by excludesPixel
   int missesByKrawczyk = 0; ///< of those, proved by the Krawczyk test
+  int missesBySlabs = 0;    ///< of those, outside the node's slabs
   int wrongExclusions = 0;  ///< root pairs that some proof dropped
 };
 
-/// Every node of a uniform subdivision of `world` to `depth` that may hold the surface, against
-/// every pixel of a width x width image that its box covers.
-ExclusionCounts countExclusions(
-  const iga::BezierVolume<double>& world, double isovalue, int width, int depth)
+/// Window coordinates of a width x width image whose camera frames the patches' control points.
+template<int Dim>
+glm::dmat4 windowFraming(const std::vector<iga::PatchView<const double, Dim>>& patches, int width)
 {
   double bounds[6];
   for (int d = 0; d < 3; ++d)
@@ -35,20 +35,31 @@ ExclusionCounts countExclusions(
     bounds[2 * d] = 1e300;
     bounds[2 * d + 1] = -1e300;
   }
-  const auto view = world.view();
-  for (int p = 0; p < view.pointCount(); ++p)
+  for (const auto& view : patches)
   {
-    for (int d = 0; d < 3; ++d)
+    for (int p = 0; p < view.pointCount(); ++p)
     {
-      const double x = view.point(p)[d] / view.point(p)[iga::kWeightChannel];
-      bounds[2 * d] = std::min(bounds[2 * d], x);
-      bounds[2 * d + 1] = std::max(bounds[2 * d + 1], x);
+      for (int d = 0; d < 3; ++d)
+      {
+        const double x = view.point(p)[d] / view.point(p)[iga::kWeightChannel];
+        bounds[2 * d] = std::min(bounds[2 * d], x);
+        bounds[2 * d + 1] = std::max(bounds[2 * d + 1], x);
+      }
     }
   }
   const iga::Camera camera = iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
   glm::dmat4 window(1.0);
   window[0][0] = window[3][0] = window[1][1] = window[3][1] = 0.5 * width;
-  const glm::dmat4 windowFromWorld = window * iga::worldToClip(camera, 1.0);
+  return window * iga::worldToClip(camera, 1.0);
+}
+
+/// Every node of a uniform subdivision of `world` to `depth` that may hold the surface, against
+/// every pixel of a width x width image that its box covers.
+ExclusionCounts countExclusions(
+  const iga::BezierVolume<double>& world, double isovalue, int width, int depth)
+{
+  const auto view = world.view();
+  const glm::dmat4 windowFromWorld = windowFraming<3>({ view }, width);
 
   const int count = view.pointCount() * iga::sst::kScreenChannels;
   std::vector<double> level(count);
@@ -108,10 +119,11 @@ ExclusionCounts countExclusions(
         const bool byKrawczyk =
           info.canExclude && iga::krawczykExcludes<double, 3>(info.inverse, info.spread, residual,
                                iga::NewtonSettings<double>().domainSlack);
+        const bool bySlabs = !iga::sst::slabsCoverPixel(info.slabs, i, j);
         if (inside)
         {
           ++counts.rootPairs;
-          counts.wrongExclusions += alongRows || byMean || byKrawczyk ? 1 : 0;
+          counts.wrongExclusions += alongRows || byMean || byKrawczyk || bySlabs ? 1 : 0;
         }
         else if (!converged)
         {
@@ -119,6 +131,7 @@ ExclusionCounts countExclusions(
           counts.missesAlongRows += alongRows ? 1 : 0;
           counts.missesByMean += byMean ? 1 : 0;
           counts.missesByKrawczyk += byKrawczyk ? 1 : 0;
+          counts.missesBySlabs += bySlabs ? 1 : 0;
         }
       }
     }
@@ -135,8 +148,9 @@ void expectSoundAndSharp(const ExclusionCounts& c)
   EXPECT_GT(c.missesAlongRows, c.missPairs / 2);
   EXPECT_GT(c.missesAlongRows, c.missesByMean);
   std::printf("root pairs %d, miss pairs %d: proved along rows %d, by the mean %d, by Krawczyk "
-              "%d\n",
-    c.rootPairs, c.missPairs, c.missesAlongRows, c.missesByMean, c.missesByKrawczyk);
+              "%d, outside the slabs %d\n",
+    c.rootPairs, c.missPairs, c.missesAlongRows, c.missesByMean, c.missesByKrawczyk,
+    c.missesBySlabs);
 }
 
 TEST(PixelProblem, ExclusionsAreSoundOnTheSphere)
@@ -149,6 +163,71 @@ TEST(PixelProblem, ExclusionsAreSoundOnTheTwistedTeardrop)
 {
   const auto teardrop = iga::makeTeardrop<double>(1.2);
   expectSoundAndSharp(countExclusions(teardrop.patches[0], 0.0, 96, 3));
+}
+
+/// Every point of the teapot's surfaces, in nodes of a uniform subdivision three levels deep,
+/// lies in its node's slabs (sampled on 9 x 9 parameters a node), and the slabs hold a good part
+/// of the box's pixels fewer.
+TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
+{
+  const auto teapot = iga::makeTeapot<double>();
+  std::vector<iga::PatchView<const double, 2>> views;
+  for (const auto& patch : teapot.patches)
+  {
+    views.push_back(patch.view());
+  }
+  const int width = 256;
+  const glm::dmat4 windowFromWorld = windowFraming<2>(views, width);
+  int outside = 0, boxPixels = 0, slabPixels = 0;
+  for (const auto& surface : views)
+  {
+    const auto world = iga::flatVolume(surface);
+    const int count = world.pointCount() * iga::sst::kScreenChannels;
+    std::vector<double> level(count);
+    iga::sst::makeScreenPatch<double>(world, windowFromWorld, iga::kWeightChannel, level.data());
+    for (int d = 0; d < 3; ++d)
+    {
+      std::vector<double> next(level.size() * 4);
+      for (size_t n = 0; n < level.size() / count; ++n)
+      {
+        iga::sst::splitNode(iga::VolumeView<const double>(
+                              level.data() + n * count, world.degree, iga::sst::kScreenChannels),
+          0b011, next.data() + n * 4 * count);
+      }
+      level.swap(next);
+    }
+    for (size_t n = 0; n < level.size() / count; ++n)
+    {
+      const iga::VolumeView<const double> node(
+        level.data() + n * count, world.degree, iga::sst::kScreenChannels);
+      iga::sst::NodeInfo<double> info;
+      iga::sst::analyzeNodeBounds(node, 0.0, iga::sst::ClipPlanes<double>(), info);
+      ASSERT_EQ(info.status, iga::ProjectionStatus::InFront);
+      for (int s = 0; s < 81; ++s)
+      {
+        const double u[2] = { (s % 9) / 8.0, (s / 9) / 8.0 };
+        double values[iga::sst::kScreenChannels];
+        iga::evaluateHomogeneous<double, 2>(iga::surfaceOf(node), u, values, nullptr);
+        const double x = values[iga::sst::kScreenX] / values[iga::sst::kScreenW];
+        const double y = values[iga::sst::kScreenY] / values[iga::sst::kScreenW];
+        outside += iga::sst::slabsHold(info.slabs, x, y) ? 0 : 1;
+      }
+      for (int j = std::max(0, int(info.box.lo[1])); j <= std::min(width - 1, int(info.box.hi[1]));
+           ++j)
+      {
+        for (int i = std::max(0, int(info.box.lo[0]));
+             i <= std::min(width - 1, int(info.box.hi[0])); ++i)
+        {
+          boxPixels += iga::sst::boxCoversPixel(info.box, i, j) ? 1 : 0;
+          slabPixels += iga::sst::nodeCoversPixel(info, i, j) ? 1 : 0;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(outside, 0) << "points of a node outside its slabs";
+  EXPECT_GT(boxPixels, 1000);
+  EXPECT_LT(slabPixels, boxPixels * 0.9) << "the slabs should drop a good part of the box";
+  std::printf("pixels in the boxes %d, in boxes and slabs %d\n", boxPixels, slabPixels);
 }
 
 /// A degree-1 screen node (u, v, w in 0, 1 at its corners): window position X/W, Y/W and

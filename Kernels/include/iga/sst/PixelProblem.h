@@ -513,11 +513,10 @@ IGA_HD bool boxCoversPixel(const Box3<T>& box, int i, int j)
          y <= box.hi[1] + margin;
 }
 
-/// The pixel centre lies in the node's slabs (widened by a rounding margin).
+/// The window point (x, y) lies in the slabs (widened by a rounding margin).
 template<class T>
-IGA_HD bool slabsCoverPixel(const PixelSlabs<T>& slabs, int i, int j)
+IGA_HD bool slabsHold(const PixelSlabs<T>& slabs, T x, T y)
 {
-  const T x = T(i) + T(0.5), y = T(j) + T(0.5);
   const T margin = T(1e-6) + T(16) * Epsilon<T>::value * (absValue(x) + absValue(y));
   for (int d = 0; d < 2; ++d)
   {
@@ -528,6 +527,13 @@ IGA_HD bool slabsCoverPixel(const PixelSlabs<T>& slabs, int i, int j)
     }
   }
   return true;
+}
+
+/// The centre of pixel (i, j) lies in the slabs.
+template<class T>
+IGA_HD bool slabsCoverPixel(const PixelSlabs<T>& slabs, int i, int j)
+{
+  return slabsHold(slabs, T(i) + T(0.5), T(j) + T(0.5));
 }
 
 /// The pixel centre lies in the node's window box and slabs: else the node's piece of the patch
