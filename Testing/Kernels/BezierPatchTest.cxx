@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 using namespace igatest;
 
@@ -365,6 +366,14 @@ TYPED_TEST(BezierPatchTest, HighestDegreeEvaluatesAndSplits)
   const double uExact[3] = { double(uT[0]), double(uT[1]), double(uT[2]) };
   const auto reference = evaluateDirect(patch.view(), uExact);
   EXPECT_NEAR(double(values[0]), double(reference[0]), Tolerance<T>::relative * maxAbs(reference));
+}
+
+TEST(Portability, InversePowerOfTwoIsLdexpsExactly)
+{
+  for (int e = -3; e <= 1100; ++e) // the bit-built range and both sides of it
+  {
+    EXPECT_EQ(iga::inversePowerOfTwo(e), std::ldexp(1.0, -e)) << "e = " << e;
+  }
 }
 
 TEST(BernsteinBasis, PartitionOfUnityAndDerivativeSum)

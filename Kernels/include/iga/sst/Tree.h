@@ -406,7 +406,7 @@ constexpr double kPatchParameterMargin = 1e-6;
 /// A root's parameter in its input patch: node coordinates moved to the patch's cube.
 IGA_HD inline double patchParameter(const Node& node, const double* u, int d)
 {
-  return (double(node.offset[d]) + u[d]) * ldexp(1.0, -node.depth[d]);
+  return (double(node.offset[d]) + u[d]) * inversePowerOfTwo(node.depth[d]);
 }
 
 /// Whether a root (node coordinates) lies in its input patch, within kPatchParameterMargin.
