@@ -1,7 +1,7 @@
 // The CPU threads' primitives: the worker pool behind parallelFor (every index once, across many
 // loops, loops inside loops and loops of two threads at once, cheap loops on the caller, an
 // exception thrown again once every thread has left the loop), and
-// CpuExec's select, scan, sum and sorts against serial references.
+// CpuExec's select, forEachCounting, scan, sum and sorts against serial references.
 #include "ParallelFor.h"
 #include "sst/CpuExec.h"
 
@@ -132,6 +132,16 @@ TEST(CpuExec, PrimitivesMatchSerialReferences)
       EXPECT_EQ(selected, expected);
       EXPECT_EQ(exec.sum(n, [&](size_t k) { return values[k]; }),
         std::accumulate(values.begin(), values.end(), size_t(0)));
+      // forEachCounting: every element's count reaches the shared counter, once.
+      struct Count
+      {
+        size_t odd = 0;
+      };
+      std::atomic<size_t> odd{ 0 };
+      exec.forEachCounting<Count>(
+        n, [&](size_t k, Count& local) { local.odd += values[k] % 2; },
+        [&](const Count& local) { odd += local.odd; }, 64);
+      EXPECT_EQ(odd.load(), expected.size());
       // scan: exclusive, the total in the extra slot.
       std::vector<uint64_t> scanned(values.begin(), values.end());
       scanned.push_back(0);
