@@ -188,11 +188,11 @@ void joinRoots(FramePlan& plan, const std::vector<FramePlan>& parts)
       {
         std::copy(parts[k].initialPool.begin(), parts[k].initialPool.end(),
           plan.initialPool.begin() + std::ptrdiff_t(valueStarts[k]));
-        Node* nodes = plan.initialNodes.data() + nodeStarts[k];
-        for (const Node& node : parts[k].initialNodes)
+        for (size_t n = 0; n < parts[k].initialNodes.size(); ++n)
         {
-          *nodes = node;
-          (nodes++)->coeff += valueStarts[k];
+          Node& node = plan.initialNodes[nodeStarts[k] + n];
+          node = parts[k].initialNodes[n];
+          node.coeff += valueStarts[k];
         }
       }
     });
