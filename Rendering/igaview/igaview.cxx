@@ -1141,7 +1141,10 @@ Drawing chooseDrawing(const Options& options, const Input& input)
   {
     const std::string& surfaceBy = options.surfaceBy.empty() ? input.field : options.surfaceBy;
     drawing.surface = surfaceBy.empty() ? 0 : attributeIndex(input, surfaceBy, "--surface-by");
-    attributeRange(input, drawing.surface, false, drawing.surfaceRange);
+    // The range (a subdivision over every patch) serves the default isovalue and the viewer's
+    // isovalue keys alone.
+    if ((options.isovalues.empty() && !input.algebraic) || options.view)
+      attributeRange(input, drawing.surface, false, drawing.surfaceRange);
     drawing.isovalues = options.isovalues;
     if (drawing.isovalues.empty() && input.algebraic)
       drawing.isovalues.push_back(0.0);
