@@ -71,6 +71,45 @@ TYPED_TEST(NewtonTest, SurfaceVariantFindsPixelPoint)
   }
 }
 
+/// A loose tolerance stops the iteration early; the final step, taken without evaluating, still
+/// ends at the root far below the residual tested, and the values at the root follow it.
+TEST(NewtonFinalStep, TakesTheRootFarBeyondTheResidualTested)
+{
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> param(0.1, 0.9);
+  int stepped = 0;
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    const auto patch = nearAffinePatch<double>(rng, 0.1);
+    const double u[3] = { param(rng), param(rng), param(rng) };
+    const auto v = evaluateEuclidean(patch.view(), u);
+    const double target[3] = { v[0], v[1], v[4] };
+    const double tolerance[3] = { 0.05, 0.05, 0.05 };
+    const double u0[3] = { 0.5, 0.5, 0.5 };
+    double atRoot[8];
+    const auto result =
+      iga::solveNewton<double, 3>(patch.view(), kPixelRows, target, tolerance, u0, {}, atRoot);
+    ASSERT_EQ(result.status, iga::NewtonStatus::Converged) << "trial " << trial;
+    double values[8];
+    iga::evaluateHomogeneous<double, 3>(patch.view(), result.u, values, nullptr);
+    double tested = 0, after = 0;
+    for (int r = 0; r < 3; ++r)
+    {
+      const double f = values[kPixelRows[r].numerator] / values[kPixelRows[r].denominator];
+      tested = std::max(tested, std::fabs(result.residual[r]));
+      after = std::max(after, std::fabs(f - target[r]));
+    }
+    stepped += tested > 1e-8 ? 1 : 0;
+    EXPECT_LE(after, 1e-3 * tested + 1e-13) << "trial " << trial;
+    for (int c = 0; c < 5; ++c) // the channels the rows read, up to the attribute
+    {
+      // First order in a step of the order of the residual tested.
+      EXPECT_NEAR(atRoot[c], values[c], 10 * tested * tested + 1e-13) << "channel " << c;
+    }
+  }
+  EXPECT_GT(stepped, 10) << "trials stopped with a residual the final step had to remove";
+}
+
 TYPED_TEST(NewtonTest, ReportsSingularJacobianWhenAParameterHasNoEffect)
 {
   using T = TypeParam;

@@ -267,7 +267,9 @@ TEST(CsgMapper, AllLayersFillTheGBufferAndDrawTheSameImage)
     for (int i = 0; i < all.width; ++i)
       if (first.firstHit(i, j))
       {
-        ASSERT_EQ(all.firstHit(i, j)->eyeDepth, first.firstHit(i, j)->eyeDepth);
+        // The same root, though Newton may reach it from other nodes' starts: equal to rounding.
+        ASSERT_NEAR(all.firstHit(i, j)->eyeDepth, first.firstHit(i, j)->eyeDepth,
+          1e-12 * first.firstHit(i, j)->eyeDepth);
       }
   EXPECT_EQ(scene.mapper->GetLastColours(), colours) << "an opaque surface shows its first layer";
 }

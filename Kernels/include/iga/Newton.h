@@ -22,7 +22,8 @@ struct NewtonResult
 {
   NewtonStatus status = NewtonStatus::NoConvergence;
   T u[Dim] = {};
-  glm::vec<Dim, T> residual = glm::vec<Dim, T>(T(0)); ///< F(u) - target at the returned u
+  /// F - target at the last iterate evaluated (a converged u is one Newton step beyond it)
+  glm::vec<Dim, T> residual = glm::vec<Dim, T>(T(0));
   int iterations = 0;
 };
 
@@ -37,6 +38,38 @@ struct NewtonSettings
   T stepTolerance = T(64) * Epsilon<T>::value;
 };
 
+/// The converged iteration's Newton step, taken without evaluating again: its residual is about
+/// the square of the one tested, so a root ends accurate far beyond the acceptance tests at no
+/// evaluation's cost. The values follow it to first order. Not taken where it would leave the
+/// domain or the Jacobian is singular.
+template<class T, int Dim>
+IGA_HD void takeFinalStep(NewtonResult<T, Dim>& result, const glm::mat<Dim, Dim, T>& gradients,
+  T* values, const T* derivatives, int channels, int leading, const NewtonSettings<T>& settings)
+{
+  glm::mat<Dim, Dim, T> inverse;
+  if (!invertMatrix<T, Dim>(glm::transpose(gradients), inverse))
+  {
+    return;
+  }
+  const glm::vec<Dim, T> step = -(inverse * result.residual);
+  for (int d = 0; d < Dim; ++d)
+  {
+    const T next = result.u[d] + step[d];
+    if (!(next >= -settings.domainSlack && next <= T(1) + settings.domainSlack))
+    {
+      return;
+    }
+  }
+  for (int d = 0; d < Dim; ++d)
+  {
+    result.u[d] += step[d];
+    for (int c = 0; c < leading; ++c)
+    {
+      values[c] += derivatives[d * channels + c] * step[d];
+    }
+  }
+}
+
 /// Solves F(u) = target from the start point u0. Converged means |F_r(u) - target_r| <=
 /// tolerance_r for every row and, besides, the last step was below the step tolerance or the
 /// residual is 1000 times smaller than the tolerance, so the root is accurate well beyond the
@@ -44,7 +77,8 @@ struct NewtonSettings
 /// face shared by two patches is found in both, and callers that keep every hit merge them.
 /// Only the channels up to the highest that a row reads are evaluated. On convergence
 /// `valuesAtRoot`, if given, receives those homogeneous values at u (the last evaluation, so
-/// callers need not evaluate again).
+/// callers need not evaluate again). Both then take the converged iteration's step
+/// (takeFinalStep); `residual` stays the one tested, before it.
 template<class T, int Dim>
 IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
   const RationalRow* rows, const T* target, const T* tolerance, const T* u0,
@@ -90,18 +124,19 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
       small = small && absValue(result.residual[r]) <= tolerance[r];
       tiny = tiny && absValue(result.residual[r]) <= T(1e-3) * tolerance[r];
     }
-    if (tiny || (small && lastStep <= settings.stepTolerance))
+    const bool converged = tiny || (small && lastStep <= settings.stepTolerance);
+    if (converged || iteration == settings.maxIterations)
     {
-      result.status = NewtonStatus::Converged;
-      for (int c = 0; valuesAtRoot && c < leading; ++c)
+      if (converged)
       {
-        valuesAtRoot[c] = values[c];
+        result.status = NewtonStatus::Converged;
+        takeFinalStep(result, gradients, values, derivatives, channels, leading, settings);
+        for (int c = 0; valuesAtRoot && c < leading; ++c)
+        {
+          valuesAtRoot[c] = values[c];
+        }
       }
       return result;
-    }
-    if (iteration == settings.maxIterations)
-    {
-      break;
     }
     glm::mat<Dim, Dim, T> inverse;
     if (!invertMatrix<T, Dim>(glm::transpose(gradients), inverse))
@@ -129,7 +164,6 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
     }
     lastStep = stepNorm;
   }
-  result.status = NewtonStatus::NoConvergence;
   return result;
 }
 
