@@ -230,6 +230,76 @@ TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
   std::printf("pixels in the boxes %d, in boxes and slabs %d\n", boxPixels, slabPixels);
 }
 
+/// Newton's start from a node's quadratic model lands much nearer the root than the linear one,
+/// on the teapot's nodes two splits deep (tens of pixels wide) that the engine would solve
+/// (certified), for points all over them.
+TEST(PixelProblem, QuadraticStartLandsNearerTheRootThanTheLinearOne)
+{
+  const auto teapot = iga::makeTeapot<double>();
+  std::vector<iga::PatchView<const double, 2>> views;
+  for (const auto& patch : teapot.patches)
+  {
+    views.push_back(patch.view());
+  }
+  const glm::dmat4 windowFromWorld = windowFraming<2>(views, 512);
+  double linearError = 0, quadraticError = 0;
+  int samples = 0, worse = 0;
+  for (const auto& surface : views)
+  {
+    const auto world = iga::flatVolume(surface);
+    const int count = world.pointCount() * iga::sst::kScreenChannels;
+    std::vector<double> level(count);
+    iga::sst::makeScreenPatch<double>(world, windowFromWorld, iga::kWeightChannel, level.data());
+    for (int d = 0; d < 2; ++d)
+    {
+      std::vector<double> next(level.size() * 4);
+      for (size_t n = 0; n < level.size() / count; ++n)
+      {
+        iga::sst::splitNode(iga::VolumeView<const double>(
+                              level.data() + n * count, world.degree, iga::sst::kScreenChannels),
+          0b011, next.data() + n * 4 * count);
+      }
+      level.swap(next);
+    }
+    for (size_t n = 0; n < level.size() / count; ++n)
+    {
+      const iga::VolumeView<const double> node(
+        level.data() + n * count, world.degree, iga::sst::kScreenChannels);
+      const auto info = iga::sst::analyzeNode(node, 0.0);
+      if (!info.hasCentre)
+      {
+        continue;
+      }
+      for (int s = 0; s < 25; ++s)
+      {
+        const double root[2] = { 0.1 + 0.2 * (s % 5), 0.1 + 0.2 * (s / 5) };
+        double values[iga::sst::kScreenChannels];
+        iga::evaluateHomogeneous<double, 2>(iga::surfaceOf(node), root, values, nullptr);
+        const glm::dvec2 residual(
+          info.centre[0] - values[iga::sst::kScreenX] / values[iga::sst::kScreenW],
+          info.centre[1] - values[iga::sst::kScreenY] / values[iga::sst::kScreenW]);
+        const glm::dvec2 linear = glm::dvec2(0.5) - glm::dmat2(info.centreInverse) * residual;
+        const glm::dvec2 quadratic = iga::sst::detail::quadraticStart<double, 2>(info, residual);
+        const double errors[2] = { glm::length(linear - glm::dvec2(root[0], root[1])),
+          glm::length(quadratic - glm::dvec2(root[0], root[1])) };
+        if (info.certified)
+        {
+          linearError += errors[0];
+          quadraticError += errors[1];
+          worse += errors[1] > errors[0] ? 1 : 0;
+          ++samples;
+        }
+      }
+    }
+  }
+  ASSERT_GT(samples, 2000);
+  std::printf("certified nodes' mean parametric error of the start: linear %.3g, quadratic %.3g; "
+              "worse in %d of %d\n",
+    linearError / samples, quadraticError / samples, worse, samples);
+  EXPECT_LT(quadraticError, 0.25 * linearError);
+  EXPECT_LT(worse, samples / 20);
+}
+
 /// A degree-1 screen node (u, v, w in 0, 1 at its corners): window position X/W, Y/W and
 /// attribute A/V from `corner`, each corner's homogeneous values scaled by `weight` (which leaves
 /// the quotients alone), W scaled by `wSign` at corner 0. `surface`: the corners w = 0 alone.

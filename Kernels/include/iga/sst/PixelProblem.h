@@ -7,6 +7,7 @@
 // the paper's s(u) - o_st = 0 with the pixel offset o_st applied to a patch shared by all pixels.
 #pragma once
 
+#include "iga/Jet.h"
 #include "iga/Newton.h"
 
 #include <glm/gtc/matrix_access.hpp>
@@ -207,6 +208,9 @@ struct NodeInfo
   T centre[3];                     ///< F at the parametric centre: (X/W, Y/W, A/V), no pixel offset
   glm::mat<3, 3, T> centreInverse; ///< J(centre)^-1
   T centreWeights[2];              ///< W and V at the centre
+  /// Row r's Hessian at the centre, packed (uu, vv, ww, uv, uw, vw): Newton's start takes the
+  /// quadratic model, as certified nodes span many pixels.
+  T centreHessians[3][6];
 };
 
 /// The cheap part of a node's analysis: window box, eye-plane status, sign change (volumes),
@@ -317,24 +321,74 @@ IGA_HD void analyzeNodeSolver(const VolumeView<const T>& node, NodeInfo<T>& info
   info.spread = glm::mat<3, 3, T>(spread);
 }
 
+/// Newton's start for the pixel whose residual at the centre is `residual`: the root of the
+/// node's quadratic model around its centre, by two fixed-point steps from the linear one. Where
+/// the model's correction is not small beside the linear step, the model does not hold that far
+/// (a node too large or near a singular point) and the linear start is kept.
+template<class T, int Dim>
+IGA_HD glm::vec<Dim, T> quadraticStart(const NodeInfo<T>& info, const glm::vec<Dim, T>& residual)
+{
+  const glm::mat<Dim, Dim, T> inverse(info.centreInverse);
+  const glm::vec<Dim, T> linear = -(inverse * residual);
+  glm::vec<Dim, T> step = linear;
+  for (int k = 0; k < 2; ++k)
+  {
+    glm::vec<Dim, T> curvature;
+    for (int r = 0; r < Dim; ++r)
+    {
+      const T* h = info.centreHessians[r]; // entry (a, b) at a if a == b, else at 2 + a + b
+      T q = T(0);
+      for (int a = 0; a < Dim; ++a)
+      {
+        q += h[a] * step[a] * step[a];
+        for (int b = a + 1; b < Dim; ++b)
+        {
+          q += T(2) * h[2 + a + b] * step[a] * step[b];
+        }
+      }
+      curvature[r] = T(0.5) * q;
+    }
+    step = linear - inverse * curvature;
+  }
+  T correction = T(0), size = T(0);
+  for (int d = 0; d < Dim; ++d)
+  {
+    correction = maxValue(correction, absValue(step[d] - linear[d]));
+    size = maxValue(size, absValue(linear[d]));
+  }
+  return glm::vec<Dim, T>(T(0.5)) + (correction <= T(0.5) * size ? step : linear);
+}
+
 template<class T, int Dim>
 IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info)
 {
   const T centre[3] = { T(0.5), T(0.5), T(0.5) };
-  T values[kScreenChannels], derivatives[Dim * kScreenChannels];
+  // The rows' channels: X, Y and W, then A and V for a volume.
+  const int channels[5] = { kScreenX, kScreenY, kScreenW, kScreenAttribute, kScreenWeight };
+  constexpr int count = Dim == 3 ? 5 : 3;
+  Jet<T> jets[5];
+  channelJets<T, Dim>(patchOf<Dim>(node), centre, channels, count, jets);
+  const Jet<T> rows[3] = { rationalJet(jets[0], jets[2]), rationalJet(jets[1], jets[2]),
+    Dim == 3 ? rationalJet(jets[3], jets[4]) : Jet<T>() };
   glm::mat<Dim, Dim, T> gradients; // column r: the gradient of row r (J transposed)
-  const PixelRows rows = pixelRows();
-  evaluateHomogeneous<T, Dim>(
-    patchOf<Dim>(node), centre, values, derivatives, leadingChannelsOf<Dim>(rows.rows));
   info.centre[2] = T(0);
-  for (int r = 0; r < Dim; ++r)
+  for (int r = 0; r < 3; ++r)
   {
-    info.centre[r] = rationalValue<T, Dim>(values, derivatives, kScreenChannels,
-      rows.rows[r].numerator, rows.rows[r].denominator, &gradients[r][0]);
+    info.centre[r] = rows[r].value;
+    for (int d = 0; d < Dim && r < Dim; ++d)
+    {
+      gradients[r][d] = rows[r].gradient[d];
+    }
+    const glm::mat<3, 3, T>& h = rows[r].hessian;
+    const T packed[6] = { h[0][0], h[1][1], h[2][2], h[0][1], h[0][2], h[1][2] };
+    for (int k = 0; k < 6; ++k)
+    {
+      info.centreHessians[r][k] = packed[k];
+    }
   }
-  info.centreWeights[0] = values[kScreenW];
-  info.centreWeights[1] = Dim == 3 ? values[kScreenWeight] : T(0); // a surface has no A/V row
-  glm::mat<Dim, Dim, T> inverse(T(0));                             // kept only where hasCentre
+  info.centreWeights[0] = jets[2].value;
+  info.centreWeights[1] = Dim == 3 ? jets[4].value : T(0); // a surface has no A/V row
+  glm::mat<Dim, Dim, T> inverse(T(0));                     // kept only where hasCentre
   info.hasCentre = invertMatrix<T, Dim>(glm::transpose(gradients), inverse);
   info.centreInverse = glm::mat<3, 3, T>(inverse);
 }
@@ -447,8 +501,7 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
   }
   // Newton's first step from the centre, then the iteration proper. A step that leaves the
   // node says along which rows the pixel most likely misses it: a proof there saves the split.
-  const glm::vec<Dim, T> start =
-    glm::vec<Dim, T>(T(0.5)) - glm::mat<Dim, Dim, T>(info.centreInverse) * residual;
+  const glm::vec<Dim, T> start = quadraticStart<T, Dim>(info, residual);
   int outside = 0;
   for (int d = 0; d < Dim; ++d)
   {
@@ -479,8 +532,9 @@ IGA_HD void analyzeNodeSolver(const VolumeView<const T>& node, NodeInfo<T>& info
                   : detail::analyzeNodeSolver<T, 3>(node, info);
 }
 
-/// F and J at the node's centre, which do not depend on the pixel: one evaluation serves every
-/// tuple's Krawczyk test and first Newton step. Needed once the node has tuples.
+/// F, J and the rows' Hessians at the node's centre, which do not depend on the pixel: one
+/// evaluation serves every tuple's Krawczyk test and Newton start. Needed once the node has
+/// tuples.
 template<class T>
 IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info)
 {
