@@ -165,10 +165,10 @@ TEST(PixelProblem, ExclusionsAreSoundOnTheTwistedTeardrop)
   expectSoundAndSharp(countExclusions(teardrop.patches[0], 0.0, 96, 3));
 }
 
-/// Every point of the teapot's surfaces, in nodes of a uniform subdivision three levels deep,
-/// lies in its node's slabs (sampled on 9 x 9 parameters a node), and the slabs hold a good part
-/// of the box's pixels fewer.
-TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
+/// fn(node) for every screen node of the teapot framed in a width-wide image, each patch split
+/// `depth` times in u and v.
+template<class Fn>
+void forEachTeapotNode(int width, int depth, Fn fn)
 {
   const auto teapot = iga::makeTeapot<double>();
   std::vector<iga::PatchView<const double, 2>> views;
@@ -176,16 +176,14 @@ TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
   {
     views.push_back(patch.view());
   }
-  const int width = 256;
   const glm::dmat4 windowFromWorld = windowFraming<2>(views, width);
-  int outside = 0, boxPixels = 0, slabPixels = 0;
   for (const auto& surface : views)
   {
     const auto world = iga::flatVolume(surface);
     const int count = world.pointCount() * iga::sst::kScreenChannels;
     std::vector<double> level(count);
     iga::sst::makeScreenPatch<double>(world, windowFromWorld, iga::kWeightChannel, level.data());
-    for (int d = 0; d < 3; ++d)
+    for (int d = 0; d < depth; ++d)
     {
       std::vector<double> next(level.size() * 4);
       for (size_t n = 0; n < level.size() / count; ++n)
@@ -198,8 +196,22 @@ TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
     }
     for (size_t n = 0; n < level.size() / count; ++n)
     {
-      const iga::VolumeView<const double> node(
-        level.data() + n * count, world.degree, iga::sst::kScreenChannels);
+      fn(iga::VolumeView<const double>(
+        level.data() + n * count, world.degree, iga::sst::kScreenChannels));
+    }
+  }
+}
+
+/// Every point of the teapot's surfaces, in nodes of a uniform subdivision three levels deep,
+/// lies in its node's slabs (sampled on 9 x 9 parameters a node), and the slabs hold a good part
+/// of the box's pixels fewer.
+TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
+{
+  const int width = 256;
+  int outside = 0, boxPixels = 0, slabPixels = 0;
+  forEachTeapotNode(width, 3,
+    [&](const iga::VolumeView<const double>& node)
+    {
       iga::sst::NodeInfo<double> info;
       iga::sst::analyzeNodeBounds(node, 0.0, iga::sst::ClipPlanes<double>(), info);
       ASSERT_EQ(info.status, iga::ProjectionStatus::InFront);
@@ -222,8 +234,7 @@ TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
           slabPixels += iga::sst::nodeCoversPixel(info, i, j) ? 1 : 0;
         }
       }
-    }
-  }
+    });
   EXPECT_EQ(outside, 0) << "points of a node outside its slabs";
   EXPECT_GT(boxPixels, 1000);
   EXPECT_LT(slabPixels, boxPixels * 0.9) << "the slabs should drop a good part of the box";
@@ -235,40 +246,15 @@ TEST(PixelProblem, SlabsHoldEveryPointOfTheirNodeOnTheTeapot)
 /// (certified), for points all over them.
 TEST(PixelProblem, QuadraticStartLandsNearerTheRootThanTheLinearOne)
 {
-  const auto teapot = iga::makeTeapot<double>();
-  std::vector<iga::PatchView<const double, 2>> views;
-  for (const auto& patch : teapot.patches)
-  {
-    views.push_back(patch.view());
-  }
-  const glm::dmat4 windowFromWorld = windowFraming<2>(views, 512);
   double linearError = 0, quadraticError = 0;
   int samples = 0, worse = 0;
-  for (const auto& surface : views)
-  {
-    const auto world = iga::flatVolume(surface);
-    const int count = world.pointCount() * iga::sst::kScreenChannels;
-    std::vector<double> level(count);
-    iga::sst::makeScreenPatch<double>(world, windowFromWorld, iga::kWeightChannel, level.data());
-    for (int d = 0; d < 2; ++d)
+  forEachTeapotNode(512, 2,
+    [&](const iga::VolumeView<const double>& node)
     {
-      std::vector<double> next(level.size() * 4);
-      for (size_t n = 0; n < level.size() / count; ++n)
-      {
-        iga::sst::splitNode(iga::VolumeView<const double>(
-                              level.data() + n * count, world.degree, iga::sst::kScreenChannels),
-          0b011, next.data() + n * 4 * count);
-      }
-      level.swap(next);
-    }
-    for (size_t n = 0; n < level.size() / count; ++n)
-    {
-      const iga::VolumeView<const double> node(
-        level.data() + n * count, world.degree, iga::sst::kScreenChannels);
       const auto info = iga::sst::analyzeNode(node, 0.0);
-      if (!info.hasCentre)
+      if (!info.hasCentre || !info.certified)
       {
-        continue;
+        return;
       }
       for (int s = 0; s < 25; ++s)
       {
@@ -282,16 +268,12 @@ TEST(PixelProblem, QuadraticStartLandsNearerTheRootThanTheLinearOne)
         const glm::dvec2 quadratic = iga::sst::detail::quadraticStart<double, 2>(info, residual);
         const double errors[2] = { glm::length(linear - glm::dvec2(root[0], root[1])),
           glm::length(quadratic - glm::dvec2(root[0], root[1])) };
-        if (info.certified)
-        {
-          linearError += errors[0];
-          quadraticError += errors[1];
-          worse += errors[1] > errors[0] ? 1 : 0;
-          ++samples;
-        }
+        linearError += errors[0];
+        quadraticError += errors[1];
+        worse += errors[1] > errors[0] ? 1 : 0;
+        ++samples;
       }
-    }
-  }
+    });
   ASSERT_GT(samples, 2000);
   std::printf("certified nodes' mean parametric error of the start: linear %.3g, quadratic %.3g; "
               "worse in %d of %d\n",
