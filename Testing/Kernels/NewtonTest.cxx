@@ -83,7 +83,7 @@ TEST(NewtonFinalStep, TakesTheRootFarBeyondTheResidualTested)
     const auto patch = nearAffinePatch<double>(rng, 0.1);
     const double u[3] = { param(rng), param(rng), param(rng) };
     const auto v = evaluateEuclidean(patch.view(), u);
-    const double target[3] = { v[0], v[1], v[4] };
+    const double target[3] = { double(v[0]), double(v[1]), double(v[4]) };
     const double tolerance[3] = { 0.05, 0.05, 0.05 };
     const double u0[3] = { 0.5, 0.5, 0.5 };
     double atRoot[8];
