@@ -38,6 +38,13 @@ struct NewtonSettings
   T stepTolerance = T(64) * Epsilon<T>::value;
 };
 
+/// Whether a parameter lies in [0, 1] widened by the domain slack (not NaN).
+template<class T>
+IGA_HD bool withinDomain(T u, T slack)
+{
+  return u >= -slack && u <= T(1) + slack;
+}
+
 /// The converged iteration's Newton step, taken without evaluating again: its residual is about
 /// the square of the one tested, so a root ends accurate far beyond the acceptance tests at no
 /// evaluation's cost. The values follow it to first order. Not taken where it would leave the
@@ -54,8 +61,7 @@ IGA_HD void takeFinalStep(NewtonResult<T, Dim>& result, const glm::mat<Dim, Dim,
   const glm::vec<Dim, T> step = -(inverse * result.residual);
   for (int d = 0; d < Dim; ++d)
   {
-    const T next = result.u[d] + step[d];
-    if (!(next >= -settings.domainSlack && next <= T(1) + settings.domainSlack))
+    if (!withinDomain(result.u[d] + step[d], settings.domainSlack))
     {
       return;
     }
@@ -151,11 +157,7 @@ IGA_HD NewtonResult<T, Dim> solveNewton(const PatchView<const T, Dim>& patch,
     {
       result.u[d] += step[d];
       stepNorm = maxValue(stepNorm, absValue(step[d]));
-      if (result.u[d] < -settings.domainSlack || result.u[d] > T(1) + settings.domainSlack ||
-          !isFinite(result.u[d]))
-      {
-        outside = true;
-      }
+      outside = outside || !withinDomain(result.u[d], settings.domainSlack);
     }
     if (outside)
     {

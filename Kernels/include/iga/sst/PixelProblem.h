@@ -363,7 +363,7 @@ template<class T, int Dim>
 IGA_HD void analyzeNodeCentre(const VolumeView<const T>& node, NodeInfo<T>& info)
 {
   const T centre[3] = { T(0.5), T(0.5), T(0.5) };
-  // The rows' channels: X, Y and W, then A and V for a volume.
+  // The rows' channels (pixelRows): X, Y and W, then A and V for a volume.
   const int channels[5] = { kScreenX, kScreenY, kScreenW, kScreenAttribute, kScreenWeight };
   constexpr int count = Dim == 3 ? 5 : 3;
   Jet<T> jets[5];
@@ -499,13 +499,14 @@ IGA_HD TupleOutcome solveTuple(const VolumeView<const T>& node, const NodeInfo<T
              ? TupleOutcome::Miss
              : TupleOutcome::Undecided;
   }
-  // Newton's first step from the centre, then the iteration proper. A step that leaves the
-  // node says along which rows the pixel most likely misses it: a proof there saves the split.
+  // Newton's start from the node's quadratic model, then the iteration proper. A start that
+  // leaves the node says along which rows the pixel most likely misses it: a proof there saves
+  // the split.
   const glm::vec<Dim, T> start = quadraticStart<T, Dim>(info, residual);
   int outside = 0;
   for (int d = 0; d < Dim; ++d)
   {
-    outside |= start[d] >= -slack && start[d] <= T(1) + slack ? 0 : 1 << d;
+    outside |= withinDomain(start[d], slack) ? 0 : 1 << d;
   }
   if (outside)
   {
