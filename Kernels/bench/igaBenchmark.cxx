@@ -17,7 +17,9 @@
 // against the cube's isosurface alone in first-hit mode (--csg: this study alone). Ratios
 // compare runs of the same process.
 //
-// --surfaces: the surface study alone.
+// --surfaces: the surface study alone, and the paper's pre-subdivision study (fig. 12): the
+// teapot's patches split 0..5 times at 512^2, SST against the per-pixel schemes as patches
+// shrink towards a pixel.
 //
 // --algebraic: the gallery's algebraic surfaces (AlgebraicGallery.h), each one polynomial volume
 // over its box, SST against ray composition with each root finder at 512^2 (256^2 quick), with
@@ -253,6 +255,65 @@ void surfaceStudy(bool quick, int threads, int reps, std::vector<Measurement>& a
       ratios.emplace_back("clippingOverSst_" + name, clipping.ms / sst.ms);
       ratios.emplace_back("referenceOverSst_" + name, std::min(basic.ms, clipping.ms) / sst.ms);
     }
+  }
+}
+
+/// Each surface split at its parametric midpoints `levels` times in both directions (4^levels
+/// pieces, the same shape): the SST paper's pre-subdivision (its fig. 12).
+std::vector<iga::BezierSurface<double>> preSubdivided(
+  std::vector<iga::BezierSurface<double>> surfaces, int levels)
+{
+  for (int level = 0; level < levels; ++level)
+  {
+    std::vector<iga::BezierSurface<double>> pieces;
+    for (const auto& surface : surfaces)
+    {
+      const int degree[2] = { surface.degree(0), surface.degree(1) };
+      const size_t size = surface.coeffs().size();
+      std::vector<double> children(4 * size);
+      iga::splitMidpoint<double, 2>(surface.view(), children.data());
+      for (int child = 0; child < 4; ++child)
+      {
+        pieces.emplace_back(degree, surface.channels());
+        std::copy_n(
+          children.begin() + std::ptrdiff_t(child * size), size, pieces.back().coeffs().begin());
+      }
+    }
+    surfaces = std::move(pieces);
+  }
+  return surfaces;
+}
+
+/// The paper's pre-subdivision study at 512x512: the teapot's patches split 0..5 times (32 to
+/// 32 768 patches), SST against the better reference (ratio `referenceOverSst_teapotSplitK`).
+/// As patches shrink to a pixel or two the per-pixel schemes' trees have little left to split,
+/// and the paper finds them converging towards SST.
+void preSubdivisionStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  using iga::sst::Method;
+  const auto teapot = iga::makeTeapot<double>().patches;
+  // One camera for every level (the pieces' control points bound the teapot more tightly), so
+  // that each level draws the same pixels.
+  const iga::Camera camera = frameSurfaces(teapot);
+  const Reframe sameCamera = [&](const iga::Camera&) { return camera; };
+  for (int levels = 0; levels <= (quick ? 2 : 5); ++levels)
+  {
+    const auto surfaces = preSubdivided(teapot, levels);
+    const std::string name =
+      "teapot-split" + std::to_string(levels) + "-" + std::to_string(surfaces.size());
+    auto run = [&](Method method, int repetitions)
+    {
+      return measureSurfaces(name, surfaces, 512, 512, threads, method, repetitions, {},
+        iga::sst::Backend::Cpu, "presubdivision", sameCamera);
+    };
+    const auto sst = run(Method::SharedSubdivisionTree, reps);
+    const auto basic = run(Method::BasicScheme, 1);
+    const auto clipping = run(Method::BezierClipping, 1);
+    all.insert(all.end(), { sst, basic, clipping });
+    const std::string tag = "teapotSplit" + std::to_string(levels) + "_512x512";
+    ratios.emplace_back("coveredPerPatch_" + tag, double(sst.covered) / double(surfaces.size()));
+    ratios.emplace_back("referenceOverSst_" + tag, std::min(basic.ms, clipping.ms) / sst.ms);
   }
 }
 
@@ -745,6 +806,7 @@ int main(int argc, char** argv)
   if (surfacesOnly)
   {
     surfaceStudy(quick, threads, reps, all, ratios);
+    preSubdivisionStudy(quick, threads, reps, all, ratios);
     return emit(json(all, ratios));
   }
   if (algebraicOnly)
