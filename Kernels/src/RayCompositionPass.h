@@ -105,7 +105,8 @@ inline void dropAffineItems(
 }
 
 /// The hits of the band's pixels (s.frame's), per pixel, on the affine patches (rayDegree >= 0);
-/// in first-hit mode a pixel's items beyond its nearest hit so far are skipped.
+/// in first-hit mode a pixel's items beyond its nearest hit so far are skipped, and without
+/// clipping planes a ray's roots beyond its first are not looked for.
 inline void rayCompositionPass(const View& view, const Settings& settings,
   const std::vector<AffinePatch>& affine, const std::vector<FrustumForm>& forms,
   const LoopState<CpuExec>& s, const Node* initialNodes, int threads,
@@ -122,6 +123,10 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
   }();
   const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
   const size_t first = passFirstPixel(s.frame), count = passPixelCount(s.frame);
+  // A first hit needs a ray's nearest root alone, unless a clipping plane may cut it away.
+  RootSettings rootSettings;
+  rootSettings.maxRoots =
+    s.frame.hits.firstHitOnly && settings.clipPlanes.empty() ? 1 : roots::kMaxRoots;
   perPixel.assign(count, {});
   std::atomic<size_t> rays{ 0 }, steps{ 0 }, capped{ 0 };
   parallelFor(count, threads,
@@ -176,7 +181,6 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
             composeRay(patch, settings.isovalues[size_t(node.iso)], u0, du,
               interpolation[size_t(patch.rayDegree)], coefficients);
           }
-          RootSettings rootSettings;
           const BernsteinRoots roots =
             findBernsteinRoots(coefficients, patch.rayDegree, settings.rootFinder, rootSettings);
           ++localRays;

@@ -225,6 +225,59 @@ TEST(BernsteinRoots, RootsAtTheEndsAreExact)
     expectRoots(c, finder);
 }
 
+/// A search for the first k roots returns the full search's first k (simple, double and end
+/// roots), and stops early: for the first root alone, under half the steps over all the cases
+/// (measured: 27-43%) by the finders that search left first, fewer by the polar Newton (90%).
+TEST(BernsteinRoots, TheNearestRootsAloneAreTheFullSearchsFirst)
+{
+  std::mt19937 rng(14);
+  std::vector<Case> cases;
+  for (int degree = 2; degree <= 16; ++degree)
+  {
+    for (int trial = 0; trial < 6; ++trial)
+    {
+      const int doubled = std::uniform_int_distribution<int>(0, std::min((degree - 1) / 2, 2))(rng);
+      const int real =
+        std::uniform_int_distribution<int>(1, std::min(degree - 2 * doubled, 4))(rng);
+      cases.push_back(randomCase(rng, degree, real, doubled));
+    }
+  }
+  Poly ends = multiply(multiply(linear(0), linear(0.4L)), multiply(linear(1), linear(1)));
+  cases.push_back({});
+  for (long double v : ends)
+    cases.back().coefficients.push_back(double(v));
+  for (iga::RootFinder finder : kFinders)
+  {
+    long fullSteps = 0, firstSteps = 0;
+    for (const Case& c : cases)
+    {
+      const int degree = int(c.coefficients.size()) - 1;
+      const iga::BernsteinRoots full =
+        iga::findBernsteinRoots(c.coefficients.data(), degree, finder);
+      ASSERT_GT(full.count, 0);
+      fullSteps += full.cost.insertions + full.cost.evaluations;
+      for (int wanted = 1; wanted <= 3; ++wanted)
+      {
+        iga::RootSettings settings;
+        settings.maxRoots = wanted;
+        const iga::BernsteinRoots first =
+          iga::findBernsteinRoots(c.coefficients.data(), degree, finder, settings);
+        ASSERT_EQ(first.count, std::min(wanted, full.count))
+          << iga::rootFinderName(finder) << ", " << c.what << ", " << wanted << " wanted";
+        for (int k = 0; k < first.count; ++k)
+        {
+          EXPECT_NEAR(first.t[k], full.t[k], 1e-12)
+            << iga::rootFinderName(finder) << ", " << c.what << ", root " << k;
+        }
+        firstSteps += wanted == 1 ? first.cost.insertions + first.cost.evaluations : 0;
+      }
+    }
+    // The polar Newton still finds every critical point: its last level alone stops early.
+    const double most = finder == iga::RootFinder::PolarNewton ? 0.95 : 0.5;
+    EXPECT_LT(double(firstSteps), most * double(fullSteps)) << iga::rootFinderName(finder);
+  }
+}
+
 TEST(BernsteinRoots, PolynomialsThatOnlyComeCloseHaveNoRoots)
 {
   std::mt19937 rng(13);

@@ -333,6 +333,58 @@ TEST(RayComposition, AutomaticMethodComposesAffinePatchesWithTheTreesOthersInOne
   }
 }
 
+/// A first-hit frame looks for each ray's nearest root alone: its hits are the all-hits frame's
+/// nearest, bit for bit, with fewer root-finder steps (the linked tori: two or four roots on
+/// most rays). Under a clipping plane the nearest root may be cut away, and every root is found.
+TEST(RayComposition, FirstHitFramesFindTheNearestRootAlone)
+{
+  const iga::AlgebraicSurface* tori = iga::findAlgebraicSurface("linked-tori");
+  ASSERT_NE(tori, nullptr);
+  const Volume v = algebraicVolume(tori->expression, tori->box);
+  const iga::Camera camera = cameraOf(v);
+  for (iga::RootFinder finder : { iga::RootFinder::PointInsertion, iga::RootFinder::PolarNewton })
+  {
+    for (bool clipped : { false, true })
+    {
+      SCOPED_TRACE(std::string(iga::rootFinderName(finder)) + (clipped ? ", clipped" : ""));
+      iga::sst::Settings settings;
+      settings.width = settings.height = 96;
+      settings.isovalues = { 0.0 };
+      settings.threads = 2;
+      settings.rootFinder = finder;
+      if (clipped)
+        settings.clipPlanes.push_back({ 0.3, -1.0, 0.2, 0.1 });
+      GBuffer first, all;
+      const auto firstReport = iga::sst::render(
+        iga::sst::Scene(v.patches), camera, settings, Method::RayComposition, first);
+      settings.firstHitOnly = false;
+      const auto allReport =
+        iga::sst::render(iga::sst::Scene(v.patches), camera, settings, Method::RayComposition, all);
+      ASSERT_GT(first.coveredPixels(), 400u);
+      ASSERT_EQ(first.coveredPixels(), all.coveredPixels());
+      EXPECT_GT(all.hits.size(), first.hits.size() * 3 / 2) << "rays with several roots";
+      for (int j = 0; j < first.height; ++j)
+      {
+        for (int i = 0; i < first.width; ++i)
+        {
+          const auto* a = first.firstHit(i, j);
+          const auto* b = all.firstHit(i, j);
+          ASSERT_EQ(a == nullptr, b == nullptr);
+          if (a)
+          {
+            EXPECT_EQ(a->position, b->position) << i << ", " << j;
+          }
+        }
+      }
+      EXPECT_EQ(firstReport.composedRays, allReport.composedRays);
+      if (clipped)
+        EXPECT_EQ(firstReport.rootFinderSteps, allReport.rootFinderSteps);
+      else
+        EXPECT_LT(firstReport.rootFinderSteps, allReport.rootFinderSteps);
+    }
+  }
+}
+
 TEST(RayComposition, AbsFieldsAgreeWithTheTree)
 {
   // Wei and Feng's scenes: the Kummer surface fitted on 12^3 cubic elements, the elements it

@@ -64,10 +64,12 @@ inline RootFinder parseRootFinder(const std::string& name)
 
 struct RootSettings
 {
-  double tolerance = 1e-12; ///< parametric width that ends a root's search
-  double merge = 1e-9;      ///< roots closer than this are one
-  bool evenRoots = true;    ///< also the roots where the polynomial touches zero
-  int maxSplits = 4096;     ///< splits or clips of one search (then the result is capped)
+  double tolerance = 1e-12;        ///< parametric width that ends a root's search
+  double merge = 1e-9;             ///< roots closer than this are one
+  bool evenRoots = true;           ///< also the roots where the polynomial touches zero
+  int maxSplits = 4096;            ///< splits or clips of one search (then the result is capped)
+  int maxRoots = roots::kMaxRoots; ///< the nearest roots wanted (one for a first hit): the
+                                   ///< search stops once it has them
 };
 
 /// Roots found, sorted; `identicallyZero` when every coefficient is zero (every t is a root,
@@ -150,9 +152,61 @@ IGA_HD inline double polishRoot(
   return t;
 }
 
+/// The roots inside (0, 1) of `piece` (end coefficients nonzero), sorted, the first
+/// context.limit of them or fewer; `truncated` when the search stopped at its limit, so that
+/// more may follow.
+IGA_HD inline roots::RootList interiorRoots(const roots::Piece& piece, RootFinder finder,
+  bool evenRoots, const roots::RootContext& context, bool& truncated)
+{
+  roots::RootList inside;
+  if (finder == RootFinder::PolarNewton)
+  {
+    roots::polarNewtonRoots(piece, context, evenRoots, inside);
+  }
+  else
+  {
+    oddRoots(piece, finder, context, inside);
+  }
+  truncated = inside.count >= context.limit;
+  for (int k = 0; finder != RootFinder::PolarNewton && k < inside.count; ++k)
+  {
+    inside.t[k] = polishRoot(piece, inside.t[k], 1e-6, inside.cost.evaluations);
+  }
+  if (evenRoots && finder != RootFinder::PolarNewton && piece.degree > 1)
+  {
+    // Critical points: the derivative's roots of odd multiplicity, inside (0, 1).
+    // An even root matters left of the last odd root kept, or within a cluster (below) of it.
+    roots::RootList critical, even;
+    roots::RootContext criticalContext = context;
+    criticalContext.limit = roots::kMaxRoots;
+    criticalContext.until = truncated ? inside.t[inside.count - 1] + 1e-3 : 1;
+    const roots::Piece slope = roots::normalised(roots::derivativeOf(piece));
+    const roots::Piece curvature = roots::derivativeOf(roots::derivativeOf(piece));
+    oddRoots(slope, finder, criticalContext, critical);
+    double cluster[roots::kMaxRoots];
+    for (int k = 0; k < critical.count; ++k)
+    {
+      const double p = polishRoot(slope, critical.t[k], 1e-6, inside.cost.evaluations);
+      if (roots::signOf(roots::evaluatePiece(piece, p), context.zero) == 0 &&
+          even.count < roots::kMaxRoots)
+      {
+        // Where |f| <= zero about p: the rounding may show two roots anywhere in it.
+        const double a = 0.5 * absValue(roots::evaluatePiece(curvature, p));
+        cluster[even.count] = a > 0 ? minValue(2 * squareRoot(context.zero / a), 1e-3) : 1e-3;
+        even.add(p, context.merge);
+      }
+    }
+    inside.cost.insertions += critical.cost.insertions;
+    inside.cost.evaluations += critical.cost.evaluations + critical.count;
+    inside.cost.capped = inside.cost.capped || critical.cost.capped;
+    mergeEvenRoots(inside, even, cluster, context.merge);
+  }
+  return inside;
+}
+
 } // namespace detail
 
-/// The roots in [0, 1] of sum c_i B_i^degree(t).
+/// The roots in [0, 1] of sum c_i B_i^degree(t), the first settings.maxRoots of them.
 IGA_HD inline BernsteinRoots findBernsteinRoots(
   const double* c, int degree, RootFinder finder, const RootSettings& settings = {})
 {
@@ -180,6 +234,7 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
   context.tolerance = settings.tolerance;
   context.merge = settings.merge;
   context.maxSplits = settings.maxSplits;
+  context.limit = settings.maxRoots;
   context.zero = 32.0 * (degree + 1) * Epsilon<double>::value;
   // Roots at the ends, divided out: t g(t) has c_{i+1} = g_i (i + 1) / d, (1 - t) h(t) has
   // c_i = h_i (d - i) / d. Each division leaves the polynomial's other roots in place.
@@ -220,48 +275,23 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
   if (atZero)
   {
     result.add(0.0, context.merge);
+    context.limit -= 1;
   }
-  if (piece.degree > 0)
+  bool truncated = context.limit <= 0; // roots beyond those found may exist
+  if (piece.degree > 0 && !truncated)
   {
-    roots::RootList inside;
-    if (finder == RootFinder::PolarNewton)
+    roots::RootList inside =
+      detail::interiorRoots(piece, finder, settings.evenRoots, context, truncated);
+    if (truncated && inside.count < context.limit)
     {
-      roots::polarNewtonRoots(piece, context, settings.evenRoots, inside);
+      // Even roots took the place of odd ones (a double root's two sides): search them all.
+      const roots::RootCost spent = inside.cost;
+      context.limit = roots::kMaxRoots;
+      inside = detail::interiorRoots(piece, finder, settings.evenRoots, context, truncated);
+      inside.cost.insertions += spent.insertions;
+      inside.cost.evaluations += spent.evaluations;
     }
-    else
-    {
-      detail::oddRoots(piece, finder, context, inside);
-    }
-    for (int k = 0; finder != RootFinder::PolarNewton && k < inside.count; ++k)
-    {
-      inside.t[k] = detail::polishRoot(piece, inside.t[k], 1e-6, inside.cost.evaluations);
-    }
-    if (settings.evenRoots && finder != RootFinder::PolarNewton && piece.degree > 1)
-    {
-      // Critical points: the derivative's roots of odd multiplicity, inside (0, 1).
-      roots::RootList critical, even;
-      const roots::Piece slope = roots::normalised(roots::derivativeOf(piece));
-      const roots::Piece curvature = roots::derivativeOf(roots::derivativeOf(piece));
-      detail::oddRoots(slope, finder, context, critical);
-      double cluster[roots::kMaxRoots];
-      for (int k = 0; k < critical.count; ++k)
-      {
-        const double p = detail::polishRoot(slope, critical.t[k], 1e-6, inside.cost.evaluations);
-        if (roots::signOf(roots::evaluatePiece(piece, p), context.zero) == 0 &&
-            even.count < roots::kMaxRoots)
-        {
-          // Where |f| <= zero about p: the rounding may show two roots anywhere in it.
-          const double a = 0.5 * absValue(roots::evaluatePiece(curvature, p));
-          cluster[even.count] = a > 0 ? minValue(2 * squareRoot(context.zero / a), 1e-3) : 1e-3;
-          even.add(p, context.merge);
-        }
-      }
-      inside.cost.insertions += critical.cost.insertions;
-      inside.cost.evaluations += critical.cost.evaluations + critical.count;
-      inside.cost.capped = inside.cost.capped || critical.cost.capped;
-      detail::mergeEvenRoots(inside, even, cluster, context.merge);
-    }
-    for (int k = 0; k < inside.count; ++k)
+    for (int k = 0; k < inside.count && result.count < settings.maxRoots; ++k)
     {
       if (inside.t[k] > 0 && inside.t[k] < 1)
       {
@@ -270,7 +300,7 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
     }
     result.cost = inside.cost;
   }
-  if (atOne)
+  if (atOne && !truncated)
   {
     result.add(1.0, context.merge);
   }

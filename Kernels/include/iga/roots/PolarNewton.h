@@ -58,14 +58,14 @@ IGA_HD inline double bracketedRoot(const Piece& piece, double a, double b, doubl
   return x;
 }
 
-/// The roots of `piece` in local parameters, sorted, given its critical points (sorted, inside
-/// (0, 1)); even-multiplicity roots at critical points unless `evenRoots` is false.
+/// The first `limit` roots of `piece` in local parameters, sorted, given its critical points
+/// (sorted, inside (0, 1)); even-multiplicity roots at critical points unless `evenRoots` is false.
 IGA_HD inline int monotoneRoots(const Piece& piece, const double* critical, int criticalCount,
-  const RootContext& context, bool evenRoots, double* out, RootCost& cost)
+  const RootContext& context, bool evenRoots, int limit, double* out, RootCost& cost)
 {
   int count = 0;
   double a = 0, fa = piece.c[0];
-  for (int k = 0; k <= criticalCount; ++k)
+  for (int k = 0; k <= criticalCount && count < limit; ++k)
   {
     const double b = k < criticalCount ? critical[k] : 1.0;
     double fb = piece.c[piece.degree], slope = 0;
@@ -74,11 +74,11 @@ IGA_HD inline int monotoneRoots(const Piece& piece, const double* critical, int 
       valueAndSlope(piece, b, fb, slope);
       ++cost.evaluations;
     }
-    if (signOf(fa, context.zero) * signOf(fb, context.zero) < 0 && count < kMaxRoots)
+    if (signOf(fa, context.zero) * signOf(fb, context.zero) < 0 && count < limit)
     {
       out[count++] = bracketedRoot(piece, a, b, fa, fb, context, cost);
     }
-    if (k < criticalCount && evenRoots && signOf(fb, context.zero) == 0 && count < kMaxRoots)
+    if (k < criticalCount && evenRoots && signOf(fb, context.zero) == 0 && count < limit)
     {
       out[count++] = b;
     }
@@ -90,7 +90,8 @@ IGA_HD inline int monotoneRoots(const Piece& piece, const double* critical, int 
 
 } // namespace detail
 
-/// Appends the roots inside `whole` (end coefficients nonzero), sorted.
+/// Appends the roots inside `whole` (end coefficients nonzero), sorted, the first context.limit
+/// of them: the critical points are all found, the last level stops there.
 IGA_HD inline void polarNewtonRoots(
   const Piece& whole, const RootContext& context, bool evenRoots, RootList& roots)
 {
@@ -105,8 +106,8 @@ IGA_HD inline void polarNewtonRoots(
   int criticalCount = 0;
   for (int k = whole.degree - 1; k >= 0; --k)
   {
-    const int count = detail::monotoneRoots(
-      chain[k], critical, criticalCount, context, k > 0 || evenRoots, found, roots.cost);
+    const int count = detail::monotoneRoots(chain[k], critical, criticalCount, context,
+      k > 0 || evenRoots, k > 0 ? kMaxRoots : context.limit, found, roots.cost);
     for (int i = 0; i < count; ++i)
     {
       critical[i] = found[i];

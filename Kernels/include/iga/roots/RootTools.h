@@ -25,10 +25,12 @@ struct Piece
 /// What a finder needs to know of the problem beyond its piece.
 struct RootContext
 {
-  double zero = 0;      ///< coefficients and values within it count as zero (rounding)
-  double tolerance = 0; ///< parametric width below which a piece holds one root
-  double merge = 0;     ///< roots closer than this are one (found from both sides of a cut)
-  int maxSplits = 0;    ///< splits (or insertions) allowed for the whole polynomial
+  double zero = 0;       ///< coefficients and values within it count as zero (rounding)
+  double tolerance = 0;  ///< parametric width below which a piece holds one root
+  double merge = 0;      ///< roots closer than this are one (found from both sides of a cut)
+  int maxSplits = 0;     ///< splits (or insertions) allowed for the whole polynomial
+  int limit = kMaxRoots; ///< the search stops once it has found this many roots (the nearest)
+  double until = 1;      ///< nor does it look for roots beyond this parameter
 };
 
 /// Cost of a search, in the units of Reimers and Seland's Table 2: a de Casteljau split of a

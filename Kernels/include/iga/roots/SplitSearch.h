@@ -35,7 +35,8 @@ IGA_HD inline Piece rootMarker(double t)
 } // namespace detail
 
 /// Appends the roots of odd multiplicity inside `whole` (whose end coefficients are nonzero) to
-/// `roots`, sorted; see the header comment.
+/// `roots`, sorted, up to context.limit of them and none beyond context.until; see the header
+/// comment.
 template<class Choose>
 IGA_HD void splitSearch(
   const Piece& whole, const RootContext& context, Choose choose, RootList& roots)
@@ -46,9 +47,13 @@ IGA_HD void splitSearch(
   stack[top++] = whole;
   const int d = whole.degree;
   long splits = 0;
-  while (top > 0)
+  while (top > 0 && roots.count < context.limit)
   {
     const Piece piece = stack[--top];
+    if (piece.lo > context.until)
+    {
+      continue;
+    }
     if (piece.degree < 0)
     {
       roots.add(piece.lo, context.merge);
