@@ -141,6 +141,7 @@ struct vtkIGAIsosurfaceMapper::Internals
   std::vector<double> FrameKey;
   int Size[2] = { 0, 0 };
   iga::sst::GBuffer GBuffer;
+  iga::sst::GBuffer SeedGBuffer; ///< the frame before, with FrameCoherency
   std::vector<std::unique_ptr<LayerImage>> Layers;
   int LayerCount = 0;
   // OpenGL.
@@ -205,6 +206,7 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: " << this->Backend << "\n";
   os << indent << "Method: " << this->Method << "\n";
   os << indent << "RootFinder: " << iga::rootFinderName(iga::RootFinder(this->RootFinder)) << "\n";
+  os << indent << "FrameCoherency: " << this->FrameCoherency << "\n";
   os << indent << "MaximumSubdivisionDepth: " << this->MaximumSubdivisionDepth << "\n";
   os << indent << "MemoryBudgetMB: " << this->MemoryBudgetMB << "\n";
   os << indent << "FrameDeadline: " << this->FrameDeadline << "\n";
@@ -1301,6 +1303,8 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
     in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
     in.LastExtractionVersion = nurbs ? in.Nurbs.ExtractionVersion : 0;
     const auto method = engineMethod(this->Method);
+    in.SeedGBuffer = this->FrameCoherency ? std::move(in.GBuffer) : iga::sst::GBuffer();
+    frame.Settings.seedFrame = this->FrameCoherency ? &in.SeedGBuffer : nullptr;
     const auto report =
       this->DrawMode == DRAW_CSG ? this->ComputeCsgFrame(matrix->IsIdentity() != 0, frame)
       : nurbs ? iga::sst::render(in.Nurbs.Volumes(matrix->IsIdentity() ? nullptr : &in.NurbsWorld),
@@ -1407,6 +1411,7 @@ void vtkIGAIsosurfaceMapper::ReportEngine(const iga::sst::FrameReport& report)
 {
   Internals& in = *this->Internal;
   this->LastEngineTime = report.msTotal;
+  this->LastSeededRays = vtkIdType(report.seededRays);
   this->LastUnresolvedPixels = vtkIdType(report.unresolvedPixels);
   this->LastRayCompositionPatches = vtkIdType(report.rayCompositionPatches);
   this->LastSstPatches = vtkIdType(report.sstPatches);

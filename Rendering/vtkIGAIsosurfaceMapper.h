@@ -265,6 +265,18 @@ public:
   ///@}
 
   ///@{
+  /// Frame coherency (ray composition, first hits without clipping planes): the previous frame's
+  /// hits seed this frame's roots, so a small camera move or a deformation draws faster. A seed
+  /// is taken only where it is proved (iga::findNearestRoot): the image is a cold frame's. Keeps
+  /// the previous G-buffer (its memory again); default off.
+  vtkSetMacro(FrameCoherency, bool);
+  vtkGetMacro(FrameCoherency, bool);
+  vtkBooleanMacro(FrameCoherency, bool);
+  /// Rays of the last frame whose root its seed settled.
+  vtkGetMacro(LastSeededRays, vtkIdType);
+  ///@}
+
+  ///@{
   /// Halvings of an input patch along one parametric direction before it is halved no further
   /// along it; a pixel whose work needs more is given up (default 22).
   vtkSetClampMacro(MaximumSubdivisionDepth, int, 0, 40);
@@ -479,6 +491,8 @@ private:
   int Backend = BACKEND_AUTOMATIC;
   int Method = METHOD_AUTOMATIC;
   int RootFinder = ROOT_FINDER_POINT_INSERTION;
+  bool FrameCoherency = false;
+  vtkIdType LastSeededRays = 0;
   int MaximumSubdivisionDepth = 22;
   double FrameDeadline = 0;
   int MemoryBudgetMB = 4096;

@@ -23,7 +23,8 @@
 //
 // --algebraic: the gallery's algebraic surfaces (AlgebraicGallery.h), each one polynomial volume
 // over its box, SST against ray composition with each root finder at 512^2 (256^2 quick), with
-// the finders' knot insertions and evaluations per composed ray.
+// the finders' knot insertions and evaluations per composed ray; and an orbit of a degree a
+// frame drawn cold and with frame coherency (each frame seeded by the one before).
 //
 // --screen-filling: scenes framed as users frame them, covering a third of a 1920x1080 image or
 // more (the sphere p2 close up, the teapot, the deforming blade's boundary, the dice's CSG solid).
@@ -391,11 +392,11 @@ std::string json(
         << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
         << ", \"composedRays\": " << r.composedRays << ", \"rootFinderStepsPerRay\": "
         << (r.composedRays ? double(r.rootFinderSteps) / double(r.composedRays) : 0.0)
-        << ", \"stagesMs\": {\"setup\": " << r.msSetup << ", \"input\": " << r.msInput
-        << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution
-        << ", \"overlap\": " << r.msOverlap << ", \"subdivision\": " << r.msSubdivision
-        << ", \"compaction\": " << r.msCompaction << ", \"gbuffer\": " << r.msGBuffer << "}}"
-        << (k + 1 < all.size() ? "," : "") << "\n";
+        << ", \"seededRays\": " << r.seededRays << ", \"stagesMs\": {\"setup\": " << r.msSetup
+        << ", \"input\": " << r.msInput << ", \"sweepAndGroup\": " << r.msSweepAndGroup
+        << ", \"solution\": " << r.msSolution << ", \"overlap\": " << r.msOverlap
+        << ", \"subdivision\": " << r.msSubdivision << ", \"compaction\": " << r.msCompaction
+        << ", \"gbuffer\": " << r.msGBuffer << "}}" << (k + 1 < all.size() ? "," : "") << "\n";
   }
   out << "  ],\n  \"ratios\": {\n";
   for (size_t k = 0; k < ratios.size(); ++k)
@@ -409,6 +410,51 @@ std::string json(
 
 /// One algebraic scene: the SST against ray composition with each root finder (ratio
 /// `sstOverComposition_NAME_FINDER`).
+/// The camera turned by `degrees` about its view-up axis through the focal point.
+iga::Camera orbited(iga::Camera camera, double degrees)
+{
+  const glm::dvec3 arm = camera.position - camera.focalPoint;
+  const glm::dvec3 axis = glm::normalize(camera.viewUp);
+  const double a = degrees * 3.14159265358979323846 / 180;
+  camera.position = camera.focalPoint + arm * std::cos(a) + glm::cross(axis, arm) * std::sin(a) +
+                    axis * glm::dot(axis, arm) * (1 - std::cos(a));
+  return camera;
+}
+
+/// Frame coherency: ray composition (point insertion) over an orbit of a degree a frame, each
+/// frame cold, and each seeded by the frame before (Settings::seedFrame).
+void orbitWithCoherency(const std::string& name, const iga::VolumeSet<double>& set, int degree,
+  int size, int threads, int frames, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  double ms[2] = { 0, 0 };
+  for (int seeded = 0; seeded < 2; ++seeded)
+  {
+    iga::sst::GBuffer previous; // the orbit's start, before the frames measured
+    iga::sst::Settings start;
+    start.width = start.height = size;
+    start.threads = threads;
+    start.isovalues = { 0.0 };
+    iga::sst::render(
+      set.patches, frame(set.patches), start, iga::sst::Method::RayComposition, previous);
+    auto orbit = measureFrames("algebraic", name + (seeded ? "/orbit-seeded" : "/orbit-cold"), 0.0,
+      degree, size, size, threads, iga::sst::Method::RayComposition, frames, iga::sst::Backend::Cpu,
+      false,
+      [&](int r, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+      {
+        iga::sst::Settings coherent = settings;
+        coherent.seedFrame = seeded ? &previous : nullptr;
+        const auto report =
+          iga::sst::render(set.patches, orbited(frame(set.patches), r + 1), coherent, m, out);
+        previous = out;
+        return report;
+      });
+    ms[seeded] = orbit.ms;
+    all.push_back(std::move(orbit));
+  }
+  ratios.emplace_back("coldOverSeeded_" + name, ms[0] / ms[1]);
+}
+
 void compareWithComposition(const std::string& name, const iga::VolumeSet<double>& set, int degree,
   bool quick, int threads, int reps, std::vector<Measurement>& all,
   std::vector<std::pair<std::string, double>>& ratios)
@@ -434,6 +480,7 @@ void compareWithComposition(const std::string& name, const iga::VolumeSet<double
       "sstOverComposition_" + name + "_" + iga::rootFinderName(finder), sst.ms / composed.ms);
     all.push_back(std::move(composed));
   }
+  orbitWithCoherency(name, set, degree, size, threads, std::max(reps, 5), all, ratios);
 }
 
 /// The algebraic study: each gallery surface over its box as one polynomial volume, then ABS

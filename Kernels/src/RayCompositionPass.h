@@ -104,6 +104,34 @@ inline void dropAffineItems(
   s.ItemNodes.resize(kept);
 }
 
+/// Half the width, in the ray segment's parameter, of the bracket about a seed's root.
+constexpr double kSeedHalfWidth = 0.01;
+
+/// A ray's roots on its segment [t0, t1] of origin + t direction: by the finder, or where a
+/// first hit is all it needs and the seed frame has a hit at the pixel, from that hit's place
+/// along the ray (findNearestRoot, which proves or drops it; `seeded` says which).
+inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Settings& settings,
+  const RootSettings& rootSettings, const glm::dvec3& origin, const glm::dvec3& direction,
+  double t0, double t1, size_t pixel, bool& seeded)
+{
+  seeded = false;
+  const GBuffer* seed = settings.seedFrame;
+  if (!seed || rootSettings.maxRoots != 1 || seed->width != settings.width ||
+      seed->height != settings.height || seed->offsets[pixel] == seed->offsets[pixel + 1])
+  {
+    return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
+  }
+  const glm::dvec3 hit = seed->hits[seed->offsets[pixel]].position;
+  const double t = glm::dot(hit - origin, direction) / glm::dot(direction, direction);
+  const double guess = (t - t0) / (t1 - t0);
+  if (!(guess > -kSeedHalfWidth && guess < 1 + kSeedHalfWidth)) // a hit on another patch
+  {
+    return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
+  }
+  return findNearestRoot(
+    coefficients, degree, guess, kSeedHalfWidth, settings.rootFinder, rootSettings, seeded);
+}
+
 /// The hits of the band's pixels (s.frame's), per pixel, on the affine patches (rayDegree >= 0);
 /// in first-hit mode a pixel's items beyond its nearest hit so far are skipped, and without
 /// clipping planes a ray's roots beyond its first are not looked for.
@@ -128,11 +156,11 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
   rootSettings.maxRoots =
     s.frame.hits.firstHitOnly && settings.clipPlanes.empty() ? 1 : roots::kMaxRoots;
   perPixel.assign(count, {});
-  std::atomic<size_t> rays{ 0 }, steps{ 0 }, capped{ 0 };
+  std::atomic<size_t> rays{ 0 }, steps{ 0 }, capped{ 0 }, seededRays{ 0 };
   parallelFor(count, threads,
     [&](size_t begin, size_t end)
     {
-      size_t localRays = 0, localSteps = 0, localCapped = 0;
+      size_t localRays = 0, localSteps = 0, localCapped = 0, localSeeded = 0;
       for (size_t k = begin; k < end; ++k)
       {
         const size_t p = first + k;
@@ -181,9 +209,11 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
             composeRay(patch, settings.isovalues[size_t(node.iso)], u0, du,
               interpolation[size_t(patch.rayDegree)], coefficients);
           }
-          const BernsteinRoots roots =
-            findBernsteinRoots(coefficients, patch.rayDegree, settings.rootFinder, rootSettings);
+          bool seeded;
+          const BernsteinRoots roots = rayRoots(coefficients, patch.rayDegree, settings,
+            rootSettings, origin, direction, t0, t1, p, seeded);
           ++localRays;
+          localSeeded += seeded ? 1 : 0;
           localSteps += size_t(roots.cost.insertions + roots.cost.evaluations);
           localCapped += roots.cost.capped ? 1 : 0;
           for (int r = 0; r < roots.count; ++r)
@@ -219,10 +249,12 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
       rays += localRays;
       steps += localSteps;
       capped += localCapped;
+      seededRays += localSeeded;
     });
   report.composedRays += rays;
   report.rootFinderSteps += steps;
   report.cappedRays += capped;
+  report.seededRays += seededRays;
 }
 
 } // namespace sst

@@ -213,9 +213,19 @@ void vtkIGAIsosurfaceRepresentation::SetRootFinder(int finder)
   this->Mapper->SetRootFinder(finder);
 }
 
+void vtkIGAIsosurfaceRepresentation::SetFrameCoherency(int coherent)
+{
+  this->Mapper->SetFrameCoherency(coherent != 0);
+}
+
 int vtkIGAIsosurfaceRepresentation::GetLastRayCompositionPatches()
 {
   return int(this->Mapper->GetLastRayCompositionPatches());
+}
+
+int vtkIGAIsosurfaceRepresentation::GetLastSeededRays()
+{
+  return int(this->Mapper->GetLastSeededRays());
 }
 
 int vtkIGAIsosurfaceRepresentation::GetLastSstPatches()

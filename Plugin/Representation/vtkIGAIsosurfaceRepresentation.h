@@ -80,9 +80,13 @@ public:
   void SetMethod(int method);
   /// Ray composition's root finder (vtkIGAIsosurfaceMapper::RootFinderType).
   void SetRootFinder(int finder);
+  /// Ray composition's roots seeded by the previous frame's hits (the mapper's FrameCoherency).
+  void SetFrameCoherency(int coherent);
   /// The patches the last frame drew by ray composition and by the SST (the mapper's).
   int GetLastRayCompositionPatches();
   int GetLastSstPatches();
+  /// Rays of the last frame whose root the frame before settled (the mapper's).
+  int GetLastSeededRays();
   void SetMaximumSubdivisionDepth(int depth);
   /// The engine's memory budget in MiB.
   void SetMemoryBudget(int megabytes);

@@ -110,6 +110,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
                          are refused)
   --root-finder NAME     ray composition's root finder: subdivision, knot-insertion,
                          bezier-clipping, point-insertion (default) or polar-newton
+  --frame-coherency      ray composition: each frame's roots seeded by the frame before's hits
+                         (view: camera moves and time steps draw faster; the image is unchanged)
   --surface              draw the surfaces (volumes' boundaries, surface patches), not
                          isosurfaces; the default for geometry files and for input without volumes
   --edges                draw the element edges (every knot line of NURBS input) over the surface
@@ -190,6 +192,7 @@ struct Options
   double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };
   int method = vtkIGAIsosurfaceMapper::METHOD_AUTOMATIC;
   iga::RootFinder rootFinder = iga::RootFinder::PointInsertion;
+  bool frameCoherency = false;
   double time = 0.5;
   bool hasPosition = false, hasFocal = false, hasViewUp = false;
   double position[3], focal[3], viewUp[3], viewAngle = 30;
@@ -444,6 +447,8 @@ bool parseEngineOption(const std::string& arg, const OptionValue& value, Options
   }
   else if (arg == "--method")
     options.method = parseMethodOption(value());
+  else if (arg == "--frame-coherency")
+    options.frameCoherency = true;
   else if (arg == "--root-finder")
   {
     try
@@ -1199,6 +1204,7 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
   mapper->SetBackend(int(options.backend));
   mapper->SetMethod(options.method);
   mapper->SetRootFinder(int(options.rootFinder)); // RootFinderType follows iga::RootFinder
+  mapper->SetFrameCoherency(options.frameCoherency);
   for (size_t k = 0; k < drawing.isovalues.size(); ++k)
     mapper->SetIsovalue(int(k), drawing.isovalues[k]);
   mapper->ScalarVisibilityOff();

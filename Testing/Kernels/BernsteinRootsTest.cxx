@@ -278,6 +278,59 @@ TEST(BernsteinRoots, TheNearestRootsAloneAreTheFullSearchsFirst)
   }
 }
 
+/// A guess near the nearest root settles it (the same root as the search's, to 1e-12); a guess
+/// near a later root, near a double root or off [0, 1] is dropped for the finder's search, which
+/// still returns the nearest root.
+TEST(BernsteinRoots, AGuessIsTakenWhereItIsProved)
+{
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  int seeded = 0, cases = 0;
+  for (int degree = 2; degree <= 16; ++degree)
+  {
+    for (int trial = 0; trial < 6; ++trial)
+    {
+      const int real = std::uniform_int_distribution<int>(2, std::min(degree, 4))(rng);
+      const Case c = randomCase(rng, degree, real, 0);
+      for (iga::RootFinder finder : kFinders)
+      {
+        SCOPED_TRACE(std::string(iga::rootFinderName(finder)) + ", " + c.what);
+        bool taken = false;
+        const auto nearest = [&](double guess)
+        {
+          return iga::findNearestRoot(
+            c.coefficients.data(), int(c.coefficients.size()) - 1, guess, 0.02, finder, {}, taken);
+        };
+        iga::BernsteinRoots found = nearest(c.roots[0] + jitter(rng));
+        ASSERT_EQ(found.count, 1);
+        EXPECT_NEAR(found.t[0], c.roots[0], 1e-12);
+        seeded += taken ? 1 : 0;
+        ++cases;
+        for (double guess : { c.roots[1], -0.5, 1.5 })
+        {
+          found = nearest(guess);
+          EXPECT_FALSE(taken) << "guess " << guess;
+          ASSERT_EQ(found.count, 1);
+          EXPECT_NEAR(found.t[0], c.roots[0], 1e-9);
+        }
+      }
+    }
+  }
+  EXPECT_GT(seeded, cases * 9 / 10);
+  // (t - 0.4)^2 (t - 0.8) (t - 1.2): the nearest root is the double one at 0.4, which changes no
+  // sign: a bracket about it is refused, and the search finds it.
+  Poly f = multiply(multiply(linear(0.4L), linear(0.4L)), multiply(linear(0.8L), linear(1.2L)));
+  std::vector<double> c;
+  for (long double v : f)
+    c.push_back(double(v));
+  bool taken = true;
+  const iga::BernsteinRoots nearDouble =
+    iga::findNearestRoot(c.data(), 4, 0.4, 0.05, iga::RootFinder::PointInsertion, {}, taken);
+  EXPECT_FALSE(taken);
+  ASSERT_EQ(nearDouble.count, 1);
+  EXPECT_NEAR(nearDouble.t[0], 0.4, 1e-6);
+}
+
 TEST(BernsteinRoots, PolynomialsThatOnlyComeCloseHaveNoRoots)
 {
   std::mt19937 rng(13);

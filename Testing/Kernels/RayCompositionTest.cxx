@@ -385,6 +385,55 @@ TEST(RayComposition, FirstHitFramesFindTheNearestRootAlone)
   }
 }
 
+/// Frame coherency: a frame seeded by the previous one (the camera turned by 1 degree) has the
+/// cold frame's hits (positions within 1e-9), settles most rays from their seeds and takes fewer
+/// root-finder steps; a seed frame of another size is ignored.
+TEST(RayComposition, SeededFramesEqualColdFrames)
+{
+  for (const char* name : { "kummer", "heart", "linked-tori" })
+  {
+    SCOPED_TRACE(name);
+    const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
+    const Volume v = algebraicVolume(surface->expression, surface->box);
+    const iga::Camera before = cameraOf(v);
+    iga::Camera after = before;
+    const glm::dvec3 arm = before.position - before.focalPoint;
+    const double angle = 1.0 * M_PI / 180;
+    const glm::dvec3 axis = glm::normalize(before.viewUp);
+    after.position = before.focalPoint + arm * std::cos(angle) +
+                     glm::cross(axis, arm) * std::sin(angle) +
+                     axis * glm::dot(axis, arm) * (1 - std::cos(angle));
+    iga::sst::Settings settings;
+    settings.width = settings.height = 96;
+    settings.isovalues = { 0.0 };
+    settings.threads = 2;
+    const iga::sst::Scene scene(v.patches);
+    GBuffer previous, cold, seeded, ignored;
+    iga::sst::render(scene, before, settings, Method::RayComposition, previous);
+    const auto coldReport = iga::sst::render(scene, after, settings, Method::RayComposition, cold);
+    settings.seedFrame = &previous;
+    const auto seededReport =
+      iga::sst::render(scene, after, settings, Method::RayComposition, seeded);
+    ASSERT_GT(cold.coveredPixels(), 500u);
+    ASSERT_EQ(seeded.offsets, cold.offsets);
+    for (size_t h = 0; h < cold.hits.size(); ++h)
+    {
+      ASSERT_LT(glm::length(seeded.hits[h].position - cold.hits[h].position), 1e-9) << "hit " << h;
+    }
+    EXPECT_EQ(coldReport.seededRays, 0u);
+    EXPECT_GT(seededReport.seededRays, cold.coveredPixels() / 2);
+    EXPECT_LT(seededReport.rootFinderSteps, coldReport.rootFinderSteps);
+    GBuffer small;
+    settings.seedFrame = nullptr;
+    settings.width = settings.height = 48;
+    iga::sst::render(scene, before, settings, Method::RayComposition, small);
+    settings.width = settings.height = 96;
+    settings.seedFrame = &small;
+    EXPECT_EQ(
+      iga::sst::render(scene, after, settings, Method::RayComposition, ignored).seededRays, 0u);
+  }
+}
+
 TEST(RayComposition, AbsFieldsAgreeWithTheTree)
 {
   // Wei and Feng's scenes: the Kummer surface fitted on 12^3 cubic elements, the elements it

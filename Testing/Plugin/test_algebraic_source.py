@@ -85,6 +85,23 @@ for finder in display.GetProperty("IGARootFinder").Available:
     display.IGARootFinder = finder
     other = covered()
     assert len(composed ^ other) <= len(composed) // 200, (finder, len(composed ^ other))
+display.IGARootFinder = "Bezier Point Insertion (Wei-Feng)"
+
+# Frame coherency: the camera turned by a degree, seeded by the frame before, covers the same
+# pixels as the cold frame of that camera.
+camera = view.GetActiveCamera()
+camera.Azimuth(1)
+turned = covered()
+camera.Azimuth(-1)
+display.IGAFrameCoherency = 1
+covered()
+camera.Azimuth(1)
+assert covered() == turned, len(turned ^ covered())
+display.UpdatePropertyInformation()
+seeded = display.GetProperty("IGALastSeededRays").GetElement(0)
+assert seeded > len(turned) // 2, (seeded, len(turned))
+display.IGAFrameCoherency = 0
+camera.Azimuth(-1)
 
 source.GallerySurface = "Expression over Box"
 source.Expression = "x^2 + y^2 - z^2 - 0.1"

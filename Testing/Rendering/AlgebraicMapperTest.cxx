@@ -135,6 +135,32 @@ TEST(AlgebraicMapper, EveryRootFinderByNameDrawsTheSameSurface)
   EXPECT_EQ(scene.mapper->GetRootFinder(), vtkIGAIsosurfaceMapper::ROOT_FINDER_POLAR_NEWTON);
 }
 
+/// With frame coherency a camera turned by a degree is drawn from the frame before's hits: most
+/// rays seeded, and the cold frame's G-buffer (positions within 1e-9).
+TEST(AlgebraicMapper, FrameCoherencySeedsACameraMoveAndKeepsTheImage)
+{
+  const auto drawTurned = [](bool coherent, vtkIdType& seeded)
+  {
+    AlgebraicScene scene("kummer");
+    scene.mapper->SetFrameCoherency(coherent);
+    scene.draw();
+    scene.renderer->GetActiveCamera()->Azimuth(1);
+    const iga::sst::GBuffer turned = scene.draw();
+    seeded = scene.mapper->GetLastSeededRays();
+    EXPECT_TRUE(scene.errors.empty());
+    return turned;
+  };
+  vtkIdType coldSeeded = 0, seeded = 0;
+  const iga::sst::GBuffer cold = drawTurned(false, coldSeeded);
+  const iga::sst::GBuffer coherent = drawTurned(true, seeded);
+  EXPECT_EQ(coldSeeded, 0);
+  EXPECT_GT(size_t(seeded), cold.coveredPixels() / 2);
+  ASSERT_GT(cold.coveredPixels(), 2000u);
+  ASSERT_EQ(coherent.offsets, cold.offsets);
+  for (size_t h = 0; h < cold.hits.size(); ++h)
+    EXPECT_LT(glm::length(coherent.hits[h].position - cold.hits[h].position), 1e-9) << h;
+}
+
 TEST(AlgebraicMapper, CurvedPatchesTakeTheTreeAndForcedRayCompositionIsRefused)
 {
   igatest::MapperScene scene(120, 100);

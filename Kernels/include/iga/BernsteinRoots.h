@@ -207,16 +207,18 @@ IGA_HD inline roots::RootList interiorRoots(const roots::Piece& piece, RootFinde
 } // namespace detail
 
 /// The roots in [0, 1] of sum c_i B_i^degree(t), the first settings.maxRoots of them.
-IGA_HD inline BernsteinRoots findBernsteinRoots(
-  const double* c, int degree, RootFinder finder, const RootSettings& settings = {})
+namespace detail
 {
-  BernsteinRoots result;
+/// The polynomial as a piece scaled to unit size and the search's context; false where
+/// `result` already says all: a bad degree or coefficient, or every coefficient zero.
+IGA_HD inline bool rootProblem(const double* c, int degree, const RootSettings& settings,
+  BernsteinRoots& result, roots::Piece& piece, roots::RootContext& context)
+{
   if (degree < 0 || degree > kMaxDegree)
   {
     result.invalid = true;
-    return result;
+    return false;
   }
-  roots::Piece piece;
   piece.degree = degree;
   double largest = 0;
   for (int i = 0; i <= degree; ++i)
@@ -226,32 +228,32 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
     piece.c[i] = c[i];
   }
   result.identicallyZero = !result.invalid && largest == 0;
-  if (result.invalid || result.identicallyZero)
-  {
-    return result;
-  }
-  roots::RootContext context;
   context.tolerance = settings.tolerance;
   context.merge = settings.merge;
   context.maxSplits = settings.maxSplits;
   context.limit = settings.maxRoots;
   context.zero = 32.0 * (degree + 1) * Epsilon<double>::value;
-  // Roots at the ends, divided out: t g(t) has c_{i+1} = g_i (i + 1) / d, (1 - t) h(t) has
-  // c_i = h_i (d - i) / d. Each division leaves the polynomial's other roots in place.
-  bool atZero = false, atOne = false;
   piece = roots::normalised(piece);
+  return !result.invalid && !result.identicallyZero;
+}
+} // namespace detail
+
+IGA_HD inline BernsteinRoots findBernsteinRoots(
+  const double* c, int degree, RootFinder finder, const RootSettings& settings = {})
+{
+  BernsteinRoots result;
+  roots::Piece piece;
+  roots::RootContext context;
   // Coefficients of one sign beyond rounding bound the polynomial away from zero: no root at
   // all (most rays through a patch's box miss its surface).
-  bool positive = true, negative = true;
-  for (int i = 0; i <= degree; ++i)
-  {
-    positive = positive && piece.c[i] > context.zero;
-    negative = negative && piece.c[i] < -context.zero;
-  }
-  if (positive || negative)
+  if (!detail::rootProblem(c, degree, settings, result, piece, context) ||
+      roots::keepsOneSign(piece, context.zero))
   {
     return result;
   }
+  // Roots at the ends, divided out: t g(t) has c_{i+1} = g_i (i + 1) / d, (1 - t) h(t) has
+  // c_i = h_i (d - i) / d. Each division leaves the polynomial's other roots in place.
+  bool atZero = false, atOne = false;
   while (piece.degree > 0 && roots::signOf(piece.c[0], context.zero) == 0)
   {
     atZero = true;
@@ -304,6 +306,45 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
   {
     result.add(1.0, context.merge);
   }
+  return result;
+}
+
+/// Frame coherency: the nearest root in [0, 1] where a guess of it is at hand (the previous
+/// frame's hit near the ray). The guess is taken only where it is proved: on [0, a] the
+/// polynomial keeps one sign beyond rounding, on [a, b] it changes sign and its derivative keeps
+/// one (a single simple root), a and b the guess -+ halfWidth; that root, by Newton in the
+/// bracket, is then the nearest. Elsewhere the finder's search for the nearest root (`seeded`
+/// false).
+IGA_HD inline BernsteinRoots findNearestRoot(const double* c, int degree, double guess,
+  double halfWidth, RootFinder finder, const RootSettings& settings, bool& seeded)
+{
+  BernsteinRoots result;
+  roots::Piece piece, before, rest, middle, after;
+  roots::RootContext context;
+  const double a = maxValue(guess - halfWidth, 0.0), b = minValue(guess + halfWidth, 1.0);
+  seeded = false;
+  if (detail::rootProblem(c, degree, settings, result, piece, context) && a < b)
+  {
+    roots::splitPiece(piece, a, before, rest);
+    roots::splitPiece(rest, (b - a) / (1 - a), middle, after);
+    result.cost.insertions += 2 * degree;
+    const int ends =
+      roots::signOf(middle.c[0], context.zero) * roots::signOf(middle.c[degree], context.zero);
+    seeded = (a == 0 || roots::keepsOneSign(before, context.zero)) && ends < 0 &&
+             roots::keepsOneSign(roots::normalised(roots::derivativeOf(middle)), context.zero);
+  }
+  if (!seeded)
+  {
+    RootSettings nearest = settings;
+    nearest.maxRoots = 1;
+    const long spent = result.cost.insertions;
+    result = findBernsteinRoots(c, degree, finder, nearest);
+    result.cost.insertions += spent;
+    return result;
+  }
+  const double s =
+    roots::detail::bracketedRoot(middle, 0, 1, middle.c[0], middle.c[degree], context, result.cost);
+  result.add(roots::globalOf(middle, s), context.merge);
   return result;
 }
 

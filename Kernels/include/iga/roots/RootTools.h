@@ -159,6 +159,19 @@ IGA_HD inline bool changesSign(const Piece& piece, double zero)
   return positive && negative;
 }
 
+/// Whether every coefficient keeps one sign beyond rounding: the polynomial is bounded away
+/// from zero on the piece.
+IGA_HD inline bool keepsOneSign(const Piece& piece, double zero)
+{
+  bool positive = true, negative = true;
+  for (int i = 0; i <= piece.degree; ++i)
+  {
+    positive = positive && piece.c[i] > zero;
+    negative = negative && piece.c[i] < -zero;
+  }
+  return positive || negative;
+}
+
 /// The smallest zero of the control polygon (points (i/d, c_i)) in local [0, 1] at a strict sign
 /// change of the nonzero coefficients; -1 without one.
 IGA_HD inline double firstPolygonZero(const Piece& piece, double zero)

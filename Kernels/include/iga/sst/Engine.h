@@ -93,6 +93,10 @@ struct Settings
   double deadlineMs = 0;
   /// Ray composition only: the roots' finder.
   RootFinder rootFinder = RootFinder::PointInsertion;
+  /// Ray composition only, frame coherency: the previous frame's G-buffer (the same size), whose
+  /// first hits seed first-hit rays through the same pixels (findNearestRoot: a seed is taken
+  /// only where it is proved, so the hits are a cold frame's); null for none.
+  const GBuffer* seedFrame = nullptr;
   /// Brute force only: uniform subdivision levels per patch.
   int bruteForceLevels = 4;
   /// Called after every SST iteration with its number and the (pixel, patch) pairs left.
@@ -143,6 +147,7 @@ struct FrameReport
   size_t composedRays = 0;          ///< ray composition: (pixel, patch) polynomials composed
   size_t rootFinderSteps = 0;       ///< their finders' knot insertions and evaluations
   size_t cappedRays = 0;            ///< rays whose finder ran out of splits (roots may be missing)
+  size_t seededRays = 0;            ///< rays whose root the previous frame's hit settled
   size_t maxTuples = 0;
   size_t maxPatches = 0;
   size_t peakBytes = 0; ///< largest engine-owned working set
