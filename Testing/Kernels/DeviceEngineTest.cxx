@@ -588,11 +588,9 @@ void expectRefused(const Scene& s, const std::string& expected)
 }
 
 /// Draws the scene in one pass and, under `loopBudget` besides the image's, in bands of rows, by
-/// each CPU method and by the device driver: the G-buffers must agree (offsets and patches
-/// identical, positions within rounding), with the same Newton solves, since each pixel is solved
-/// in one band. Positions may differ in their last bits: a node over the budget takes its tuples
-/// unsplit, so Newton starts elsewhere in the node. Returns the number of bands, which all of them
-/// must agree on.
+/// each CPU method and by the device driver: the G-buffers must be identical (offsets, patches,
+/// positions and depths bit for bit), with the same Newton solves, since each pixel is solved in
+/// one band. Returns the number of bands, which all of them must agree on.
 int expectBandsMatchOnePass(
   Scene s, size_t loopBudget, std::initializer_list<iga::sst::Method> methods)
 {
@@ -623,11 +621,10 @@ int expectBandsMatchOnePass(
     for (size_t h = 0; h < banded.hits.size(); ++h)
     {
       EXPECT_EQ(banded.hits[h].patch, whole.hits[h].patch);
-      EXPECT_NEAR(banded.hits[h].ndcDepth, whole.hits[h].ndcDepth, 1e-12);
+      EXPECT_EQ(banded.hits[h].ndcDepth, whole.hits[h].ndcDepth);
       for (int d = 0; d < 3; ++d)
       {
-        EXPECT_NEAR(banded.hits[h].position[d], whole.hits[h].position[d],
-          1e-12 * (1 + std::abs(whole.hits[h].position[d])));
+        EXPECT_EQ(banded.hits[h].position[d], whole.hits[h].position[d]);
       }
     }
   }

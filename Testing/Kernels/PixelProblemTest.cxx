@@ -303,11 +303,11 @@ std::vector<double> linearNode(Corner corner, bool surface, double wSign = 1)
   return values;
 }
 
-int axesOf(const std::vector<double>& values, bool surface, bool windowOnly = false)
+int axesOf(const std::vector<double>& values, bool surface)
 {
   const int degree[3] = { 1, 1, surface ? 0 : 1 };
   return iga::sst::splitAxes(
-    iga::VolumeView<const double>(values.data(), degree, iga::sst::kScreenChannels), windowOnly);
+    iga::VolumeView<const double>(values.data(), degree, iga::sst::kScreenChannels));
 }
 
 TEST(PixelProblem, SplitAxesFollowWhatVaries)
@@ -317,12 +317,10 @@ TEST(PixelProblem, SplitAxesFollowWhatVaries)
   { return glm::dvec3(100 * u.x + 5, 2 * u.y + 5, u.z - 0.5); };
   EXPECT_EQ(axesOf(linearNode(stretched, false), false), 0b101);
   EXPECT_EQ(axesOf(linearNode(stretched, true), true), 0b01); // a surface has no attribute row
-  EXPECT_EQ(axesOf(linearNode(stretched, false), false, true), 0b001); // window alone
   // Within a quarter of the most: halved.
   const auto even = [](const glm::dvec3& u)
   { return glm::dvec3(10 * u.x + 3 * u.y, 10 * u.y - 3 * u.x, u.x + u.y + u.z); };
   EXPECT_EQ(axesOf(linearNode(even, false), false), 0b111);
-  EXPECT_EQ(axesOf(linearNode(even, false), false, true), 0b011);
   EXPECT_EQ(axesOf(linearNode(even, true), true), 0b11);
   // Nothing varies: all; a corner behind the eye plane (no window position): all.
   const auto still = [](const glm::dvec3&) { return glm::dvec3(5, 5, 0); };
@@ -353,31 +351,6 @@ TEST(PixelProblem, ChildrenKeepTheirPlacePerDirection)
   EXPECT_EQ(iga::sst::axesAtDepthCap(c, 2), 0b011);
   EXPECT_EQ(iga::sst::axesAtDepthCap(c, 1), 0b111);
   EXPECT_EQ(iga::sst::axesAtDepthCap(c, 3), 0);
-}
-
-/// Implicit nodes take tuples once certified and at most 128 x 128 pixels, or small (256 pixels),
-/// or at the depth cap, or over the memory budget.
-TEST(PixelProblem, ReadyForTuplesWhenCertifiedAndNotLarge)
-{
-  iga::sst::FrameConstants frame{};
-  frame.maxSubdivisionDepth = 10;
-  iga::sst::Node node{};
-  node.implicit = true;
-  const auto sized = [&](double w, double h, bool certified)
-  {
-    node.info.box.lo[0] = 10, node.info.box.hi[0] = 10 + w;
-    node.info.box.lo[1] = 20, node.info.box.hi[1] = 20 + h;
-    node.info.certified = certified;
-    return iga::sst::readyForTuples(node, frame);
-  };
-  EXPECT_TRUE(sized(128, 128, true));
-  EXPECT_FALSE(sized(128, 129, true));
-  EXPECT_TRUE(sized(16, 16, false));
-  EXPECT_FALSE(sized(16, 17, false));
-  node.level = 10;
-  EXPECT_TRUE(sized(500, 500, false));
-  node.level = 3, node.overBudget = true;
-  EXPECT_TRUE(sized(500, 500, true));
 }
 
 } // namespace

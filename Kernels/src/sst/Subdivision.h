@@ -95,8 +95,7 @@ size_t chooseSplits(LoopState<Exec>& s)
         split[n] = coveredPixelCount(nodes[n].info.box, frame) > 0 ? Split : Keep;
       }
       nodes[n].axes = split[n] == Split
-                        ? uint8_t(splitAxes(viewOf(nodes[n], pool, shapes),
-                                    nodes[n].implicit && nodes[n].info.certified) &
+                        ? uint8_t(splitAxes(viewOf(nodes[n], pool, shapes)) &
                                   ~axesAtDepthCap(nodes[n], frame.maxSubdivisionDepth))
                         : uint8_t(0);
       if (split[n] == Split && nodes[n].axes == 0)

@@ -656,7 +656,7 @@ constexpr double kSplitShare = 0.25;
 
 /// See splitAxes.
 template<class T, int Dim>
-IGA_HD int splitAxes(const PatchView<const T, Dim>& node, bool windowOnly)
+IGA_HD int splitAxes(const PatchView<const T, Dim>& node)
 {
   // Per direction, the mean variation of the control net's window position (pixels, X/W and
   // Y/W) and attribute (A/V) along its lines.
@@ -685,7 +685,7 @@ IGA_HD int splitAxes(const PatchView<const T, Dim>& node, bool windowOnly)
       }
       window[d] += absValue(b[kScreenX] / b[kScreenW] - a[kScreenX] / a[kScreenW]) +
                    absValue(b[kScreenY] / b[kScreenW] - a[kScreenY] / a[kScreenW]);
-      if (Dim == 3 && !windowOnly)
+      if (Dim == 3)
       {
         attribute[d] +=
           absValue(b[kScreenAttribute] / b[kScreenWeight] - a[kScreenAttribute] / a[kScreenWeight]);
@@ -716,13 +716,11 @@ IGA_HD int splitAxes(const PatchView<const T, Dim>& node, bool windowOnly)
 /// where the node straddles the eye plane. A node stretched along one direction (where a rational
 /// patch's weights range widely, its map changes across a thin layer in parameter space) is
 /// halved across the layer alone until it is no longer stretched, instead of into 8 children
-/// along the layer as well. With `windowOnly` the attribute is left out (a certified node split
-/// for its size: halving it across its layer would put the isosurface on the cut).
+/// along the layer as well.
 template<class T>
-IGA_HD int splitAxes(const VolumeView<const T>& node, bool windowOnly = false)
+IGA_HD int splitAxes(const VolumeView<const T>& node)
 {
-  return isSurface(node) ? detail::splitAxes<T, 2>(surfaceOf(node), windowOnly)
-                         : detail::splitAxes<T, 3>(node, windowOnly);
+  return isSurface(node) ? detail::splitAxes<T, 2>(surfaceOf(node)) : detail::splitAxes<T, 3>(node);
 }
 
 /// Children of a node's midpoint split along `axes`.

@@ -341,22 +341,13 @@ IGA_HD inline bool worthKeeping(const NodeInfo<double>& info, const FrameConstan
            onScreen(info.box, frame.width, frame.height));
 }
 
-/// Window-box area (pixels, 128 x 128) above which a certified implicit node is still split (by
-/// its window directions) before it takes tuples. Smaller areas split nodes whose Newton starts
-/// were already near: on degree-4 volumes the subdivision then costs more than it saves.
-constexpr double kLargestCertifiedTupleArea = 16384;
-
 /// An implicit node stands for all pixels of its box in the round; it gets explicit (pixel,
-/// node) tuples once it is certified (and not large), small, or at a cap. Before, every pixel
-/// would fail on it without a certificate, so the paper's loop would split it anyway. On a
-/// certified node over thousands of pixels Newton would start far from most of their roots
-/// (more iterations, and starts that leave the node and fail), while splitting it implicitly
-/// costs no tuples.
+/// node) tuples once it is certified, small, or at a cap. Before, every pixel would fail on it
+/// without a certificate, so the paper's loop would split it anyway.
 IGA_HD inline bool readyForTuples(const Node& node, const FrameConstants& frame)
 {
   const Box3<double>& box = node.info.box;
-  const double area = (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]);
-  return (node.info.certified && area <= kLargestCertifiedTupleArea) || area <= 256.0 ||
+  return node.info.certified || (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) <= 256.0 ||
          node.level >= frame.maxSubdivisionDepth || node.overBudget;
 }
 
