@@ -131,8 +131,8 @@ assert count_messages("CUDA") == 0, mapper_messages
 
 # ParaView's progress handler sees the representation's progress while the engine runs.
 handler = simple.servermanager.ActiveConnection.Session.GetProgressHandler()
-# Every event through: at any positive interval the handler drops those that come sooner after
-# the last one it passed, which a fast frame's rounds all may.
+# The handler drops the events that come sooner than its interval after the last one it passed;
+# the interval is clamped to 0.01 s at least, which a small frame's rounds may all be.
 handler.SetProgressInterval(0)
 progress = []
 
@@ -172,14 +172,22 @@ def turn_and_back():
 # frames computed.
 display.IGABackend = "CUDA"
 cuda_shot = screenshot("backend_cuda")
-engine_progress = [p for text, p in progress if text == "IGA Isosurface" and 0 < p < 100]
-assert engine_progress, progress
 turn_and_back()
 if without_cuda:
     assert same_pixels(cuda_shot, shot), "CUDA fallback differs from the CPU image"
     assert count_messages("CUDA asked for, but") == 1, mapper_messages
 else:
     iga_scene.compare_images(cuda_shot, shot, work_dir)
+
+# A frame large enough that its rounds take longer than the handler's interval: its progress
+# reaches the handler between 0 and 100.
+progress.clear()
+view.CameraPosition = [2.5, -2.9, 2.6]
+simple.SaveScreenshot(os.path.join(work_dir, "progress.png"), view, ImageResolution=[1500, 1200],
+                      TransparentBackground=0)
+iga_scene.place_camera(view)
+engine_progress = [p for text, p in progress if text == "IGA Isosurface" and 0 < p < 100]
+assert engine_progress, progress
 print(f"Backend CUDA: {'CPU fallback, same image' if without_cuda else 'GPU'}; progress seen "
       f"by ParaView's handler: {engine_progress}")
 
