@@ -41,6 +41,7 @@ void vtkIGAIsosurfaceImage::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
+  os << indent << "Layers: " << this->Layers << "\n";
   os << indent << "Camera: " << (this->Camera ? "set" : "(framing the input)") << "\n";
   os << indent << "Mapper:\n";
   this->Mapper->PrintSelf(os, indent.GetNextIndent());
@@ -166,39 +167,68 @@ void vtkIGAIsosurfaceImage::WritePixels(vtkImageData* image, bool composite, boo
 {
   const int width = this->ImageSize[0], height = this->ImageSize[1];
   const vtkIdType pixels = vtkIdType(width) * height;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   vtkPointData* data = image->GetPointData();
-  auto depth = pixelArray<vtkDoubleArray>(data, "Depth", 1, pixels, nan);
-  auto position = pixelArray<vtkDoubleArray>(data, "Position", 3, pixels, nan);
-  auto normal = pixelArray<vtkDoubleArray>(data, "Normal", 3, pixels, nan);
-  auto uvw = pixelArray<vtkDoubleArray>(data, "UVW", 3, pixels, nan);
-  auto cell = pixelArray<vtkIdTypeArray>(data, "Cell", 1, pixels, vtkIdType(-1));
-  auto block = composite ? pixelArray<vtkUnsignedIntArray>(data, "Block", 1, pixels, 0u) : nullptr;
   auto hitCount = pixelArray<vtkIntArray>(data, "HitCount", 1, pixels, 0);
   auto rgba = pixelArray<vtkUnsignedCharArray>(data, "RGBA", 4, pixels, (unsigned char)0);
   data->SetScalars(rgba);
-  const int attributeCount = computed ? this->Mapper->GetNumberOfAttributes() : 0;
+  if (computed)
+  {
+    const iga::sst::GBuffer& gbuffer = this->Mapper->GetLastGBuffer();
+    const std::vector<float>& colours = this->Mapper->GetLastColours();
+    for (vtkIdType p = 0; p < pixels; ++p)
+    {
+      hitCount->SetValue(p, gbuffer.hitCount(int(p % width), int(p / width)));
+      for (int c = 0; hitCount->GetValue(p) > 0 && c < 4; ++c)
+      {
+        const float value = std::clamp(colours[size_t(4 * p + c)], 0.0f, 1.0f);
+        rgba->SetValue(4 * p + c, static_cast<unsigned char>(value * 255.0f + 0.5f));
+      }
+    }
+  }
+  for (int layer = 0; layer < this->Layers; ++layer)
+  {
+    this->WriteLayer(
+      image, composite, computed ? layer : -1, layer ? "_" + std::to_string(layer) : "");
+  }
+}
+
+void vtkIGAIsosurfaceImage::WriteLayer(
+  vtkImageData* image, bool composite, int layer, const std::string& suffix)
+{
+  const int width = this->ImageSize[0], height = this->ImageSize[1];
+  const vtkIdType pixels = vtkIdType(width) * height;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  vtkPointData* data = image->GetPointData();
+  const auto named = [&](const char* name) { return std::string(name) + suffix; };
+  auto depth = pixelArray<vtkDoubleArray>(data, named("Depth").c_str(), 1, pixels, nan);
+  auto position = pixelArray<vtkDoubleArray>(data, named("Position").c_str(), 3, pixels, nan);
+  auto normal = pixelArray<vtkDoubleArray>(data, named("Normal").c_str(), 3, pixels, nan);
+  auto uvw = pixelArray<vtkDoubleArray>(data, named("UVW").c_str(), 3, pixels, nan);
+  auto cell = pixelArray<vtkIdTypeArray>(data, named("Cell").c_str(), 1, pixels, vtkIdType(-1));
+  auto block = composite
+                 ? pixelArray<vtkUnsignedIntArray>(data, named("Block").c_str(), 1, pixels, 0u)
+                 : nullptr;
+  const int attributeCount = layer >= 0 ? this->Mapper->GetNumberOfAttributes() : 0;
   std::vector<vtkSmartPointer<vtkDoubleArray>> attributes;
   for (int a = 0; a < attributeCount; ++a)
   {
-    attributes.push_back(
-      pixelArray<vtkDoubleArray>(data, this->Mapper->GetAttributeName(a), 1, pixels, nan));
+    attributes.push_back(pixelArray<vtkDoubleArray>(
+      data, named(this->Mapper->GetAttributeName(a)).c_str(), 1, pixels, nan));
   }
-  if (!computed)
+  if (layer < 0)
   {
-    return; // nothing to draw: every pixel empty
+    return; // nothing computed: every pixel empty
   }
   const iga::sst::GBuffer& gbuffer = this->Mapper->GetLastGBuffer();
-  const std::vector<float>& colours = this->Mapper->GetLastColours();
   std::vector<double> values(static_cast<size_t>(attributeCount));
   for (vtkIdType p = 0; p < pixels; ++p)
   {
     const int i = int(p % width), j = int(p / width);
-    const iga::sst::Hit* hit = gbuffer.firstHit(i, j);
-    if (!hit)
+    if (gbuffer.hitCount(i, j) <= layer)
     {
       continue;
     }
+    const iga::sst::Hit* hit = gbuffer.firstHit(i, j) + layer;
     depth->SetValue(p, hit->eyeDepth);
     position->SetTypedTuple(p, &hit->position[0]);
     normal->SetTypedTuple(p, &hit->normal[0]);
@@ -212,12 +242,6 @@ void vtkIGAIsosurfaceImage::WritePixels(vtkImageData* image, bool composite, boo
     if (block)
     {
       block->SetValue(p, blockIndex);
-    }
-    hitCount->SetValue(p, gbuffer.hitCount(i, j));
-    for (int c = 0; c < 4; ++c)
-    {
-      const float value = std::clamp(colours[size_t(4 * p + c)], 0.0f, 1.0f);
-      rgba->SetValue(4 * p + c, static_cast<unsigned char>(value * 255.0f + 0.5f));
     }
     this->Mapper->HitAttributes(*hit, values.data());
     for (int a = 0; a < attributeCount; ++a)

@@ -20,6 +20,11 @@
  * property, else 1), RGBA (the shaded colour, 8 bits a channel) and every point attribute of
  * the input evaluated exactly at the hit (not interpolated), under its own name. Pixels with no
  * hit hold NaN (Cell -1, HitCount 0, RGBA 0).
+ *
+ * With Layers above 1 (and the mapper's AllLayers on, so that the frame keeps every hit) the
+ * hits behind the first come too: for layer k = 1 .. Layers - 1, the k-th hit behind the first
+ * along the ray, its arrays named as the first hit's with "_k" appended (Depth_1, Position_1,
+ * ..., an attribute "T" as T_1); NaN (Cell -1) where the ray has fewer hits.
  */
 #ifndef vtkIGAIsosurfaceImage_h
 #define vtkIGAIsosurfaceImage_h
@@ -27,6 +32,8 @@
 #include "IGAViewRenderingModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 #include "vtkNew.h" // for members
+
+#include <string> // for WriteLayer
 
 class vtkActor;
 class vtkCamera;
@@ -61,6 +68,12 @@ public:
   vtkGetVector2Macro(ImageSize, int);
   ///@}
 
+  ///@{
+  /// Hits a pixel reports, nearest first (default 1, the first hit alone; at most 64).
+  vtkSetClampMacro(Layers, int, 1, 64);
+  vtkGetMacro(Layers, int);
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
 protected:
@@ -81,11 +94,14 @@ private:
   bool ComputeFrame(vtkDataObject* input);
   /// The output's arrays from the mapper's last frame (empty pixels only when not computed).
   void WritePixels(vtkImageData* image, bool composite, bool computed);
+  /// The arrays of each pixel's hit `layer` (0 the first), named with `suffix`.
+  void WriteLayer(vtkImageData* image, bool composite, int layer, const std::string& suffix);
 
   vtkNew<vtkIGAIsosurfaceMapper> Mapper;
   vtkNew<vtkActor> Actor;
   vtkCamera* Camera = nullptr;
   int ImageSize[2] = { 512, 512 };
+  int Layers = 1;
 };
 
 #endif

@@ -95,3 +95,18 @@ bounds = reader.GetOutput().GetBounds()
 print(f"x takes {x_range}, control points span {bounds[0:2]}")
 assert abs(x_range[0] - bounds[0]) < 1e-12 and abs(x_range[1] - bounds[1]) < 1e-12, (x_range, bounds)
 assert not mapper.GetAttributeRange("no such array", x_range)
+
+# The hits behind the first: the ring's surfaces with every layer kept, two layers asked for.
+image.GetMapper().AllLayersOn()
+image.SetLayers(2)
+image.Update()
+pixels = image.GetOutput().GetPointData()
+hits = vtk_to_numpy(pixels.GetArray("HitCount"))
+depth = vtk_to_numpy(pixels.GetArray("Depth"))
+depth_behind = vtk_to_numpy(pixels.GetArray("Depth_1"))
+behind = hits >= 2
+print(f"{behind.sum()} pixels with a hit behind the first")
+assert behind.sum() > 0.1 * width * height, behind.sum()
+assert (depth_behind[behind] >= depth[behind]).all()
+assert np.isnan(depth_behind[hits < 2]).all()
+assert pixels.GetArray("x_1") is not None and pixels.GetArray("Depth_2") is None

@@ -185,3 +185,51 @@ TEST(IsosurfaceImage, BoundaryHitsAreAtTheirParameterInTheirVolumeOfTheirBlock)
   }
   EXPECT_GT(covered, 0.15 * 160 * 160); // framed as ResetCamera frames it: 4 866 pixels
 }
+
+/// All-hits layers: the Marsden sphere's rays through it hit it twice. With three layers asked
+/// for, layer 1 holds the far side (on the unit sphere, deeper, its "sphere" value the isovalue),
+/// layer 2 is empty; HitCount says two. With AllLayers off the frame keeps one hit, and layer 1
+/// is empty everywhere.
+TEST(IsosurfaceImage, LayersHoldTheHitsBehindTheFirst)
+{
+  const auto sphere = readData("marsden_sphere_p3.vtu");
+  vtkNew<vtkIGAIsosurfaceImage> image;
+  image->SetInputData(sphere);
+  image->GetMapper()->SetIsovalue(0, 0.0);
+  image->GetMapper()->AllLayersOn();
+  image->SetImageSize(96, 96);
+  image->SetLayers(3);
+  image->Update();
+  vtkPointData* pixels = image->GetOutput()->GetPointData();
+  auto* depth = vtkDoubleArray::SafeDownCast(pixels->GetArray("Depth"));
+  auto* depth1 = vtkDoubleArray::SafeDownCast(pixels->GetArray("Depth_1"));
+  auto* position1 = vtkDoubleArray::SafeDownCast(pixels->GetArray("Position_1"));
+  auto* value1 = vtkDoubleArray::SafeDownCast(pixels->GetArray("sphere_1"));
+  auto* cell2 = vtkIdTypeArray::SafeDownCast(pixels->GetArray("Cell_2"));
+  auto* hits = vtkIntArray::SafeDownCast(pixels->GetArray("HitCount"));
+  ASSERT_TRUE(depth && depth1 && position1 && value1 && cell2 && hits);
+  EXPECT_EQ(pixels->GetArray("Depth_3"), nullptr);
+  int twice = 0;
+  for (vtkIdType p = 0; p < 96 * 96; ++p)
+  {
+    EXPECT_EQ(cell2->GetValue(p), -1);
+    if (hits->GetValue(p) < 2)
+    {
+      EXPECT_TRUE(std::isnan(depth1->GetValue(p)));
+      continue;
+    }
+    ++twice;
+    EXPECT_EQ(hits->GetValue(p), 2);
+    EXPECT_GT(depth1->GetValue(p), depth->GetValue(p));
+    const double* x = position1->GetTuple3(p);
+    EXPECT_NEAR(std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), 1.0, 1e-9);
+    EXPECT_NEAR(value1->GetValue(p), 0.0, 1e-6);
+  }
+  EXPECT_GT(twice, 1000);
+  image->GetMapper()->AllLayersOff();
+  image->Update();
+  depth1 = vtkDoubleArray::SafeDownCast(image->GetOutput()->GetPointData()->GetArray("Depth_1"));
+  ASSERT_NE(depth1, nullptr);
+  for (vtkIdType p = 0; p < 96 * 96; ++p)
+    EXPECT_TRUE(std::isnan(depth1->GetValue(p)));
+}
