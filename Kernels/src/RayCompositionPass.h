@@ -116,20 +116,19 @@ inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Set
 {
   seeded = false;
   const GBuffer* seed = settings.seedFrame;
-  if (!seed || rootSettings.maxRoots != 1 || seed->width != settings.width ||
-      seed->height != settings.height || seed->offsets[pixel] == seed->offsets[pixel + 1])
+  if (seed && rootSettings.maxRoots == 1 && seed->width == settings.width &&
+      seed->height == settings.height && seed->offsets[pixel] < seed->offsets[pixel + 1])
   {
-    return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
+    const glm::dvec3 hit = seed->hits[seed->offsets[pixel]].position;
+    const double t = glm::dot(hit - origin, direction) / glm::dot(direction, direction);
+    const double guess = (t - t0) / (t1 - t0);
+    if (guess > -kSeedHalfWidth && guess < 1 + kSeedHalfWidth) // else a hit on another patch
+    {
+      return findNearestRoot(
+        coefficients, degree, guess, kSeedHalfWidth, settings.rootFinder, rootSettings, seeded);
+    }
   }
-  const glm::dvec3 hit = seed->hits[seed->offsets[pixel]].position;
-  const double t = glm::dot(hit - origin, direction) / glm::dot(direction, direction);
-  const double guess = (t - t0) / (t1 - t0);
-  if (!(guess > -kSeedHalfWidth && guess < 1 + kSeedHalfWidth)) // a hit on another patch
-  {
-    return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
-  }
-  return findNearestRoot(
-    coefficients, degree, guess, kSeedHalfWidth, settings.rootFinder, rootSettings, seeded);
+  return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
 }
 
 /// The hits of the band's pixels (s.frame's), per pixel, on the affine patches (rayDegree >= 0);

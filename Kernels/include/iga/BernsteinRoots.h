@@ -204,11 +204,6 @@ IGA_HD inline roots::RootList interiorRoots(const roots::Piece& piece, RootFinde
   return inside;
 }
 
-} // namespace detail
-
-/// The roots in [0, 1] of sum c_i B_i^degree(t), the first settings.maxRoots of them.
-namespace detail
-{
 /// The polynomial as a piece scaled to unit size and the search's context; false where
 /// `result` already says all: a bad degree or coefficient, or every coefficient zero.
 IGA_HD inline bool rootProblem(const double* c, int degree, const RootSettings& settings,
@@ -236,20 +231,17 @@ IGA_HD inline bool rootProblem(const double* c, int degree, const RootSettings& 
   piece = roots::normalised(piece);
   return !result.invalid && !result.identicallyZero;
 }
-} // namespace detail
 
-IGA_HD inline BernsteinRoots findBernsteinRoots(
-  const double* c, int degree, RootFinder finder, const RootSettings& settings = {})
+/// The roots in [0, 1] of the problem rootProblem prepared (`piece`, `context`), the first
+/// context.limit of them, added to `result`.
+IGA_HD inline void rootsOf(roots::Piece piece, roots::RootContext context, RootFinder finder,
+  bool evenRoots, BernsteinRoots& result)
 {
-  BernsteinRoots result;
-  roots::Piece piece;
-  roots::RootContext context;
   // Coefficients of one sign beyond rounding bound the polynomial away from zero: no root at
   // all (most rays through a patch's box miss its surface).
-  if (!detail::rootProblem(c, degree, settings, result, piece, context) ||
-      roots::keepsOneSign(piece, context.zero))
+  if (roots::keepsOneSign(piece, context.zero))
   {
-    return result;
+    return;
   }
   // Roots at the ends, divided out: t g(t) has c_{i+1} = g_i (i + 1) / d, (1 - t) h(t) has
   // c_i = h_i (d - i) / d. Each division leaves the polynomial's other roots in place.
@@ -274,6 +266,7 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
     --piece.degree;
     piece = roots::normalised(piece);
   }
+  const int wanted = context.limit;
   if (atZero)
   {
     result.add(0.0, context.merge);
@@ -282,29 +275,44 @@ IGA_HD inline BernsteinRoots findBernsteinRoots(
   bool truncated = context.limit <= 0; // roots beyond those found may exist
   if (piece.degree > 0 && !truncated)
   {
-    roots::RootList inside =
-      detail::interiorRoots(piece, finder, settings.evenRoots, context, truncated);
+    roots::RootList inside = interiorRoots(piece, finder, evenRoots, context, truncated);
     if (truncated && inside.count < context.limit)
     {
       // Even roots took the place of odd ones (a double root's two sides): search them all.
       const roots::RootCost spent = inside.cost;
       context.limit = roots::kMaxRoots;
-      inside = detail::interiorRoots(piece, finder, settings.evenRoots, context, truncated);
+      inside = interiorRoots(piece, finder, evenRoots, context, truncated);
       inside.cost.insertions += spent.insertions;
       inside.cost.evaluations += spent.evaluations;
     }
-    for (int k = 0; k < inside.count && result.count < settings.maxRoots; ++k)
+    for (int k = 0; k < inside.count && result.count < wanted; ++k)
     {
       if (inside.t[k] > 0 && inside.t[k] < 1)
       {
         result.add(inside.t[k], context.merge);
       }
     }
-    result.cost = inside.cost;
+    result.cost.insertions += inside.cost.insertions;
+    result.cost.evaluations += inside.cost.evaluations;
+    result.cost.capped = inside.cost.capped;
   }
   if (atOne && !truncated)
   {
     result.add(1.0, context.merge);
+  }
+}
+} // namespace detail
+
+/// The roots in [0, 1] of sum c_i B_i^degree(t), the first settings.maxRoots of them.
+IGA_HD inline BernsteinRoots findBernsteinRoots(
+  const double* c, int degree, RootFinder finder, const RootSettings& settings = {})
+{
+  BernsteinRoots result;
+  roots::Piece piece;
+  roots::RootContext context;
+  if (detail::rootProblem(c, degree, settings, result, piece, context))
+  {
+    detail::rootsOf(piece, context, finder, settings.evenRoots, result);
   }
   return result;
 }
@@ -335,11 +343,11 @@ IGA_HD inline BernsteinRoots findNearestRoot(const double* c, int degree, double
   }
   if (!seeded)
   {
-    RootSettings nearest = settings;
-    nearest.maxRoots = 1;
-    const long spent = result.cost.insertions;
-    result = findBernsteinRoots(c, degree, finder, nearest);
-    result.cost.insertions += spent;
+    if (!result.invalid && !result.identicallyZero)
+    {
+      context.limit = 1;
+      detail::rootsOf(piece, context, finder, settings.evenRoots, result);
+    }
     return result;
   }
   const double s =
