@@ -408,8 +408,6 @@ std::string json(
   return out.str();
 }
 
-/// One algebraic scene: the SST against ray composition with each root finder (ratio
-/// `sstOverComposition_NAME_FINDER`).
 /// The camera turned by `degrees` about its view-up axis through the focal point.
 iga::Camera orbited(iga::Camera camera, double degrees)
 {
@@ -455,6 +453,8 @@ void orbitWithCoherency(const std::string& name, const iga::VolumeSet<double>& s
   ratios.emplace_back("coldOverSeeded_" + name, ms[0] / ms[1]);
 }
 
+/// One algebraic scene: the SST against ray composition with each root finder (ratio
+/// `sstOverComposition_NAME_FINDER`), then its orbit with and without frame coherency.
 void compareWithComposition(const std::string& name, const iga::VolumeSet<double>& set, int degree,
   bool quick, int threads, int reps, std::vector<Measurement>& all,
   std::vector<std::pair<std::string, double>>& ratios)
@@ -768,6 +768,73 @@ bool gpuStudy(bool quick, const std::string& only, std::vector<Measurement>& all
 
 } // namespace
 
+/// The engine's own studies (the paper's figures): SST against one tree per pixel over the
+/// sphere's degree (fig. 13), resolution doubling (fig. 11), threads and the 512^2 sphere frame,
+/// the default dataset, and the deforming blade's many patches at 1080p.
+void engineStudy(bool quick, int threads, int reps, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  using iga::sst::Method;
+  // Fig. 13: SST against one tree per pixel over the sphere's degree.
+  const int degreeResolution = quick ? 128 : 256;
+  for (int degree = 2; degree <= 5; ++degree)
+  {
+    const auto sphere = iga::makeMarsdenSphere<double>(degree);
+    auto run = [&](Method method, int repetitions)
+    {
+      return measure("degree", "marsden-sphere", sphere, 0.0, degree, degreeResolution,
+        degreeResolution, threads, method, repetitions);
+    };
+    const auto sst = run(Method::SharedSubdivisionTree, reps);
+    const auto basic = run(Method::BasicScheme, 1);
+    all.push_back(sst);
+    all.push_back(basic);
+    ratios.emplace_back("basicOverSst_p" + std::to_string(degree), basic.ms / sst.ms);
+  }
+
+  // Fig. 11: resolution doubling, time and memory.
+  const auto sphere2 = iga::makeMarsdenSphere<double>(2);
+  const std::vector<int> resolutions =
+    quick ? std::vector<int>{ 128, 256, 512 } : std::vector<int>{ 256, 512, 1024, 2048 };
+  std::vector<Measurement> scaling;
+  for (int resolution : resolutions)
+  {
+    scaling.push_back(measure("resolution", "marsden-sphere", sphere2, 0.0, 2, resolution,
+      resolution, threads, Method::SharedSubdivisionTree, resolution >= 1024 ? 1 : reps));
+    all.push_back(scaling.back());
+  }
+  for (size_t k = 1; k < scaling.size(); ++k)
+  {
+    const std::string step =
+      std::to_string(scaling[k - 1].width) + "to" + std::to_string(scaling[k].width);
+    ratios.emplace_back("timeGrowth_" + step, scaling[k].ms / scaling[k - 1].ms);
+    ratios.emplace_back("memoryGrowth_" + step, scaling[k].peakMB / scaling[k - 1].peakMB);
+  }
+
+  // Threads, and the 512^2 tri-quadratic sphere frame.
+  const int frameResolution = quick ? 256 : 512;
+  const auto one = measure("threads", "marsden-sphere", sphere2, 0.0, 2, frameResolution,
+    frameResolution, 1, Method::SharedSubdivisionTree, reps);
+  const auto many = measure("threads", "marsden-sphere", sphere2, 0.0, 2, frameResolution,
+    frameResolution, threads, Method::SharedSubdivisionTree, reps);
+  all.push_back(one);
+  all.push_back(many);
+  ratios.emplace_back("speedupThreads", one.ms / many.ms);
+
+  // The default dataset at the command's default size.
+  const auto tube = iga::makeTwistedTube<double>(0.5);
+  all.push_back(measure("default", "twisted-tube", tube, 0.0, 2, 800, 600, threads,
+    Method::SharedSubdivisionTree, reps));
+
+  // Many patches on CPU threads: the deforming blade (a new control net every frame) at 1080p,
+  // where the frame's preparation over all patches weighs.
+  const iga::BladeLayout bladeLayout = iga::bladeLayout(quick ? 1000 : 10000);
+  auto flapping = [&](int r) { return iga::makeBlade<double>(bladeLayout, 0.1 * (r % 10)); };
+  all.push_back(measure("patches",
+    "blade-" + std::to_string(bladeLayout.patchCount()) + "-deforming", flapping(0), 0.3, 2, 1920,
+    1080, threads, Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, flapping));
+}
+
 int main(int argc, char** argv)
 {
   bool quick = false, gpu = false, csgOnly = false, algebraicOnly = false, fillingOnly = false,
@@ -862,65 +929,7 @@ int main(int argc, char** argv)
     return emit(json(all, ratios));
   }
 
-  // Fig. 13: SST against one tree per pixel over the sphere's degree.
-  const int degreeResolution = quick ? 128 : 256;
-  for (int degree = 2; degree <= 5; ++degree)
-  {
-    const auto sphere = iga::makeMarsdenSphere<double>(degree);
-    auto run = [&](Method method, int repetitions)
-    {
-      return measure("degree", "marsden-sphere", sphere, 0.0, degree, degreeResolution,
-        degreeResolution, threads, method, repetitions);
-    };
-    const auto sst = run(Method::SharedSubdivisionTree, reps);
-    const auto basic = run(Method::BasicScheme, 1);
-    all.push_back(sst);
-    all.push_back(basic);
-    ratios.emplace_back("basicOverSst_p" + std::to_string(degree), basic.ms / sst.ms);
-  }
-
-  // Fig. 11: resolution doubling, time and memory.
-  const auto sphere2 = iga::makeMarsdenSphere<double>(2);
-  const std::vector<int> resolutions =
-    quick ? std::vector<int>{ 128, 256, 512 } : std::vector<int>{ 256, 512, 1024, 2048 };
-  std::vector<Measurement> scaling;
-  for (int resolution : resolutions)
-  {
-    scaling.push_back(measure("resolution", "marsden-sphere", sphere2, 0.0, 2, resolution,
-      resolution, threads, Method::SharedSubdivisionTree, resolution >= 1024 ? 1 : reps));
-    all.push_back(scaling.back());
-  }
-  for (size_t k = 1; k < scaling.size(); ++k)
-  {
-    const std::string step =
-      std::to_string(scaling[k - 1].width) + "to" + std::to_string(scaling[k].width);
-    ratios.emplace_back("timeGrowth_" + step, scaling[k].ms / scaling[k - 1].ms);
-    ratios.emplace_back("memoryGrowth_" + step, scaling[k].peakMB / scaling[k - 1].peakMB);
-  }
-
-  // Threads, and the 512^2 tri-quadratic sphere frame.
-  const int frameResolution = quick ? 256 : 512;
-  const auto one = measure("threads", "marsden-sphere", sphere2, 0.0, 2, frameResolution,
-    frameResolution, 1, Method::SharedSubdivisionTree, reps);
-  const auto many = measure("threads", "marsden-sphere", sphere2, 0.0, 2, frameResolution,
-    frameResolution, threads, Method::SharedSubdivisionTree, reps);
-  all.push_back(one);
-  all.push_back(many);
-  ratios.emplace_back("speedupThreads", one.ms / many.ms);
-
-  // The default dataset at the command's default size.
-  const auto tube = iga::makeTwistedTube<double>(0.5);
-  all.push_back(measure("default", "twisted-tube", tube, 0.0, 2, 800, 600, threads,
-    Method::SharedSubdivisionTree, reps));
-
-  // Many patches on CPU threads: the deforming blade (a new control net every frame) at 1080p,
-  // where the frame's preparation over all patches weighs.
-  const iga::BladeLayout bladeLayout = iga::bladeLayout(quick ? 1000 : 10000);
-  auto flapping = [&](int r) { return iga::makeBlade<double>(bladeLayout, 0.1 * (r % 10)); };
-  all.push_back(measure("patches",
-    "blade-" + std::to_string(bladeLayout.patchCount()) + "-deforming", flapping(0), 0.3, 2, 1920,
-    1080, threads, Method::SharedSubdivisionTree, reps, iga::sst::Backend::Cpu, flapping));
-
+  engineStudy(quick, threads, reps, all, ratios);
   surfaceStudy(quick, threads, reps, all, ratios);
   csgStudy(quick, threads, reps, all, ratios);
 
