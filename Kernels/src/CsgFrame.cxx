@@ -11,6 +11,7 @@
 #include "FramePlan.h"
 #include "ParallelFor.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -201,44 +202,6 @@ Settings passSettings(
   return s;
 }
 
-void accumulate(FrameReport& total, const FrameReport& pass)
-{
-  if (total.method.empty()) // the first pass's
-  {
-    total.method = pass.method;
-    total.backend = pass.backend;
-    total.notice = pass.notice;
-    total.noticeSeverity = pass.noticeSeverity;
-    total.threads = pass.threads;
-  }
-  total.iterations += pass.iterations;
-  total.bands = std::max(total.bands, pass.bands);
-  total.unresolvedPixels += pass.unresolvedPixels;
-  total.unresolvedAtDepthCap += pass.unresolvedAtDepthCap;
-  total.unresolvedAtBudget += pass.unresolvedAtBudget;
-  total.unresolvedAtDeadline += pass.unresolvedAtDeadline;
-  total.droppedAtEyePlane += pass.droppedAtEyePlane;
-  total.constantAttributeRoots += pass.constantAttributeRoots;
-  total.newtonSolves += pass.newtonSolves;
-  total.newtonRuns += pass.newtonRuns;
-  total.newtonEvaluations += pass.newtonEvaluations;
-  total.subdividedPatches += pass.subdividedPatches;
-  total.maxTuples = std::max(total.maxTuples, pass.maxTuples);
-  total.maxPatches = std::max(total.maxPatches, pass.maxPatches);
-  total.peakBytes = std::max(total.peakBytes, pass.peakBytes);
-  total.peakBudgetedBytes = std::max(total.peakBudgetedBytes, pass.peakBudgetedBytes);
-  total.uploadedBytes += pass.uploadedBytes;
-  total.downloadedBytes += pass.downloadedBytes;
-  total.msInput += pass.msInput;
-  total.msSetup += pass.msSetup;
-  total.msSweepAndGroup += pass.msSweepAndGroup;
-  total.msOverlap += pass.msOverlap;
-  total.msSolution += pass.msSolution;
-  total.msSubdivision += pass.msSubdivision;
-  total.msCompaction += pass.msCompaction;
-  total.msGBuffer += pass.msGBuffer;
-}
-
 /// Where hits of input i's volumes start in the result's patch numbering.
 std::vector<int> patchOffsets(const CsgScene& scene)
 {
@@ -315,7 +278,18 @@ FrameReport renderCsg(
 namespace
 {
 
-/// Runs every pass but `skip` with the far depths `far` (empty: none), all hits.
+/// The nearer of the caller's far depths and a pass's own, per pixel (either empty: none).
+std::vector<double> nearerFarDepths(const Settings& settings, std::vector<double> far)
+{
+  if (far.empty())
+    return settings.farDepths;
+  for (size_t p = 0; p < settings.farDepths.size(); ++p)
+    far[p] = std::min(far[p], settings.farDepths[p]);
+  return far;
+}
+
+/// Runs every pass but `skip` with the far depths `far` (empty: none) within the caller's, all
+/// hits.
 void drawPasses(const CsgScene& scene, const Settings& settings, const std::vector<double>& far,
   int skip, const CsgPassRenderer& renderPass, CsgPasses& passes, FrameReport& report,
   Clock::time_point start)
@@ -331,8 +305,8 @@ void drawPasses(const CsgScene& scene, const Settings& settings, const std::vect
                           : pass.kind == CsgPass::Kind::Boundary ? noVolumes
                                                                  : pass.volumes;
     Settings s = passSettings(scene, pass, settings, millisecondsSince(start));
-    s.farDepths = far;
-    accumulate(report, renderPass(Scene(volumes, pass.surfaces), s, pass.hits));
+    s.farDepths = nearerFarDepths(settings, far);
+    addPassReport(report, renderPass(Scene(volumes, pass.surfaces), s, pass.hits));
   }
 }
 
@@ -500,19 +474,20 @@ std::vector<double> drawBoundingPass(const CsgScene& scene, const View& view,
   Settings s = passSettings(scene, pass, settings, millisecondsSince(start));
   s.firstHitOnly = true;
   GBuffer nearest;
-  accumulate(report, renderPass(passScene, s, nearest));
+  addPassReport(report, renderPass(passScene, s, nearest));
   std::vector<uint8_t> accepted;
   std::vector<double> far = resultBounds(scene, view, settings, passes, pass, nearest, accepted);
   // Where the nearest hit is the result's, it is the pass's only hit in front of the bound.
   s = passSettings(scene, pass, settings, millisecondsSince(start));
-  s.farDepths.assign(far.size(), INFINITY);
+  std::vector<double> skipped(far.size(), INFINITY);
   for (size_t p = 0; p < far.size(); ++p)
   {
     const bool none = nearest.offsets[p] == nearest.offsets[p + 1];
-    s.farDepths[p] = accepted[p] || none ? -2.0 : INFINITY;
+    skipped[p] = accepted[p] || none ? -2.0 : INFINITY;
   }
+  s.farDepths = nearerFarDepths(settings, std::move(skipped));
   GBuffer rest;
-  accumulate(report, renderPass(passScene, s, rest));
+  addPassReport(report, renderPass(passScene, s, rest));
   pass.hits = splicePixels(rest, nearest, accepted);
   return far;
 }

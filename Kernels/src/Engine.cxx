@@ -33,6 +33,52 @@ namespace iga
 namespace sst
 {
 
+void addPassReport(FrameReport& total, const FrameReport& pass)
+{
+  if (total.method.empty()) // the first pass's
+  {
+    total.method = pass.method;
+    total.backend = pass.backend;
+    total.notice = pass.notice;
+    total.noticeSeverity = pass.noticeSeverity;
+    total.threads = pass.threads;
+  }
+  total.iterations += pass.iterations;
+  total.bands = std::max(total.bands, pass.bands);
+  total.unresolvedPixels += pass.unresolvedPixels;
+  total.unresolvedAtDepthCap += pass.unresolvedAtDepthCap;
+  total.unresolvedAtBudget += pass.unresolvedAtBudget;
+  total.unresolvedAtDeadline += pass.unresolvedAtDeadline;
+  total.droppedAtEyePlane += pass.droppedAtEyePlane;
+  total.constantAttributeRoots += pass.constantAttributeRoots;
+  total.newtonSolves += pass.newtonSolves;
+  total.newtonRuns += pass.newtonRuns;
+  total.newtonEvaluations += pass.newtonEvaluations;
+  total.subdividedPatches += pass.subdividedPatches;
+  total.sstPatches += pass.sstPatches;
+  total.rayCompositionPatches += pass.rayCompositionPatches;
+  total.frustumPatches += pass.frustumPatches;
+  total.composedRays += pass.composedRays;
+  total.rootFinderSteps += pass.rootFinderSteps;
+  total.cappedRays += pass.cappedRays;
+  total.seededRays += pass.seededRays;
+  total.maxTuples = std::max(total.maxTuples, pass.maxTuples);
+  total.maxPatches = std::max(total.maxPatches, pass.maxPatches);
+  total.peakBytes = std::max(total.peakBytes, pass.peakBytes);
+  total.peakBudgetedBytes = std::max(total.peakBudgetedBytes, pass.peakBudgetedBytes);
+  total.uploadedBytes += pass.uploadedBytes;
+  total.downloadedBytes += pass.downloadedBytes;
+  total.msInput += pass.msInput;
+  total.msSetup += pass.msSetup;
+  total.msSweepAndGroup += pass.msSweepAndGroup;
+  total.msOverlap += pass.msOverlap;
+  total.msSolution += pass.msSolution;
+  total.msSubdivision += pass.msSubdivision;
+  total.msCompaction += pass.msCompaction;
+  total.msGBuffer += pass.msGBuffer;
+  total.msTotal += pass.msTotal;
+}
+
 const char* methodName(Method method)
 {
   switch (method)

@@ -248,6 +248,10 @@ FrameReport render(
 /// the patches (convex hull property).
 void patchBounds(const Scene& scene, double* bounds);
 
+/// Adds a pass's report to a frame's made of several passes (CSG, supersampling): counts and
+/// stage times summed, peaks and the largest sizes kept, the first pass's method and backend.
+void addPassReport(FrameReport& total, const FrameReport& pass);
+
 const char* methodName(Method method);
 
 /// The method of that name (methodName's inverse); std::invalid_argument listing the names
