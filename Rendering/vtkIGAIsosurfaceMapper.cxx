@@ -43,6 +43,7 @@
 #include "iga/sst/Csg.h"
 #include "iga/sst/ElementEdges.h"
 #include "iga/sst/Engine.h"
+#include "iga/sst/Supersampling.h"
 
 #include "vtkIGAIsosurfaceDeclFS.h"
 #include "vtkIGAIsosurfaceImplFS.h"
@@ -207,6 +208,8 @@ void vtkIGAIsosurfaceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Method: " << this->Method << "\n";
   os << indent << "RootFinder: " << iga::rootFinderName(iga::RootFinder(this->RootFinder)) << "\n";
   os << indent << "FrameCoherency: " << this->FrameCoherency << "\n";
+  os << indent << "Antialiasing: " << this->Antialiasing << " (threshold "
+     << this->AntialiasingThreshold << ")\n";
   os << indent << "MaximumSubdivisionDepth: " << this->MaximumSubdivisionDepth << "\n";
   os << indent << "MemoryBudgetMB: " << this->MemoryBudgetMB << "\n";
   os << indent << "FrameDeadline: " << this->FrameDeadline << "\n";
@@ -724,6 +727,8 @@ struct vtkIGAIsosurfaceMapper::Frame
   int Curvature = 0;
   bool Translucent = false;           ///< the actor's opacity is below 1: every layer is drawn
   bool Volumes = false;               ///< the hexahedra's isosurfaces are drawn
+  bool Identity = true;               ///< the actor's matrix is the identity
+  bool Nurbs = false;                 ///< the engine draws the input's NURBS form
   double MostPairs = 0, Progress = 0; ///< of the progress reported during the frame
 };
 
@@ -1291,32 +1296,23 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
   in.DrewVolumes = frame.Volumes;
   this->UpdateDataVersion(matrix);
   frame.Settings.dataVersion = in.DataVersion;
+  frame.Identity = matrix->IsIdentity() != 0;
   this->UpdateProgress(0.0);
   try
   {
     // The engine says which form it runs best on: NURBS nets (elements extracted on a GPU),
     // checked once per input, or the cells the mapper already has.
-    const bool nurbs =
+    frame.Nurbs =
       frame.Volumes && in.Surfaces.empty() && this->DrawMode == DRAW_ISOSURFACES &&
       iga::sst::preferredInput(frame.Settings.backend) == iga::sst::InputForm::NurbsVolumes &&
       this->UpdateNurbs(matrix);
-    in.LastEngineInput = nurbs ? "NURBS volumes" : "Bezier cells";
-    in.LastExtractionVersion = nurbs ? in.Nurbs.ExtractionVersion : 0;
-    const auto method = engineMethod(this->Method);
+    in.LastEngineInput = frame.Nurbs ? "NURBS volumes" : "Bezier cells";
+    in.LastExtractionVersion = frame.Nurbs ? in.Nurbs.ExtractionVersion : 0;
     in.SeedGBuffer = this->FrameCoherency ? std::move(in.GBuffer) : iga::sst::GBuffer();
     frame.Settings.seedFrame = this->FrameCoherency ? &in.SeedGBuffer : nullptr;
-    const auto report =
-      this->DrawMode == DRAW_CSG ? this->ComputeCsgFrame(matrix->IsIdentity() != 0, frame)
-      : nurbs ? iga::sst::render(in.Nurbs.Volumes(matrix->IsIdentity() ? nullptr : &in.NurbsWorld),
-                  frame.View, frame.Settings, method, in.GBuffer)
-              : iga::sst::render(this->EngineScene(matrix->IsIdentity() != 0), frame.View,
-                  frame.Settings, method, in.GBuffer);
+    const auto report = this->RunEngine(frame, frame.View, frame.Settings, in.GBuffer);
     this->UpdateProgress(1.0);
     this->ReportEngine(report);
-    if (frame.Curvature > 0)
-    {
-      this->ColourByCurvature(matrix->IsIdentity() != 0, frame);
-    }
   }
   catch (const std::exception& e)
   {
@@ -1328,13 +1324,31 @@ bool vtkIGAIsosurfaceMapper::ComputeFrame(vtkActor* actor, Frame& frame)
   return true;
 }
 
-void vtkIGAIsosurfaceMapper::ColourByCurvature(bool identity, const Frame& frame)
+iga::sst::FrameReport vtkIGAIsosurfaceMapper::RunEngine(const Frame& frame,
+  const iga::sst::View& view, const iga::sst::Settings& settings, iga::sst::GBuffer& out)
 {
   Internals& in = *this->Internal;
-  const auto& volumes = identity ? in.Set.patches : in.World;
+  const auto method = engineMethod(this->Method);
+  const auto report =
+    this->DrawMode == DRAW_CSG ? this->ComputeCsgFrame(frame, view, settings, out)
+    : frame.Nurbs
+      ? iga::sst::render(
+          in.Nurbs.Volumes(frame.Identity ? nullptr : &in.NurbsWorld), view, settings, method, out)
+      : iga::sst::render(this->EngineScene(frame.Identity), view, settings, method, out);
+  if (frame.Curvature > 0)
+  {
+    this->ColourByCurvature(frame, out);
+  }
+  return report;
+}
+
+void vtkIGAIsosurfaceMapper::ColourByCurvature(const Frame& frame, iga::sst::GBuffer& gbuffer)
+{
+  Internals& in = *this->Internal;
+  const auto& volumes = frame.Identity ? in.Set.patches : in.World;
   const int channel = iga::kFirstAttributeChannel + frame.Settings.surfaceAttribute;
   const bool mean = frame.Curvature == 1;
-  std::vector<iga::sst::Hit>& hits = in.GBuffer.hits;
+  std::vector<iga::sst::Hit>& hits = gbuffer.hits;
   vtkSMPTools::For(0, vtkIdType(hits.size()),
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -1348,11 +1362,12 @@ void vtkIGAIsosurfaceMapper::ColourByCurvature(bool identity, const Frame& frame
     });
 }
 
-iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, const Frame& frame)
+iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(const Frame& frame,
+  const iga::sst::View& view, const iga::sst::Settings& settings, iga::sst::GBuffer& out)
 {
   Internals& in = *this->Internal;
   iga::sst::CsgScene scene;
-  const auto& volumes = identity ? in.Set.patches : in.World;
+  const auto& volumes = frame.Identity ? in.Set.patches : in.World;
   const auto ranges = blockRanges(in.PatchBlock);
   std::vector<std::vector<iga::BezierVolume<double>>> blocks(ranges.size() > 1 ? ranges.size() : 0);
   for (size_t b = 0; b < ranges.size(); ++b)
@@ -1382,8 +1397,7 @@ iga::sst::FrameReport vtkIGAIsosurfaceMapper::ComputeCsgFrame(bool identity, con
   }
   scene.slices = this->Slices;
   scene.colorAttribute = frame.ByScalars ? this->ArrayName : "";
-  return iga::sst::renderCsg(
-    scene, frame.View, frame.Settings, engineMethod(this->Method), in.GBuffer);
+  return iga::sst::renderCsg(scene, view, settings, engineMethod(this->Method), out);
 }
 
 bool vtkIGAIsosurfaceMapper::UpdateNurbs(vtkMatrix4x4* matrix)
@@ -1497,7 +1511,6 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
   Internals& in = *this->Internal;
   vtkProperty* property = actor->GetProperty();
   vtkScalarsToColors* lut = this->GetLookupTable();
-  const iga::sst::View& view = frame.View;
   // vtkMapper's rule (vtkOpenGLPolyDataMapper's): the table's own range when asked to.
   if (frame.ByScalars && !this->UseLookupTableScalarRange)
   {
@@ -1505,8 +1518,6 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
   }
   // A table no render has built yet (a frame computed without a window) maps every value to 0.
   lut->Build();
-  double baseColour[3];
-  property->GetDiffuseColor(baseColour);
   const int width = frame.Width, height = frame.Height;
   in.Size[0] = width;
   in.Size[1] = height;
@@ -1520,29 +1531,100 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
       const int count = std::min(in.GBuffer.hitCount(i, j), in.LayerCount);
       for (int k = 0; k < count; ++k)
       {
-        const iga::sst::Hit& hit = hits[k];
-        double base[3] = { baseColour[0], baseColour[1], baseColour[2] };
-        if (frame.ByScalars)
-        {
-          const unsigned char* mapped = lut->MapValue(hit.color);
-          for (int c = 0; c < 3; ++c)
-          {
-            base[c] = mapped[c] / 255.0;
-          }
-        }
-        const glm::dvec3 toEye =
-          iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit.position);
         LayerImage& layer = *in.Layers[size_t(k)];
-        shadeHit(hit, base, property, frame.Lights, toEye, &layer.Colour[4 * p]);
-        layer.Depth[p] = float(0.5 * (hit.ndcDepth + 1.0));
+        this->ShadeHit(frame, property, hits[k], &layer.Colour[4 * p]);
+        layer.Depth[p] = float(0.5 * (hits[k].ndcDepth + 1.0));
       }
     }
+  }
+  this->LastAntialiasedPixels = 0;
+  if (this->Antialiasing)
+  {
+    this->SmoothSilhouettes(actor, frame);
   }
   if (property->GetEdgeVisibility())
   {
     this->DrawEdges(property);
   }
   in.FrameTime.Modified();
+}
+
+void vtkIGAIsosurfaceMapper::ShadeHit(
+  const Frame& frame, vtkProperty* property, const iga::sst::Hit& hit, float* rgba)
+{
+  double base[3];
+  property->GetDiffuseColor(base);
+  if (frame.ByScalars)
+  {
+    const unsigned char* mapped = this->GetLookupTable()->MapValue(hit.color);
+    for (int c = 0; c < 3; ++c)
+    {
+      base[c] = mapped[c] / 255.0;
+    }
+  }
+  const iga::sst::View& view = frame.View;
+  const glm::dvec3 toEye =
+    iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit.position);
+  shadeHit(hit, base, property, frame.Lights, toEye, rgba);
+}
+
+void vtkIGAIsosurfaceMapper::SmoothSilhouettes(vtkActor* actor, const Frame& frame)
+{
+  Internals& in = *this->Internal;
+  LayerImage& image = *in.Layers[0];
+  const std::vector<uint8_t> mask = iga::sst::contrastingPixels(
+    image.Colour, frame.Width, frame.Height, float(this->AntialiasingThreshold));
+  // The samples in what is left of the frame's deadline, without progress (the frame's is done).
+  iga::sst::Settings settings = frame.Settings;
+  settings.firstHitOnly = true;
+  settings.progress = nullptr;
+  if (settings.deadlineMs > 0)
+  {
+    settings.deadlineMs = std::max(settings.deadlineMs - this->LastEngineTime, 1e-6);
+  }
+  std::array<iga::sst::GBuffer, iga::sst::kRotatedGridSamples> samples;
+  try
+  {
+    const auto report = iga::sst::renderRotatedGridSamples(
+      frame.View, settings, mask,
+      [&](const iga::sst::View& view, const iga::sst::Settings& s, iga::sst::GBuffer& out)
+      { return this->RunEngine(frame, view, s, out); },
+      samples);
+    this->LastEngineTime += report.msTotal;
+    if (report.unresolvedAtDeadline > 0)
+    {
+      in.FrameKey.clear(); // drawn as it is now, and computed again next time
+      return;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    this->ReportOnce("antialiasing",
+      std::string("antialiasing failed: ") + e.what() + "; the frame is drawn without it", false);
+    return;
+  }
+  // A pixel's colour is its samples' mean; where its centre missed, its depth is its nearest
+  // sample's.
+  for (size_t p = 0; p < mask.size(); ++p)
+  {
+    if (!mask[p])
+      continue;
+    float sum[4] = { 0, 0, 0, 0 }, rgba[4];
+    float nearest = image.Depth[p];
+    for (const iga::sst::GBuffer& sample : samples)
+    {
+      if (sample.offsets[p] == sample.offsets[p + 1])
+        continue;
+      const iga::sst::Hit& hit = sample.hits[sample.offsets[p]];
+      this->ShadeHit(frame, actor->GetProperty(), hit, rgba);
+      for (int c = 0; c < 4; ++c)
+        sum[c] += rgba[c] / iga::sst::kRotatedGridSamples;
+      nearest = std::min(nearest, float(0.5 * (hit.ndcDepth + 1.0)));
+    }
+    std::copy(sum, sum + 4, &image.Colour[4 * p]);
+    image.Depth[p] = in.GBuffer.offsets[p] < in.GBuffer.offsets[p + 1] ? image.Depth[p] : nearest;
+    ++this->LastAntialiasedPixels;
+  }
 }
 
 void vtkIGAIsosurfaceMapper::AllocateLayers(const Frame& frame)

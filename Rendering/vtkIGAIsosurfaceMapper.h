@@ -102,6 +102,8 @@ namespace iga
 namespace sst
 {
 struct FrameReport;
+struct Settings;
+struct View;
 class Scene;
 }
 }
@@ -277,6 +279,24 @@ public:
   ///@}
 
   ///@{
+  /// Silhouette anti-aliasing (default off): the pixels whose shaded colour differs from a
+  /// neighbour's by more than AntialiasingThreshold in a channel (0..1, default 0.1; a hit beside
+  /// a miss always does) are drawn again with four rays each on a rotated grid (Wei and Feng's
+  /// RGSS) and take the mean of their colours, a ray that misses adding nothing, so that a
+  /// silhouette pixel covers what lies behind it in proportion. The nearest surface's pixels
+  /// (the first layer of a translucent one); the G-buffer stays the pixel centres'. The passes
+  /// are part of GetLastEngineTime and of FrameDeadline's time; a frame whose samples reach the
+  /// deadline is drawn without them.
+  vtkSetMacro(Antialiasing, bool);
+  vtkGetMacro(Antialiasing, bool);
+  vtkBooleanMacro(Antialiasing, bool);
+  vtkSetClampMacro(AntialiasingThreshold, double, 0.0, 1.0);
+  vtkGetMacro(AntialiasingThreshold, double);
+  /// Pixels the last frame supersampled.
+  vtkGetMacro(LastAntialiasedPixels, vtkIdType);
+  ///@}
+
+  ///@{
   /// Halvings of an input patch along one parametric direction before it is halved no further
   /// along it; a pixel whose work needs more is given up (default 22).
   vtkSetClampMacro(MaximumSubdivisionDepth, int, 0, 40);
@@ -439,9 +459,15 @@ private:
   /// Per block of the hexahedra, its boundary faces (DRAW_CSG), found again when the topology
   /// changed.
   void UpdateBlockFaces();
+  /// The engine's frame for a view and settings (the frame's, or its supersampling passes'), in
+  /// the input form ComputeFrame chose, with the curvature as the hits' colour where it is
+  /// coloured by.
+  iga::sst::FrameReport RunEngine(const Frame& frame, const iga::sst::View& view,
+    const iga::sst::Settings& settings, iga::sst::GBuffer& out);
   /// The engine's frame of the CSG solid and the slices.
-  iga::sst::FrameReport ComputeCsgFrame(bool identity, const Frame& frame);
-  void ColourByCurvature(bool identity, const Frame& frame);
+  iga::sst::FrameReport ComputeCsgFrame(const Frame& frame, const iga::sst::View& view,
+    const iga::sst::Settings& settings, iga::sst::GBuffer& out);
+  void ColourByCurvature(const Frame& frame, iga::sst::GBuffer& gbuffer);
   /// The scene the engine draws, in world space.
   iga::sst::Scene EngineScene(bool identity) const;
   /// Size, view, lights, clipping planes and engine settings of the frame, and its key.
@@ -465,6 +491,12 @@ private:
   void ReportDeadline(const iga::sst::FrameReport& report);
   /// Colour and window depth of every pixel from the G-buffer, with VTK's lights.
   void ShadeFrame(vtkActor* actor, const Frame& frame);
+  /// A hit's colour (premultiplied RGBA) with the property, the lookup table and the lights.
+  void ShadeHit(const Frame& frame, vtkProperty* property, const iga::sst::Hit& hit, float* rgba);
+  /// Antialiasing: the first layer's contrasting pixels supersampled within what is left of the
+  /// frame's deadline. Where the samples' passes fail (said once) or reach the deadline, the
+  /// frame is drawn as it is.
+  void SmoothSilhouettes(vtkActor* actor, const Frame& frame);
   /// The frame's layer images, cleared: one, or a translucent surface's layers.
   void AllocateLayers(const Frame& frame);
   /// The element edges over the shaded colours (the property's EdgeVisibility).
@@ -493,6 +525,9 @@ private:
   int RootFinder = ROOT_FINDER_POINT_INSERTION;
   bool FrameCoherency = false;
   vtkIdType LastSeededRays = 0;
+  bool Antialiasing = false;
+  double AntialiasingThreshold = 0.1;
+  vtkIdType LastAntialiasedPixels = 0;
   int MaximumSubdivisionDepth = 22;
   double FrameDeadline = 0;
   int MemoryBudgetMB = 4096;

@@ -218,6 +218,21 @@ void vtkIGAIsosurfaceRepresentation::SetFrameCoherency(int coherent)
   this->Mapper->SetFrameCoherency(coherent != 0);
 }
 
+void vtkIGAIsosurfaceRepresentation::SetAntialiasing(int antialias)
+{
+  this->Mapper->SetAntialiasing(antialias != 0);
+}
+
+void vtkIGAIsosurfaceRepresentation::SetAntialiasingThreshold(double threshold)
+{
+  this->Mapper->SetAntialiasingThreshold(threshold);
+}
+
+int vtkIGAIsosurfaceRepresentation::GetLastAntialiasedPixels()
+{
+  return int(this->Mapper->GetLastAntialiasedPixels());
+}
+
 int vtkIGAIsosurfaceRepresentation::GetLastRayCompositionPatches()
 {
   return int(this->Mapper->GetLastRayCompositionPatches());

@@ -82,6 +82,10 @@ public:
   void SetRootFinder(int finder);
   /// Ray composition's roots seeded by the previous frame's hits (the mapper's FrameCoherency).
   void SetFrameCoherency(int coherent);
+  /// Silhouette anti-aliasing, its threshold and the pixels it took (the mapper's).
+  void SetAntialiasing(int antialias);
+  void SetAntialiasingThreshold(double threshold);
+  int GetLastAntialiasedPixels();
   /// The patches the last frame drew by ray composition and by the SST (the mapper's).
   int GetLastRayCompositionPatches();
   int GetLastSstPatches();

@@ -112,6 +112,8 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
                          bezier-clipping, point-insertion (default) or polar-newton
   --frame-coherency      ray composition: each frame's roots seeded by the frame before's hits
                          (view: camera moves and time steps draw faster; the image is unchanged)
+  --antialias            silhouette anti-aliasing: pixels whose colour differs from a
+                         neighbour's drawn again with four rays on a rotated grid, averaged
   --surface              draw the surfaces (volumes' boundaries, surface patches), not
                          isosurfaces; the default for geometry files and for input without volumes
   --edges                draw the element edges (every knot line of NURBS input) over the surface
@@ -193,6 +195,7 @@ struct Options
   int method = vtkIGAIsosurfaceMapper::METHOD_AUTOMATIC;
   iga::RootFinder rootFinder = iga::RootFinder::PointInsertion;
   bool frameCoherency = false;
+  bool antialias = false;
   double time = 0.5;
   bool hasPosition = false, hasFocal = false, hasViewUp = false;
   double position[3], focal[3], viewUp[3], viewAngle = 30;
@@ -449,6 +452,8 @@ bool parseEngineOption(const std::string& arg, const OptionValue& value, Options
     options.method = parseMethodOption(value());
   else if (arg == "--frame-coherency")
     options.frameCoherency = true;
+  else if (arg == "--antialias")
+    options.antialias = true;
   else if (arg == "--root-finder")
   {
     try
@@ -1205,6 +1210,7 @@ void configureMapper(const Options& options, const Input& input, const Drawing& 
   mapper->SetMethod(options.method);
   mapper->SetRootFinder(int(options.rootFinder)); // RootFinderType follows iga::RootFinder
   mapper->SetFrameCoherency(options.frameCoherency);
+  mapper->SetAntialiasing(options.antialias);
   for (size_t k = 0; k < drawing.isovalues.size(); ++k)
     mapper->SetIsovalue(int(k), drawing.isovalues[k]);
   mapper->ScalarVisibilityOff();
@@ -1400,6 +1406,9 @@ void writeOutputs(const Options& options, const Drawing& drawing, vtkRenderWindo
   }
   std::printf("igaview: %zu pixels covered in %.1f ms (%s, %s)\n", gbuffer.coveredPixels(),
     mapper->GetLastEngineTime(), enginePaths(mapper).c_str(), mapper->GetLastBackend());
+  if (options.antialias)
+    std::printf("igaview: %lld pixels antialiased\n",
+      static_cast<long long>(mapper->GetLastAntialiasedPixels()));
   for (const auto& pixel : options.probes)
     std::printf("igaview: probe %s\n", probeText(mapper, pixel[0], pixel[1]).c_str());
   vtkNew<vtkWindowToImageFilter> grab;

@@ -2,7 +2,8 @@
 surface or of an expression over a box, the "IGA Isosurface" representation draws its f = 0 by
 ray composition (the mapper says which path its patches took), the same pixels as the shared
 subdivision tree and every root finder, a bad expression is one error naming its position (and
-a good one draws again), and colouring by curvature_mean colours the sphere by its 1/r.
+a good one draws again), colouring by curvature_mean colours the sphere by its 1/r, and the
+representation's Antialiasing blends the silhouette's pixels with the background in quarters.
 
 Usage: pvpython test_algebraic_source.py PLUGIN WORK_DIR"""
 import os
@@ -140,3 +141,37 @@ simple.SaveScreenshot(shot, view, ImageResolution=iga_scene.SIZE, TransparentBac
 centre = pixel(width // 2, height // 2)
 assert abs(centre[0] - centre[2]) < 12 and centre[0] > 90, centre
 print(f"curvature colour at the sphere's centre: {centre}")
+
+# Antialiasing: unlit in one colour, every pixel is the background, the surface's colour, or a
+# blend of the two in quarters (four samples a silhouette pixel); without it, no blend (with
+# ParaView's own screen-space FXAA, on by default, off).
+def blends(path):
+    (width, height), pixel = iga_scene.read_rgb(path)
+    background = [round(255 * c) for c in iga_scene.BACKGROUND]
+    channel = max(range(3), key=lambda c: abs(centre[c] - background[c]))
+    quarters = 0
+    for j in range(height):
+        for i in range(width):
+            p = pixel(i, j)
+            alpha = (p[channel] - background[channel]) / (centre[channel] - background[channel])
+            expected = [alpha * centre[c] + (1 - alpha) * background[c] for c in range(3)]
+            assert all(abs(p[c] - expected[c]) <= 3 for c in range(3)), (i, j, p, alpha)
+            assert abs(4 * alpha - round(4 * alpha)) < 0.1, (i, j, p, alpha)
+            quarters += 0.1 < alpha < 0.9
+    return quarters
+
+
+view.UseFXAA = 0
+simple.Render(view)
+simple.SaveScreenshot(shot, view, ImageResolution=iga_scene.SIZE, TransparentBackground=0)
+assert blends(shot) == 0
+display.IGAAntialiasing = 1
+simple.Render(view)
+smooth = os.path.join(work_dir, "antialiased.png")
+simple.SaveScreenshot(smooth, view, ImageResolution=iga_scene.SIZE, TransparentBackground=0)
+display.UpdatePropertyInformation()
+antialiased = display.GetProperty("IGALastAntialiasedPixels").GetElement(0)
+blended = blends(smooth)
+assert blended > 100 and antialiased > blended, (blended, antialiased)
+print(f"antialiasing: {antialiased} pixels supersampled, {blended} blended with the background")
+assert errors == named, errors  # the refused expression's error alone

@@ -13,6 +13,7 @@
 #include "iga/Datasets.h"
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Engine.h"
+#include "iga/sst/Supersampling.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -22,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -216,6 +218,63 @@ TEST(AlgebraicMapper, ColoursByTheIsosurfacesCurvatureInWorldCoordinates)
   scene.actor->SetScale(2.0);
   scene.look(6.0, -5.0, 4.4, 0, 0, 2);
   expectColours(1 / 3.0, "mean, scaled by 2");
+}
+
+/// Antialiasing: the pixels whose colour differs from a neighbour's take their four samples'
+/// mean, the rest keep theirs; unlit in one colour (the unit sphere's mean curvature 1 through
+/// the table), a supersampled pixel is that colour times its coverage, and the window shows it
+/// blended over the background in that proportion.
+TEST(AlgebraicMapper, AntialiasingBlendsSilhouettePixelsByTheirCoverage)
+{
+  AlgebraicScene scene("sphere");
+  scene.mapper->SetScalarModeToUsePointFieldData();
+  scene.mapper->ScalarVisibilityOn();
+  scene.mapper->SelectColorArray("curvature_mean");
+  scene.mapper->SetScalarRange(0, 2);
+  scene.actor->GetProperty()->LightingOff();
+  const iga::sst::GBuffer aliased = scene.draw();
+  const std::vector<float> before = scene.mapper->GetLastColours();
+  EXPECT_EQ(scene.mapper->GetLastAntialiasedPixels(), 0);
+  scene.mapper->AntialiasingOn();
+  const vtkSmartPointer<vtkImageData> shown = igatest::renderAndGrab(scene.window);
+  const iga::sst::GBuffer smoothed = scene.mapper->GetLastGBuffer();
+  const std::vector<float>& after = scene.mapper->GetLastColours();
+  ASSERT_EQ(smoothed.offsets, aliased.offsets); // the G-buffer stays the centres'
+  const auto mask = iga::sst::contrastingPixels(before, 120, 120, 0.1f);
+  const size_t marked = size_t(std::count(mask.begin(), mask.end(), 1));
+  EXPECT_EQ(scene.mapper->GetLastAntialiasedPixels(), vtkIdType(marked));
+  ASSERT_GT(marked, 150u);
+  const float* colour = nullptr; // an inner pixel's
+  for (size_t p = 0; p < mask.size() && !colour; ++p)
+    colour = !mask[p] && before[4 * p + 3] > 0 ? &before[4 * p] : nullptr;
+  ASSERT_NE(colour, nullptr);
+  double background[3];
+  scene.renderer->GetBackground(background);
+  size_t partial = 0;
+  for (size_t p = 0; p < mask.size(); ++p)
+  {
+    const float* rgba = &after[4 * p];
+    if (!mask[p])
+    {
+      for (int c = 0; c < 4; ++c)
+        ASSERT_EQ(rgba[c], before[4 * p + c]) << p;
+      continue;
+    }
+    const float alpha = rgba[3];
+    EXPECT_NEAR(4 * alpha, std::round(4 * alpha), 1e-5) << p;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(rgba[c], alpha * colour[c], 1e-5) << p;
+    if (alpha > 0 && alpha < 1)
+    {
+      ++partial;
+      const auto* pixel =
+        static_cast<unsigned char*>(shown->GetScalarPointer(int(p % 120), int(p / 120), 0));
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(pixel[c], 255 * (rgba[c] + (1 - alpha) * background[c]), 2.0) << p;
+    }
+  }
+  EXPECT_GT(partial, marked / 4); // both sides of the edge are marked, one often whole
+  EXPECT_TRUE(scene.errors.empty());
 }
 
 } // namespace
