@@ -62,18 +62,19 @@ inline std::vector<AffinePatch> affinePatches(
   return affine;
 }
 
-/// Each affine patch's frustum form for the view, where it pays (makeFrustumForm); counted in
-/// the report.
+/// Each affine patch's frustum form for the view, where it pays for the pixels drawn
+/// (makeFrustumForm); counted in the report.
 inline std::vector<FrustumForm> frustumForms(const std::vector<AffinePatch>& affine,
   const View& view, const Settings& settings, int threads, FrameReport& report)
 {
   const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
+  const DrawnPixels drawn(settings.width, settings.height, settings.farDepths);
   std::vector<FrustumForm> forms(affine.size());
   for (size_t p = 0; p < affine.size(); ++p)
   {
     report.frustumPatches +=
-      makeFrustumForm(affine[p], view.worldToClip, clipToWorld, settings.width, settings.height,
-        forms[p], [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); })
+      makeFrustumForm(affine[p], view.worldToClip, clipToWorld, drawn, forms[p],
+        [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); })
         ? 1
         : 0;
   }

@@ -156,8 +156,8 @@ TEST(RayComposition, FrustumFormComposesTheRaysComposeRayDoes)
       const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
       iga::FrustumForm form;
       const auto serial = [](size_t n, const auto& fn) { fn(size_t(0), n); };
-      const bool made =
-        iga::makeFrustumForm(patch, view.worldToClip, clipToWorld, 256, 256, form, serial);
+      const bool made = iga::makeFrustumForm(
+        patch, view.worldToClip, clipToWorld, iga::DrawnPixels(256, 256), form, serial);
       ASSERT_EQ(made, g != count - 1) << gallery[g].name;
       if (!made)
         continue;

@@ -2,9 +2,10 @@
 // contrast test marks both sides of an edge and nothing else; the samples are the moved frames'
 // hits at the marked pixels alone, on the ray-composition, tree and CSG paths; and the samples'
 // coverage of a sphere's silhouette is the exact area of its disc in each pixel, far closer
-// than a pixel centre's.
+// than a pixel centre's. The frustum form pays for the pixels a masked frame draws alone.
 #include "iga/sst/Supersampling.h"
 #include "iga/Camera.h"
+#include "iga/FrustumForm.h"
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Csg.h"
 #include "iga/sst/Engine.h"
@@ -277,6 +278,40 @@ TEST(Supersampling, TheSamplesCoverTheSilhouettePixelsAsTheDiscDoes)
   EXPECT_LT(sampledError, 0.5 * centreError);
   EXPECT_LT(worst, 0.3);
   EXPECT_NEAR(total, M_PI * radius * radius, 0.002 * M_PI * radius * radius);
+}
+
+TEST(Supersampling, DrawnPixelsCountTheUnskippedPixelsOfABox)
+{
+  // A 10 x 6 image whose pixels (i + j) % 3 == 0 are drawn; boxes of NDC against a count.
+  const int width = 10, height = 6;
+  std::vector<double> far(size_t(width * height), -2.0);
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i)
+      if ((i + j) % 3 == 0)
+        far[size_t(j * width + i)] = INFINITY;
+  const iga::DrawnPixels drawn(width, height, far);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> ndc(-1.2, 1.2);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    double lo[2] = { ndc(random), ndc(random) }, hi[2] = { ndc(random), ndc(random) };
+    for (int d = 0; d < 2; ++d)
+      if (lo[d] > hi[d])
+        std::swap(lo[d], hi[d]);
+    // The pixels the box touches (pixel i spans NDC [2 i / width - 1, 2 (i + 1) / width - 1]).
+    int count = 0;
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i)
+      {
+        const bool touched = 2.0 * (i + 1) / width - 1 > lo[0] && 2.0 * i / width - 1 < hi[0] &&
+                             2.0 * (j + 1) / height - 1 > lo[1] && 2.0 * j / height - 1 < hi[1];
+        count += touched && (i + j) % 3 == 0;
+      }
+    EXPECT_EQ(drawn.in(lo, hi), count) << lo[0] << " " << hi[0] << " " << lo[1] << " " << hi[1];
+  }
+  // Without far depths every pixel is drawn: the box's area in pixels.
+  const double lo[2] = { -0.5, 0 }, hi[2] = { 0.5, 1 };
+  EXPECT_DOUBLE_EQ(iga::DrawnPixels(width, height).in(lo, hi), 0.25 * 1 * width * 1 * height);
 }
 
 TEST(Supersampling, AMaskOfTheWrongSizeIsRefused)

@@ -11,11 +11,59 @@
 
 #include "iga/RayComposition.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace iga
 {
+
+/// The pixels a frame draws, to count those in an NDC box: all of a width x height image, or
+/// those its far depths leave (Settings::farDepths: below -1 skips a pixel), by a summed-area
+/// table.
+class DrawnPixels
+{
+public:
+  DrawnPixels(int width, int height)
+    : Width(width)
+    , Height(height)
+  {
+  }
+  DrawnPixels(int width, int height, const std::vector<double>& farDepths)
+    : DrawnPixels(width, height)
+  {
+    if (farDepths.empty())
+      return;
+    const size_t w = size_t(width) + 1;
+    Table.assign(w * (size_t(height) + 1), 0);
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i)
+        Table[(j + 1) * w + i + 1] = Table[(j + 1) * w + i] + Table[j * w + i + 1] -
+                                     Table[j * w + i] +
+                                     (farDepths[size_t(j) * width + i] >= -1 ? 1 : 0);
+  }
+  /// Pixels drawn in the box [lo, hi] of NDC x and y (within [-1, 1]).
+  double in(const double* lo, const double* hi) const
+  {
+    if (Table.empty())
+      return 0.25 * (hi[0] - lo[0]) * Width * (hi[1] - lo[1]) * Height;
+    const auto index = [](double ndc, int size, bool up)
+    {
+      const double x = 0.5 * (ndc + 1) * size;
+      return size_t(std::min(std::max(up ? std::ceil(x) : std::floor(x), 0.0), double(size)));
+    };
+    const size_t i0 = index(lo[0], Width, false), i1 = index(hi[0], Width, true);
+    const size_t j0 = index(lo[1], Height, false), j1 = index(hi[1], Height, true);
+    const size_t w = size_t(Width) + 1;
+    return double(
+      Table[j1 * w + i1] + Table[j0 * w + i0] - Table[j0 * w + i1] - Table[j1 * w + i0]);
+  }
+
+private:
+  int Width, Height;
+  std::vector<uint32_t> Table; ///< empty: every pixel is drawn
+};
 
 struct FrustumForm
 {
@@ -207,15 +255,15 @@ inline bool frustumFormPays(const AffinePatch& patch, double rays)
          rays * directRayCost(patch);
 }
 
-/// The patch's frustum form for the view (worldToClip, its inverse clipToWorld) of an image of
-/// width x height pixels; false, and no form, where it does not pay for the pixels of the
-/// patch's screen box (frustumFormPays), the view's unprojection is not affine in (a, b) at
-/// fixed depth, a corner lies behind the eye, the patch covers no part of the screen and of t
+/// The patch's frustum form for the view (worldToClip, its inverse clipToWorld) of an image
+/// whose `drawn` pixels are drawn; false, and no form, where it does not pay for the drawn
+/// pixels of the patch's screen box (frustumFormPays), the view's unprojection is not affine in (a,
+/// b) at fixed depth, a corner lies behind the eye, the patch covers no part of the screen and of t
 /// in [0, 1], or the field grows in the frustum's box past 1000 times its largest coefficient.
 /// `forEach(count, fn)` runs fn(begin, end) over [0, count) (on threads).
 template<class ForEach>
 bool makeFrustumForm(const AffinePatch& patch, const glm::dmat4& worldToClip,
-  const glm::dmat4& clipToWorld, int width, int height, FrustumForm& form, ForEach forEach)
+  const glm::dmat4& clipToWorld, const DrawnPixels& drawn, FrustumForm& form, ForEach forEach)
 {
   form = FrustumForm();
   const int d = patch.rayDegree, n = d + 1;
@@ -251,7 +299,7 @@ bool makeFrustumForm(const AffinePatch& patch, const glm::dmat4& worldToClip,
   lo[1] = std::max(lo[1], -1.0), hi[1] = std::min(hi[1], 1.0);
   lo[2] = std::max(lo[2], 0.0), hi[2] = std::min(hi[2], 1.0);
   if (!(lo[0] < hi[0] && lo[1] < hi[1] && lo[2] < hi[2]) ||
-      !frustumFormPays(patch, 0.25 * (hi[0] - lo[0]) * width * (hi[1] - lo[1]) * height))
+      !frustumFormPays(patch, drawn.in(lo, hi)))
   {
     return false;
   }
