@@ -192,13 +192,14 @@ public:
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::bezierClipping); });
         break;
       case Method::RayComposition:
-        this->Affine = affinePatches(this->Patches, this->Config, this->Report);
+        this->Affine = affinePatches(this->Patches, this->Config, this->Plan.threads, this->Report);
         this->Forms =
           frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::rayComposition); });
         break;
       case Method::Automatic:
-        this->Affine = affineWherePossible(this->Patches, this->Config, this->Report);
+        this->Affine =
+          affineWherePossible(this->Patches, this->Config, this->Plan.threads, this->Report);
         this->Forms =
           frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
         drawFrame(s, this->Config, [&] { this->automaticPass(); });
@@ -269,14 +270,18 @@ private:
     if (this->Report.rayCompositionPatches > 0)
     {
       this->rayComposition();
-      dropAffineItems(s, this->Affine, this->Plan.initialNodes.data());
       s.stages.end(this->Report.msSolution);
+      if (this->Report.sstPatches == 0)
+      {
+        return; // no item is left for the tree
+      }
+      dropAffineItems(s, this->Affine, this->Plan.initialNodes.data());
     }
     solveRounds(s);
   }
 
-  /// Appends a reference method's hits, pixel by pixel, each kept one bounding its pixel as
-  /// the hit policy says.
+  /// Appends a reference method's hits, lists of pixels in pixel order (one list a pixel, or a
+  /// run of them), each kept one bounding its pixel as the hit policy says.
   void appendPixelHits(const std::vector<std::vector<RawHit>>& perPixel)
   {
     LoopState<CpuExec>& s = this->Loop;
@@ -536,10 +541,10 @@ private:
 
   void rayComposition()
   {
-    std::vector<std::vector<RawHit>> perPixel;
+    std::vector<std::vector<RawHit>> runs;
     rayCompositionPass(this->TheView, this->Config, this->Affine, this->Forms, this->Loop,
-      this->Plan.initialNodes.data(), this->Plan.threads, perPixel, this->Report);
-    this->appendPixelHits(perPixel);
+      this->Plan.initialNodes.data(), this->Plan.threads, runs, this->Report);
+    this->appendPixelHits(runs);
   }
 
   // ---- Bézier clipping ---------------------------------------------------------------------

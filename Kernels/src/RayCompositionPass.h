@@ -11,7 +11,9 @@
 #include "sst/CpuExec.h"
 #include "sst/LoopState.h"
 
+#include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <stdexcept>
 
 namespace iga
@@ -20,36 +22,44 @@ namespace sst
 {
 
 /// Each patch's affine form, rayDegree -1 for the surfaces and the volumes without one (which
-/// the SST draws); sets the report's counts of patches per path.
+/// the SST draws), on `threads` threads; sets the report's counts of patches per path.
 inline std::vector<AffinePatch> affineWherePossible(
-  const Scene& scene, const Settings& settings, FrameReport& report)
+  const Scene& scene, const Settings& settings, int threads, FrameReport& report)
 {
   std::vector<AffinePatch> affine(scene.size());
-  for (size_t p = 0; p < scene.size(); ++p)
-  {
-    if (p >= scene.volumeCount() ||
-        !affineGeometry(scene[p], kFirstAttributeChannel + settings.surfaceAttribute, affine[p]))
+  parallelFor(scene.size(), threads,
+    [&](size_t begin, size_t end)
     {
-      affine[p] = AffinePatch();
-      affine[p].rayDegree = -1;
-    }
-    report.rayCompositionPatches += affine[p].rayDegree >= 0 ? 1 : 0;
+      for (size_t p = begin; p < end; ++p)
+      {
+        if (p >= scene.volumeCount() ||
+            !affineGeometry(
+              scene[p], kFirstAttributeChannel + settings.surfaceAttribute, affine[p]))
+        {
+          affine[p] = AffinePatch();
+          affine[p].rayDegree = -1;
+        }
+      }
+    });
+  for (const AffinePatch& patch : affine)
+  {
+    report.rayCompositionPatches += patch.rayDegree >= 0 ? 1 : 0;
   }
   report.sstPatches = scene.size() - report.rayCompositionPatches;
   return affine;
 }
 
-/// Every volume's affine form; throws std::invalid_argument naming a patch that has none (or
-/// a surface, which ray composition does not draw).
+/// Every volume's affine form (on `threads` threads); throws std::invalid_argument naming a patch
+/// that has none (or a surface, which ray composition does not draw).
 inline std::vector<AffinePatch> affinePatches(
-  const Scene& scene, const Settings& settings, FrameReport& report)
+  const Scene& scene, const Settings& settings, int threads, FrameReport& report)
 {
   if (scene.surfaceCount() > 0)
   {
     throw std::invalid_argument("ray composition draws volumes only, the scene has " +
                                 std::to_string(scene.surfaceCount()) + " surfaces");
   }
-  std::vector<AffinePatch> affine = affineWherePossible(scene, settings, report);
+  std::vector<AffinePatch> affine = affineWherePossible(scene, settings, threads, report);
   for (size_t p = 0; p < scene.size(); ++p)
   {
     if (affine[p].rayDegree < 0)
@@ -132,13 +142,15 @@ inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Set
   return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
 }
 
-/// The hits of the band's pixels (s.frame's), per pixel, on the affine patches (rayDegree >= 0);
-/// in first-hit mode a pixel's items beyond its nearest hit so far are skipped, and without
+/// The hits of the band's pixels (s.frame's) on the affine patches (rayDegree >= 0), in pixel
+/// order: `ordered` holds those of consecutive runs of pixels, one list a run, so that the cost
+/// follows the pixels with work (a supersampling pass draws few) rather than the image's size.
+/// In first-hit mode a pixel's items beyond its nearest hit so far are skipped, and without
 /// clipping planes a ray's roots beyond its first are not looked for.
 inline void rayCompositionPass(const View& view, const Settings& settings,
   const std::vector<AffinePatch>& affine, const std::vector<FrustumForm>& forms,
   const LoopState<CpuExec>& s, const Node* initialNodes, int threads,
-  std::vector<std::vector<RawHit>>& perPixel, FrameReport& report)
+  std::vector<std::vector<RawHit>>& ordered, FrameReport& report)
 {
   static const std::vector<ChebyshevInterpolation> interpolation = []
   {
@@ -155,15 +167,21 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
   RootSettings rootSettings;
   rootSettings.maxRoots =
     s.frame.hits.firstHitOnly && settings.clipPlanes.empty() ? 1 : roots::kMaxRoots;
-  perPixel.assign(count, {});
+  std::vector<std::pair<size_t, std::vector<RawHit>>> runs; // (first pixel, its run's hits)
+  std::mutex runsMutex;
   std::atomic<size_t> rays{ 0 }, steps{ 0 }, capped{ 0 }, seededRays{ 0 };
   parallelFor(count, threads,
     [&](size_t begin, size_t end)
     {
+      std::vector<RawHit> hits;
       size_t localRays = 0, localSteps = 0, localCapped = 0, localSeeded = 0;
       for (size_t k = begin; k < end; ++k)
       {
         const size_t p = first + k;
+        if (s.ItemOffsets[p] == s.ItemOffsets[p + 1])
+        {
+          continue; // no patch (a skipped pixel's none either)
+        }
         const double x = 2 * (double(p % settings.width) + 0.5) / settings.width - 1;
         const double y = 2 * (double(p / settings.width) + 0.5) / settings.height - 1;
         const glm::dvec4 nearPoint = clipToWorld * glm::dvec4(x, y, -1, 1);
@@ -241,7 +259,7 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
             {
               hit.u[d] = std::min(std::max(u[d], 0.0), 1.0);
             }
-            perPixel[k].push_back(hit);
+            hits.push_back(hit);
             best = s.frame.hits.afterHit(best, hit.ndcDepth);
           }
         }
@@ -250,7 +268,16 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
       steps += localSteps;
       capped += localCapped;
       seededRays += localSeeded;
+      std::lock_guard<std::mutex> lock(runsMutex);
+      runs.emplace_back(begin, std::move(hits));
     });
+  std::sort(
+    runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  ordered.clear();
+  for (auto& run : runs)
+  {
+    ordered.push_back(std::move(run.second));
+  }
   report.composedRays += rays;
   report.rootFinderSteps += steps;
   report.cappedRays += capped;

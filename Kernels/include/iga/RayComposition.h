@@ -57,6 +57,10 @@ inline int totalDegreeOf(const VolumeView<const double>& patch, int channel)
   int stride = 1;
   for (int d = 0; d < 3; ++d)
   {
+    double m[kMaxOrder][kMaxOrder]; // m[i][a], a >= i
+    for (int i = 0; i <= n[d]; ++i)
+      for (int a = i; a <= n[d]; ++a)
+        m[i][a] = ((a - i) % 2 ? -1.0 : 1.0) * binomial(n[d], a) * binomial(a, i);
     std::vector<double> nextValue(count, 0.0), nextBound(count, 0.0);
     for (size_t p = 0; p < count; ++p)
     {
@@ -64,9 +68,8 @@ inline int totalDegreeOf(const VolumeView<const double>& patch, int channel)
       const size_t base = p - size_t(i * stride);
       for (int a = i; a <= n[d]; ++a)
       {
-        const double m = ((a - i) % 2 ? -1.0 : 1.0) * binomial(n[d], a) * binomial(a, i);
-        nextValue[base + size_t(a * stride)] += m * value[p];
-        nextBound[base + size_t(a * stride)] += std::fabs(m) * bound[p];
+        nextValue[base + size_t(a * stride)] += m[i][a] * value[p];
+        nextBound[base + size_t(a * stride)] += std::fabs(m[i][a]) * bound[p];
       }
     }
     value.swap(nextValue);
