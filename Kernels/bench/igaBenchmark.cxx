@@ -23,8 +23,9 @@
 //
 // --algebraic: the gallery's algebraic surfaces (AlgebraicGallery.h), each one polynomial volume
 // over its box, SST against ray composition with each root finder at 512^2 (256^2 quick), with
-// the finders' knot insertions and evaluations per composed ray; and an orbit of a degree a
-// frame drawn cold and with frame coherency (each frame seeded by the one before).
+// the finders' knot insertions and evaluations per composed ray; the cost of silhouette
+// anti-aliasing (the frame with the rotated-grid samples of its edge pixels); and an orbit of a
+// degree a frame drawn cold and with frame coherency (each frame seeded by the one before).
 //
 // --screen-filling: scenes framed as users frame them, covering a third of a 1920x1080 image or
 // more (the sphere p2 close up, the teapot, the deforming blade's boundary, the dice's CSG solid).
@@ -48,9 +49,12 @@
 #include "iga/sst/Csg.h"
 #include "iga/sst/Engine.h"
 #include "iga/sst/PixelProblem.h"
+#include "iga/sst/Supersampling.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -453,8 +457,55 @@ void orbitWithCoherency(const std::string& name, const iga::VolumeSet<double>& s
   ratios.emplace_back("coldOverSeeded_" + name, ms[0] / ms[1]);
 }
 
+/// Silhouette anti-aliasing's cost: ray composition (point insertion) with and without the
+/// rotated-grid samples of the pixels whose grey (a headlight's Lambert term, as the mapper's
+/// shading marks edges) contrasts with a neighbour's by more than 0.1; ratio
+/// `antialiasedOverPlain_NAME`.
+void supersampledSilhouettes(const std::string& name, const iga::VolumeSet<double>& set, int degree,
+  int size, int threads, int reps, const Measurement& plain, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  const iga::Camera camera = frame(set.patches);
+  const iga::sst::View view = iga::sst::makeView(camera, size, size);
+  size_t marked = 0;
+  auto smoothed = measureFrames("algebraic", name + "/antialiased", 0.0, degree, size, size,
+    threads, iga::sst::Method::RayComposition, reps, iga::sst::Backend::Cpu, false,
+    [&](int, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      const auto renderFrame =
+        [&](const iga::sst::View& v, const iga::sst::Settings& s, iga::sst::GBuffer& g)
+      { return iga::sst::render(iga::sst::Scene(set.patches), v, s, m, g); };
+      iga::sst::FrameReport report = renderFrame(view, settings, out);
+      std::vector<float> grey(4 * size_t(size) * size_t(size), 0.0f);
+      for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i)
+          if (const iga::sst::Hit* hit = out.firstHit(i, j))
+          {
+            const float lambert =
+              float(std::fabs(glm::dot(hit->normal, glm::normalize(view.eye - hit->position))));
+            float* rgba = &grey[4 * size_t(j * size + i)];
+            std::fill(rgba, rgba + 3, lambert);
+            rgba[3] = 1.0f;
+          }
+      const auto mask = iga::sst::contrastingPixels(grey, size, size, 0.1f);
+      marked = size_t(std::count(mask.begin(), mask.end(), 1));
+      std::array<iga::sst::GBuffer, iga::sst::kRotatedGridSamples> samples;
+      iga::sst::addPassReport(
+        report, iga::sst::renderRotatedGridSamples(view, settings, mask, renderFrame, samples));
+      report.msTotal =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      return report;
+    });
+  std::fprintf(stderr, "%-11s %-28s %zu pixels supersampled\n", "", name.c_str(), marked);
+  ratios.emplace_back("antialiasedOverPlain_" + name, smoothed.ms / plain.ms);
+  ratios.emplace_back("antialiasedPixels_" + name, double(marked));
+  all.push_back(std::move(smoothed));
+}
+
 /// One algebraic scene: the SST against ray composition with each root finder (ratio
-/// `sstOverComposition_NAME_FINDER`), then its orbit with and without frame coherency.
+/// `sstOverComposition_NAME_FINDER`), its orbit with and without frame coherency, and the cost
+/// of anti-aliasing it.
 void compareWithComposition(const std::string& name, const iga::VolumeSet<double>& set, int degree,
   bool quick, int threads, int reps, std::vector<Measurement>& all,
   std::vector<std::pair<std::string, double>>& ratios)
@@ -478,6 +529,8 @@ void compareWithComposition(const std::string& name, const iga::VolumeSet<double
       });
     ratios.emplace_back(
       "sstOverComposition_" + name + "_" + iga::rootFinderName(finder), sst.ms / composed.ms);
+    if (finder == iga::RootFinder::PointInsertion)
+      supersampledSilhouettes(name, set, degree, size, threads, reps, composed, all, ratios);
     all.push_back(std::move(composed));
   }
   orbitWithCoherency(name, set, degree, size, threads, std::max(reps, 5), all, ratios);
