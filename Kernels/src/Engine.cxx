@@ -193,15 +193,13 @@ public:
         break;
       case Method::RayComposition:
         this->Affine = affinePatches(this->Patches, this->Config, this->Plan.threads, this->Report);
-        this->Forms =
-          frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
+        this->prepareComposition();
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::rayComposition); });
         break;
       case Method::Automatic:
         this->Affine =
           affineWherePossible(this->Patches, this->Config, this->Plan.threads, this->Report);
-        this->Forms =
-          frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
+        this->prepareComposition();
         drawFrame(s, this->Config, [&] { this->automaticPass(); });
         break;
     }
@@ -539,6 +537,30 @@ private:
 
   // ---- ray composition ---------------------------------------------------------------------
 
+  /// The affine patches' frustum forms, and their power forms for shading.
+  void prepareComposition()
+  {
+    this->Forms =
+      frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
+    this->PowerShadings.assign(this->Affine.size(), PowerShading());
+    this->PowerPool.clear();
+    for (size_t p = 0; p < this->Affine.size(); ++p)
+    {
+      const AffinePatch& patch = this->Affine[p];
+      if (patch.rayDegree >= 0 && !patch.terms.empty())
+      {
+        PowerShading& power = this->PowerShadings[p];
+        power.origin = patch.origin;
+        power.axes = patch.axes;
+        power.first = uint32_t(this->PowerPool.size());
+        power.count = uint32_t(patch.terms.size());
+        this->PowerPool.insert(this->PowerPool.end(), patch.terms.begin(), patch.terms.end());
+      }
+    }
+    this->Loop.powerShading = this->PowerPool.empty() ? nullptr : this->PowerShadings.data();
+    this->Loop.powerTerms = this->PowerPool.data();
+  }
+
   void rayComposition()
   {
     std::vector<std::vector<RawHit>> runs;
@@ -606,8 +628,10 @@ private:
   FrameReport& Report;
   FramePlan Plan;
   std::vector<PatchShape> Shapes;
-  std::vector<AffinePatch> Affine; // ray composition: each patch's affine form
-  std::vector<FrustumForm> Forms;  // and its frustum form where one pays
+  std::vector<AffinePatch> Affine;         // ray composition: each patch's affine form
+  std::vector<FrustumForm> Forms;          // and its frustum form where one pays
+  std::vector<PowerShading> PowerShadings; // and its power form for shading, from PowerPool
+  std::vector<PowerTerm> PowerPool;
   LoopState<CpuExec> Loop;
   std::vector<Node> Leaves; ///< brute force
   std::vector<double> LeafPool;

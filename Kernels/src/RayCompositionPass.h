@@ -222,6 +222,12 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
             composeFrustumRay(form, settings.isovalues[size_t(node.iso)], x, y, t0, t1,
               interpolation[size_t(patch.rayDegree)], coefficients);
           }
+          else if (!patch.terms.empty())
+          {
+            blossomAlongRay(patch.terms.data(), int(patch.terms.size()), patch.rayDegree,
+              2.0 * u0 - 1.0, 2.0 * (u0 + du) - 1.0, settings.isovalues[size_t(node.iso)],
+              coefficients);
+          }
           else
           {
             composeRay(patch, settings.isovalues[size_t(node.iso)], u0, du,

@@ -1,8 +1,8 @@
 // Ray composition against the shared subdivision tree on the same volumes: the unit sphere (hits
 // on it to 1e-9), and the gallery's algebraic surfaces over their boxes, every root finder, hits
 // within 1e-6 of the SST's and |f(hit)| / K (Reimers and Seland's error metric) below their
-// Table 1; patches without affine geometry refused, and drawn by the tree in the automatic
-// method's frames.
+// Table 1; the frustum form and the power form's blossom against direct composition; patches
+// without affine geometry refused, and drawn by the tree in the automatic method's frames.
 #include "iga/AbsField.h"
 #include "iga/AlgebraicGallery.h"
 #include "iga/Camera.h"
@@ -112,7 +112,8 @@ TEST(RayComposition, SphereHitsLieOnTheSphere)
   const GBuffer composed =
     draw(sphere, 96, Method::RayComposition, iga::RootFinder::PointInsertion, &report);
   EXPECT_EQ(report.method, "ray-composition");
-  EXPECT_EQ(report.frustumPatches, 1u);
+  // Its four terms' blossom costs a ray less than a frustum form: composed and shaded by it.
+  EXPECT_EQ(report.frustumPatches, 0u);
   EXPECT_GT(report.composedRays, 0u);
   EXPECT_EQ(report.cappedRays, 0u);
   ASSERT_GT(composed.coveredPixels(), 1000u);
@@ -144,6 +145,7 @@ TEST(RayComposition, FrustumFormComposesTheRaysComposeRayDoes)
     const Volume v = algebraicVolume(gallery[g].expression, gallery[g].box);
     iga::AffinePatch patch;
     ASSERT_TRUE(iga::affineGeometry(v.patches[0].view(), iga::kFirstAttributeChannel, patch));
+    patch.terms.clear(); // the form against direct composition, whatever a blossom would cost
     const iga::ChebyshevInterpolation interpolation = iga::chebyshevInterpolation(patch.rayDegree);
     double largest = 0;
     for (double c : patch.field)
@@ -188,7 +190,96 @@ TEST(RayComposition, FrustumFormComposesTheRaysComposeRayDoes)
   }
 }
 
-TEST(RayComposition, AnEyeInsideThePatchComposesEveryRayDirectly)
+/// The gallery's power forms: the expression's terms in the centred parameter (the
+/// super-sphere's four, 0.7^16 s^16 for x^16 over [-0.7, 0.7]), certified; random rays through
+/// each patch composed by the blossom as directly, within the certificate's tolerance of K; the
+/// certificate refuses what it cannot prove.
+TEST(PowerForm, GalleryBlossomsComposeTheRaysComposeRayDoes)
+{
+  int count = 0;
+  const iga::AlgebraicSurface* gallery = iga::algebraicGallery(count);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int g = 0; g < count; ++g)
+  {
+    SCOPED_TRACE(gallery[g].name);
+    const Volume v = algebraicVolume(gallery[g].expression, gallery[g].box);
+    iga::AffinePatch patch;
+    ASSERT_TRUE(iga::affineGeometry(v.patches[0].view(), iga::kFirstAttributeChannel, patch));
+    ASSERT_FALSE(patch.terms.empty());
+    double largest = 0;
+    for (double c : patch.field)
+      largest = std::max(largest, std::fabs(c));
+    const iga::ChebyshevInterpolation interpolation = iga::chebyshevInterpolation(patch.rayDegree);
+    for (int trial = 0; trial < 40; ++trial)
+    {
+      const glm::dvec3 u0(unit(rng), unit(rng), unit(rng)), u1(unit(rng), unit(rng), unit(rng));
+      double direct[iga::kMaxOrder], blossom[iga::kMaxOrder];
+      iga::composeRay(patch, 0.25, u0, u1 - u0, interpolation, direct);
+      iga::blossomAlongRay(patch.terms.data(), int(patch.terms.size()), patch.rayDegree,
+        2.0 * u0 - 1.0, 2.0 * u1 - 1.0, 0.25, blossom);
+      for (int k = 0; k <= patch.rayDegree; ++k)
+        ASSERT_NEAR(blossom[k], direct[k], iga::kPowerFormTolerance * largest) << k;
+      // The gradient in s against central differences of the blossom's values.
+      const glm::dvec3 s = 2.0 * u0 - 1.0;
+      const glm::dvec3 gradient =
+        iga::powerGradient(patch.terms.data(), int(patch.terms.size()), s);
+      for (int d = 0; d < 3; ++d)
+      {
+        glm::dvec3 step(0.0);
+        step[d] = 1e-5;
+        double ends[2][iga::kMaxOrder];
+        iga::blossomAlongRay(patch.terms.data(), int(patch.terms.size()), patch.rayDegree, s - step,
+          s + step, 0.0, ends[0]);
+        // The segment's end values are its first and last coefficients.
+        const double slope = (ends[0][patch.rayDegree] - ends[0][0]) / 2e-5;
+        EXPECT_NEAR(gradient[d], slope, 1e-6 * (1 + std::fabs(slope))) << d;
+      }
+    }
+  }
+  const Volume superSphere = algebraicVolume("x^16 + y^16 + z^16 - 0.0001", gallery[count - 1].box);
+  iga::AffinePatch patch;
+  ASSERT_TRUE(
+    iga::affineGeometry(superSphere.patches[0].view(), iga::kFirstAttributeChannel, patch));
+  ASSERT_EQ(patch.terms.size(), 4u);
+  for (const iga::PowerTerm& term : patch.terms)
+  {
+    const int degree = term.power[0] + term.power[1] + term.power[2];
+    EXPECT_TRUE(
+      degree == 16 ? std::max({ term.power[0], term.power[1], term.power[2] }) == 16 : degree == 0);
+    // Within the rounding of the field's conversions (K = 3 0.7^16 = 0.01).
+    EXPECT_NEAR(term.coefficient, degree == 16 ? std::pow(0.7, 16) : -1e-4, 1e-13);
+  }
+  // Its field holds the conversion's rounding besides: proving the four terms to 1e-20 of K
+  // fails, and so does a form of fewer terms than the field needs.
+  std::vector<double> power, bound;
+  iga::centredPowerForm(patch.field, patch.degree, power, bound);
+  std::vector<iga::PowerTerm> terms;
+  EXPECT_FALSE(iga::sparsePowerForm(patch.field, patch.degree, power, bound, 1000, 1e-20, terms));
+  EXPECT_TRUE(terms.empty());
+  EXPECT_FALSE(iga::sparsePowerForm(patch.field, patch.degree, power, bound, 3, 1e-8, terms));
+  EXPECT_TRUE(iga::sparsePowerForm(patch.field, patch.degree, power, bound, 4, 1e-8, terms));
+}
+
+/// A field of random Bernstein coefficients has a dense power form: no blossom where it would
+/// cost more than composing the ray directly, and where allowed every term is kept and proved.
+TEST(PowerForm, DenseFieldsKeepEveryTerm)
+{
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> coefficient(-1, 1);
+  const int n[3] = { 3, 2, 4 };
+  std::vector<double> field(size_t(4 * 3 * 5));
+  for (double& c : field)
+    c = coefficient(rng);
+  std::vector<double> power, bound;
+  iga::centredPowerForm(field, n, power, bound);
+  std::vector<iga::PowerTerm> terms;
+  ASSERT_TRUE(iga::sparsePowerForm(field, n, power, bound, field.size(), 1e-12, terms));
+  EXPECT_EQ(terms.size(), field.size());
+  EXPECT_FALSE(iga::sparsePowerForm(field, n, power, bound, field.size() - 1, 1e-12, terms));
+}
+
+TEST(RayComposition, AnEyeInsideThePatchHasNoFrustumForm)
 {
   // A corner behind the eye leaves no screen box: no frustum form, the same surface.
   const double box[6] = { -1.2, 1.2, -1.2, 1.2, -1.2, 1.2 };

@@ -234,25 +234,20 @@ inline glm::dvec3 unproject(const glm::dmat4& clipToWorld, double x, double y, d
 }
 } // namespace detail
 
-/// Products a pixel's ray costs composed directly and through a frustum form of degree d.
-inline double directRayCost(const AffinePatch& patch)
-{
-  return double(patch.rayDegree + 1) * (patch.degree[0] + 1) * (patch.degree[1] + 1) *
-         (patch.degree[2] + 1);
-}
+/// Products a pixel's ray costs through a frustum form of degree d.
 inline double frustumRayCost(int d)
 {
   return double(d + 1) * detail::triangleSize(d) + 2.0 * (d + 1) * (d + 1);
 }
 
-/// Whether a frustum form costs less than composing `rays` rays directly: its (d + 1)^3 samples
-/// of the patch and the rays through it.
+/// Whether a frustum form costs less than composing `rays` rays without it (composedRayCost):
+/// its (d + 1)^3 samples of the patch and the rays through it.
 inline bool frustumFormPays(const AffinePatch& patch, double rays)
 {
   const double samples = std::pow(double(patch.rayDegree + 1), 3);
   return samples * directRayCost(patch) / double(patch.rayDegree + 1) +
            rays * frustumRayCost(patch.rayDegree) <
-         rays * directRayCost(patch);
+         rays * composedRayCost(patch);
 }
 
 /// The patch's frustum form for the view (worldToClip, its inverse clipToWorld) of an image

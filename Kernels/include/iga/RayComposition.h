@@ -7,6 +7,7 @@
 
 #include "iga/BernsteinRoots.h"
 #include "iga/BezierPatch.h"
+#include "iga/PowerForm.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -30,7 +31,22 @@ struct AffinePatch
   int degree[3] = {};
   std::vector<double> field;
   int rayDegree = 0;
+  /// The field's sparse power form (PowerForm.h) where its blossom composes a ray for less than
+  /// the field at d + 1 points; empty otherwise.
+  std::vector<PowerTerm> terms;
 };
+
+/// How far a power form may stand from its field: a fraction of the field's largest Bernstein
+/// coefficient, far below the root finders' resolution.
+constexpr double kPowerFormTolerance = 1e-8;
+
+/// Products a ray's coefficients cost when composed directly: the patch's field at d + 1
+/// points.
+inline double directRayCost(const AffinePatch& patch)
+{
+  return double(patch.rayDegree + 1) * (patch.degree[0] + 1) * (patch.degree[1] + 1) *
+         (patch.degree[2] + 1);
+}
 
 namespace detail
 {
@@ -40,55 +56,6 @@ inline glm::dvec3 euclideanPoint(const VolumeView<const double>& patch, int p)
   return glm::dvec3(cp[0], cp[1], cp[2]) / cp[kWeightChannel];
 }
 
-/// The total degree of one channel (divided by the common weight) as a polynomial in (u, v, w):
-/// the highest a + b + c of its power form whose coefficient stands above the conversion's
-/// rounding (bounded by the same sums of magnitudes). Direction by direction, with
-/// B_i^n = sum_{a >= i} (-1)^(a - i) C(n, a) C(a, i) t^a.
-inline int totalDegreeOf(const VolumeView<const double>& patch, int channel)
-{
-  const int n[3] = { patch.degree[0], patch.degree[1], patch.degree[2] };
-  const size_t count = size_t(patch.pointCount());
-  std::vector<double> value(count), bound(count);
-  for (size_t p = 0; p < count; ++p)
-  {
-    value[p] = patch.point(int(p))[channel] / patch.point(int(p))[kWeightChannel];
-    bound[p] = std::fabs(value[p]);
-  }
-  int stride = 1;
-  for (int d = 0; d < 3; ++d)
-  {
-    double m[kMaxOrder][kMaxOrder]; // m[i][a], a >= i
-    for (int i = 0; i <= n[d]; ++i)
-      for (int a = i; a <= n[d]; ++a)
-        m[i][a] = ((a - i) % 2 ? -1.0 : 1.0) * binomial(n[d], a) * binomial(a, i);
-    std::vector<double> nextValue(count, 0.0), nextBound(count, 0.0);
-    for (size_t p = 0; p < count; ++p)
-    {
-      const int i = int(p / size_t(stride)) % (n[d] + 1); // this direction's index of p
-      const size_t base = p - size_t(i * stride);
-      for (int a = i; a <= n[d]; ++a)
-      {
-        nextValue[base + size_t(a * stride)] += m[i][a] * value[p];
-        nextBound[base + size_t(a * stride)] += std::fabs(m[i][a]) * bound[p];
-      }
-    }
-    value.swap(nextValue);
-    bound.swap(nextBound);
-    stride *= n[d] + 1;
-  }
-  const double rounding = 16.0 * (n[0] + n[1] + n[2] + 3) * Epsilon<double>::value;
-  int degree = 0;
-  for (size_t p = 0; p < count; ++p)
-  {
-    const int a = int(p) % (n[0] + 1), b = int(p) / (n[0] + 1) % (n[1] + 1),
-              c = int(p) / ((n[0] + 1) * (n[1] + 1));
-    if (std::fabs(value[p]) > rounding * bound[p])
-    {
-      degree = std::max(degree, a + b + c);
-    }
-  }
-  return degree;
-}
 } // namespace detail
 
 /// Whether the patch's geometry is affine (equal weights, control points on the affine map of
@@ -134,14 +101,48 @@ inline bool affineGeometry(
     }
   }
   affine.inverse = glm::inverse(affine.axes);
-  affine.rayDegree = detail::totalDegreeOf(patch, attributeChannel);
   std::copy(n, n + 3, affine.degree);
   affine.field.resize(size_t(patch.pointCount()));
   for (int p = 0; p < patch.pointCount(); ++p)
   {
     affine.field[size_t(p)] = patch.point(p)[attributeChannel] / patch.point(p)[kWeightChannel];
   }
-  return affine.rayDegree <= kMaxDegree;
+  // The degree along rays is the field's total degree: the largest a + b + c of its power form
+  // (in s = 2 u - 1, as in u) above the conversion's rounding.
+  std::vector<double> power, bound;
+  centredPowerForm(affine.field, n, power, bound);
+  affine.rayDegree = 0;
+  for (size_t p = 0; p < power.size(); ++p)
+  {
+    if (significantPower(power[p], bound[p], n))
+    {
+      affine.rayDegree = std::max(
+        affine.rayDegree, int(p % size_t(n[0] + 1) + p / size_t(n[0] + 1) % size_t(n[1] + 1) +
+                              p / size_t((n[0] + 1) * (n[1] + 1))));
+    }
+  }
+  if (affine.rayDegree > kMaxDegree)
+  {
+    return false;
+  }
+  // Its blossom where that costs a ray less than direct composition.
+  const double termCost = 0.5 * (affine.rayDegree + 1) * (affine.rayDegree + 1);
+  const size_t maxTerms = size_t(directRayCost(affine) / termCost);
+  affine.terms.clear();
+  if (maxTerms > 0)
+  {
+    sparsePowerForm(affine.field, n, power, bound, maxTerms, kPowerFormTolerance, affine.terms);
+  }
+  return true;
+}
+
+/// Products a ray's coefficients cost without a frustum form: its blossom's where the patch has
+/// a power form, else its field at d + 1 points.
+inline double composedRayCost(const AffinePatch& patch)
+{
+  return patch.terms.empty()
+           ? directRayCost(patch)
+           : 0.5 * double(patch.terms.size()) * (patch.rayDegree + 1) * (patch.rayDegree + 1);
 }
 
 /// Chebyshev points on [0, 1] and, per degree, the inverse of the Bernstein collocation matrix

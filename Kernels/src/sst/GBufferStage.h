@@ -24,6 +24,9 @@ void gBufferStage(LoopState<Exec>& s)
   const PatchShape* shapes = s.shapes;
   const double* shadingPool = s.shadingPool;
   const ShadingView viewer = s.viewer;
+  // Patches with a power form are shaded from it, unless a colour attribute is read.
+  const PowerShading* powerShading = viewer.hasColor ? nullptr : s.powerShading;
+  const PowerTerm* powerTerms = s.powerTerms;
   const HitPolicy policy = s.frame.hits;
   const double footprint = s.pixelFootprint;
   Hit* shaded = sized(s.Shaded, hitCount);
@@ -47,7 +50,10 @@ void gBufferStage(LoopState<Exec>& s)
           const PatchShape& shape = shapes[raws[h].patch];
           const VolumeView<const double> shading(
             shadingPool + shape.screen, shape.degree, kShadeChannels);
-          shaded[candidates++] = shadeHit(shading, raws[h], viewer);
+          shaded[candidates++] =
+            powerShading && powerShading[raws[h].patch].count > 0
+              ? shadePowerHit(powerShading[raws[h].patch], powerTerms, raws[h], viewer)
+              : shadeHit(shading, raws[h], viewer);
         }
       }
       pixels[r] = raws[runStarts[r]].pixel;

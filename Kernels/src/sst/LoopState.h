@@ -123,6 +123,9 @@ struct LoopState
   size_t initialValues = 0;
   const double* shadingPool = nullptr;
   size_t shadingValues = 0;
+  /// Per patch, its power form for shading (ray composition's, CPU only), or null for none.
+  const PowerShading* powerShading = nullptr;
+  const PowerTerm* powerTerms = nullptr;
   ShadingView viewer{};
   double pixelFootprint = 0;
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "iga/Camera.h"
+#include "iga/PowerForm.h"
 #include "iga/sst/Engine.h"
 #include "iga/sst/HitPolicy.h"
 #include "iga/sst/PixelProblem.h"
@@ -556,33 +557,12 @@ inline ShadingView shadingViewOf(const View& view, const Settings& settings)
   return viewer;
 }
 
-/// World position, normal (facing the viewer), depth and colour value of a root, evaluated on
-/// its shading patch in double precision.
-IGA_HD inline Hit shadeHit(
-  const VolumeView<const double>& shading, const RawHit& raw, const ShadingView& viewer)
+/// A hit's normal (facing the viewer), whether it enters the region below the isovalue and its
+/// eye depth, from its world position, J (J[d] the gradient of world coordinate d in the
+/// parameter) and, for a volume, the attribute's gradient in the parameter.
+IGA_HD inline void orientHit(
+  Hit& hit, glm::dvec3 (&J)[3], glm::dvec3 gradient, bool surface, const ShadingView& viewer)
 {
-  // A surface reads no surface attribute, and its colour only when coloured by one.
-  const bool surface = isSurface(shading);
-  const int leading = surface && !viewer.hasColor ? kShadeSurface : kShadeChannels;
-  double values[kShadeChannels], derivatives[3 * kShadeChannels] = {};
-  surface ? evaluateHomogeneous<double, 2>(surfaceOf(shading), raw.u, values, derivatives, leading)
-          : evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives, leading);
-  Hit hit;
-  hit.ndcDepth = raw.ndcDepth;
-  hit.patch = raw.patch;
-  hit.isovalue = raw.iso;
-  glm::dvec3 J[3], gradient(0.0); // J[d]: the gradient of world coordinate d
-  for (int d = 0; d < 3; ++d)
-  {
-    hit.uvw[d] = raw.u[d];
-    hit.position[d] = rationalValue<double, 3>(
-      values, derivatives, kShadeChannels, kShadeX + d, kShadeWeight, &J[d][0]);
-  }
-  if (!surface)
-  {
-    rationalValue<double, 3>(
-      values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, &gradient[0]);
-  }
   // Only the normal's direction and the determinant's sign matter: powers of two bring J and
   // the gradient near 1, exactly, so that their products neither overflow nor underflow.
   auto largest = [](const glm::dvec3& v)
@@ -620,7 +600,77 @@ IGA_HD inline Hit shadeHit(
   hit.entersBelow = (determinant < 0 && !surface ? -sign : sign) > 0;
   hit.normal = sign * normal;
   hit.eyeDepth = glm::dot(hit.position - viewer.eye, viewer.forward);
+}
+
+/// The hit of a raw root, its fields but the geometry's.
+IGA_HD inline Hit hitOf(const RawHit& raw)
+{
+  Hit hit;
+  hit.ndcDepth = raw.ndcDepth;
+  hit.patch = raw.patch;
+  hit.isovalue = raw.iso;
+  for (int d = 0; d < 3; ++d)
+  {
+    hit.uvw[d] = raw.u[d];
+  }
+  return hit;
+}
+
+/// World position, normal (facing the viewer), depth and colour value of a root, evaluated on
+/// its shading patch in double precision.
+IGA_HD inline Hit shadeHit(
+  const VolumeView<const double>& shading, const RawHit& raw, const ShadingView& viewer)
+{
+  // A surface reads no surface attribute, and its colour only when coloured by one.
+  const bool surface = isSurface(shading);
+  const int leading = surface && !viewer.hasColor ? kShadeSurface : kShadeChannels;
+  double values[kShadeChannels], derivatives[3 * kShadeChannels] = {};
+  surface ? evaluateHomogeneous<double, 2>(surfaceOf(shading), raw.u, values, derivatives, leading)
+          : evaluateHomogeneous<double, 3>(shading, raw.u, values, derivatives, leading);
+  Hit hit = hitOf(raw);
+  glm::dvec3 J[3], gradient(0.0); // J[d]: the gradient of world coordinate d
+  for (int d = 0; d < 3; ++d)
+  {
+    hit.position[d] = rationalValue<double, 3>(
+      values, derivatives, kShadeChannels, kShadeX + d, kShadeWeight, &J[d][0]);
+  }
+  if (!surface)
+  {
+    rationalValue<double, 3>(
+      values, derivatives, kShadeChannels, kShadeSurface, kShadeWeight, &gradient[0]);
+  }
+  orientHit(hit, J, gradient, surface, viewer);
   hit.color = viewer.hasColor ? values[kShadeColor] / values[kShadeWeight] : nan("");
+  return hit;
+}
+
+/// An affine patch's power form for shading (ray composition's patches that have one): its
+/// world map origin + axes u and its terms [first, first + count) of the frame's pool; count 0
+/// for the others.
+struct PowerShading
+{
+  glm::dvec3 origin;
+  glm::dmat3 axes;
+  uint32_t first = 0, count = 0;
+};
+
+/// shadeHit for a patch with a power form and no colour attribute: the affine map and the
+/// form's gradient, without evaluating the patch.
+IGA_HD inline Hit shadePowerHit(
+  const PowerShading& power, const PowerTerm* terms, const RawHit& raw, const ShadingView& viewer)
+{
+  Hit hit = hitOf(raw);
+  const glm::dvec3 u(raw.u[0], raw.u[1], raw.u[2]);
+  hit.position = power.origin + power.axes * u;
+  glm::dvec3 J[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    J[d] = glm::dvec3(power.axes[0][d], power.axes[1][d], power.axes[2][d]);
+  }
+  // d/du = 2 d/ds, a positive factor the normal's direction does not see.
+  orientHit(
+    hit, J, powerGradient(terms + power.first, int(power.count), 2.0 * u - 1.0), false, viewer);
+  hit.color = nan("");
   return hit;
 }
 
