@@ -210,6 +210,51 @@ TEST(BernsteinRoots, EveryFinderFindsDoubleRootsOnce)
   }
 }
 
+/// The search for even roots (the derivative's roots where the polynomial touches zero) runs
+/// only where the odd roots' search cannot rule them out: for simple roots it is skipped (the
+/// same steps as without it) in most cases, for the first root as for all, with the same roots;
+/// double roots are still found.
+TEST(BernsteinRoots, TheEvenRootSearchRunsOnlyWhereTheOddSearchCannotRuleItOut)
+{
+  std::mt19937 rng(14);
+  for (const int wanted : { 1, iga::roots::kMaxRoots })
+  {
+    int skipped = 0, cases = 0;
+    for (int degree = 2; degree <= 16; ++degree)
+    {
+      for (int trial = 0; trial < 12; ++trial)
+      {
+        const int real = std::uniform_int_distribution<int>(1, std::min(degree, 6))(rng);
+        const Case c = randomCase(rng, degree, real, 0);
+        for (iga::RootFinder finder : kFinders)
+        {
+          if (finder == iga::RootFinder::PolarNewton) // isolates critical points itself
+            continue;
+          iga::RootSettings settings, oddOnly;
+          settings.maxRoots = oddOnly.maxRoots = wanted;
+          oddOnly.evenRoots = false;
+          const auto all = iga::findBernsteinRoots(c.coefficients.data(), degree, finder, settings);
+          const auto odd = iga::findBernsteinRoots(c.coefficients.data(), degree, finder, oddOnly);
+          ASSERT_EQ(all.count, odd.count) << c.what;
+          for (int k = 0; k < all.count; ++k)
+            EXPECT_EQ(all.t[k], odd.t[k]) << c.what;
+          ++cases;
+          skipped += all.cost.insertions == odd.cost.insertions &&
+                     all.cost.evaluations == odd.cost.evaluations;
+        }
+      }
+    }
+    EXPECT_GT(skipped, cases / 2) << "of " << cases << " searches for " << wanted;
+  }
+  // Double roots: found, whether the odd search's rounding saw them or the even search did.
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    const Case doubled = randomCase(rng, 8, 2, 1);
+    for (iga::RootFinder finder : kFinders)
+      expectRoots(doubled, finder);
+  }
+}
+
 TEST(BernsteinRoots, RootsAtTheEndsAreExact)
 {
   // t (1 - t)^2 (t - 0.3) (t - 0.7): a simple root at 0, a double one at 1.

@@ -152,6 +152,28 @@ IGA_HD inline double polishRoot(
   return t;
 }
 
+/// Whether the odd roots' search proves that no even root is to be looked for: each piece it
+/// dropped stayed beyond rounding from zero or had no critical point (holdsNoEvenRoot), over the
+/// whole segment or, where it stopped at its last root, up to that root with the derivative
+/// keeping one sign within a cluster (1e-3) on either side of it. A critical point within a
+/// root's own narrow piece would lie within the tolerance of that root.
+IGA_HD inline bool noEvenRoots(const roots::Piece& piece, const roots::RootList& odd,
+  bool truncated, const roots::RootContext& context)
+{
+  if (odd.touched || odd.cost.capped)
+  {
+    return false;
+  }
+  if (!truncated)
+  {
+    return true;
+  }
+  const double last = odd.t[odd.count - 1];
+  const double a = maxValue(last - 1e-3, 0.0), b = minValue(last + 1e-3, 1.0);
+  return roots::keepsOneSign(
+    roots::clipPiece(roots::normalised(roots::derivativeOf(piece)), a, b), context.zero);
+}
+
 /// The roots inside (0, 1) of `piece` (end coefficients nonzero), sorted, the first
 /// context.limit of them or fewer; `truncated` when the search stopped at its limit, so that
 /// more may follow.
@@ -172,7 +194,8 @@ IGA_HD inline roots::RootList interiorRoots(const roots::Piece& piece, RootFinde
   {
     inside.t[k] = polishRoot(piece, inside.t[k], 1e-6, inside.cost.evaluations);
   }
-  if (evenRoots && finder != RootFinder::PolarNewton && piece.degree > 1)
+  if (evenRoots && finder != RootFinder::PolarNewton && piece.degree > 1 &&
+      !noEvenRoots(piece, inside, truncated, context))
   {
     // Critical points: the derivative's roots of odd multiplicity, inside (0, 1).
     // An even root matters left of the last odd root kept, or within a cluster (below) of it.

@@ -49,6 +49,9 @@ struct RootList
   int count = 0;
   double t[kMaxRoots] = {};
   RootCost cost;
+  /// A piece the search dropped may hold an even root (holdsNoEvenRoot failed): without that,
+  /// the polynomial has none wherever the search looked but within its roots' narrow pieces.
+  bool touched = false;
 
   /// Appends t unless it lies within `merge` of the last root (a root met at a split point is
   /// seen by both sides).
@@ -221,6 +224,14 @@ IGA_HD inline Piece normalised(Piece piece)
     piece.c[i] /= largest;
   }
   return piece;
+}
+
+/// Whether the piece provably holds no even root: it stays beyond rounding from zero, or its
+/// derivative keeps one sign (no critical point).
+IGA_HD inline bool holdsNoEvenRoot(const Piece& piece, double zero)
+{
+  return keepsOneSign(piece, zero) ||
+         (piece.degree > 0 && keepsOneSign(normalised(derivativeOf(piece)), zero));
 }
 
 /// The global parameter of local s.

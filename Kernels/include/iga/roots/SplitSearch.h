@@ -61,6 +61,7 @@ IGA_HD void splitSearch(
     }
     if (!changesSign(piece, context.zero))
     {
+      roots.touched = roots.touched || !holdsNoEvenRoot(piece, context.zero);
       continue;
     }
     if (piece.hi - piece.lo <= context.tolerance || splits >= context.maxSplits ||
@@ -78,6 +79,10 @@ IGA_HD void splitSearch(
       if (cut.a <= cut.b)
       {
         roots.add(globalOf(piece, 0.5 * (cut.a + cut.b)), context.merge);
+      }
+      else
+      {
+        roots.touched = roots.touched || !holdsNoEvenRoot(piece, context.zero);
       }
       continue;
     }
