@@ -58,6 +58,7 @@ void addPassReport(FrameReport& total, const FrameReport& pass)
   total.sstPatches += pass.sstPatches;
   total.rayCompositionPatches += pass.rayCompositionPatches;
   total.frustumPatches += pass.frustumPatches;
+  total.blossomPatches += pass.blossomPatches;
   total.composedRays += pass.composedRays;
   total.rootFinderSteps += pass.rootFinderSteps;
   total.cappedRays += pass.cappedRays;
@@ -549,6 +550,7 @@ private:
       const AffinePatch& patch = this->Affine[p];
       if (patch.rayDegree >= 0 && !patch.terms.empty())
       {
+        this->Report.blossomPatches += this->Forms[p].degree < 0 ? 1 : 0;
         PowerShading& power = this->PowerShadings[p];
         power.origin = patch.origin;
         power.axes = patch.axes;

@@ -114,6 +114,7 @@ TEST(RayComposition, SphereHitsLieOnTheSphere)
   EXPECT_EQ(report.method, "ray-composition");
   // Its four terms' blossom costs a ray less than a frustum form: composed and shaded by it.
   EXPECT_EQ(report.frustumPatches, 0u);
+  EXPECT_EQ(report.blossomPatches, 1u);
   EXPECT_GT(report.composedRays, 0u);
   EXPECT_EQ(report.cappedRays, 0u);
   ASSERT_GT(composed.coveredPixels(), 1000u);

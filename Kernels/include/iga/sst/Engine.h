@@ -144,6 +144,7 @@ struct FrameReport
   size_t sstPatches = 0;            ///< patches the SST drew
   size_t rayCompositionPatches = 0; ///< patches ray composition drew
   size_t frustumPatches = 0;        ///< of those, composed through a frustum form
+  size_t blossomPatches = 0;        ///< of those, composed by their power form's blossom
   size_t composedRays = 0;          ///< ray composition: (pixel, patch) polynomials composed
   size_t rootFinderSteps = 0;       ///< their finders' knot insertions and evaluations
   size_t cappedRays = 0;            ///< rays whose finder ran out of splits (roots may be missing)
