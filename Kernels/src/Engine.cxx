@@ -24,6 +24,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <thread>
@@ -203,6 +204,11 @@ public:
         this->prepareComposition();
         drawFrame(s, this->Config, [&] { this->automaticPass(); });
         break;
+    }
+    if (this->Forms)
+    {
+      this->Report.frustumPatches = this->Forms->made();
+      this->Report.blossomPatches = this->Forms->blossoms();
     }
     const Clock::time_point stage = Clock::now();
     this->deliver(out);
@@ -542,7 +548,7 @@ private:
   void prepareComposition()
   {
     this->Forms =
-      frustumForms(this->Affine, this->TheView, this->Config, this->Plan.threads, this->Report);
+      std::make_unique<FrustumForms>(this->Affine, this->TheView, this->Config, this->Plan.threads);
     this->PowerShadings.assign(this->Affine.size(), PowerShading());
     this->PowerPool.clear();
     for (size_t p = 0; p < this->Affine.size(); ++p)
@@ -550,7 +556,6 @@ private:
       const AffinePatch& patch = this->Affine[p];
       if (patch.rayDegree >= 0 && !patch.terms.empty())
       {
-        this->Report.blossomPatches += this->Forms[p].degree < 0 ? 1 : 0;
         PowerShading& power = this->PowerShadings[p];
         power.origin = patch.origin;
         power.axes = patch.axes;
@@ -566,7 +571,7 @@ private:
   void rayComposition()
   {
     std::vector<std::vector<RawHit>> runs;
-    rayCompositionPass(this->TheView, this->Config, this->Affine, this->Forms, this->Loop,
+    rayCompositionPass(this->TheView, this->Config, this->Affine, *this->Forms, this->Loop,
       this->Plan.initialNodes.data(), this->Plan.threads, runs, this->Report);
     this->appendPixelHits(runs);
   }
@@ -631,7 +636,7 @@ private:
   FramePlan Plan;
   std::vector<PatchShape> Shapes;
   std::vector<AffinePatch> Affine;         // ray composition: each patch's affine form
-  std::vector<FrustumForm> Forms;          // and its frustum form where one pays
+  std::unique_ptr<FrustumForms> Forms;     // and its frustum form where one pays
   std::vector<PowerShading> PowerShadings; // and its power form for shading, from PowerPool
   std::vector<PowerTerm> PowerPool;
   LoopState<CpuExec> Loop;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 
@@ -72,24 +73,64 @@ inline std::vector<AffinePatch> affinePatches(
   return affine;
 }
 
-/// Each affine patch's frustum form for the view, where it pays for the pixels drawn
-/// (makeFrustumForm); counted in the report.
-inline std::vector<FrustumForm> frustumForms(const std::vector<AffinePatch>& affine,
-  const View& view, const Settings& settings, int threads, FrameReport& report)
+/// The affine patches' frustum forms for the view where they pay for the pixels drawn
+/// (makeFrustumForm). A few patches' forms are made at once, each form's samples spread over the
+/// threads; many patches' (ABS fields) each the first time a ray needs it, on the asking thread,
+/// so that a patch hidden behind a first hit pays for none. Safe to ask from several threads.
+class FrustumForms
 {
-  const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
-  const DrawnPixels drawn(settings.width, settings.height, settings.farDepths);
-  std::vector<FrustumForm> forms(affine.size());
-  for (size_t p = 0; p < affine.size(); ++p)
+public:
+  FrustumForms(
+    const std::vector<AffinePatch>& affine, const View& view, const Settings& settings, int threads)
+    : Affine(affine)
+    , WorldToClip(view.worldToClip)
+    , ClipToWorld(glm::inverse(view.worldToClip))
+    , Drawn(settings.width, settings.height, settings.farDepths)
+    , Forms(affine.size())
+    , Once(new std::once_flag[affine.size()])
   {
-    report.frustumPatches +=
-      makeFrustumForm(affine[p], view.worldToClip, clipToWorld, drawn, forms[p],
-        [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); })
-        ? 1
-        : 0;
+    if (affine.size() < 16 * size_t(std::max(threads, 1)))
+    {
+      for (size_t p = 0; p < affine.size(); ++p)
+      {
+        this->make(p, threads);
+      }
+    }
   }
-  return forms;
-}
+
+  /// Patch p's form (degree -1: none, its rays composed without one).
+  const FrustumForm& of(size_t p)
+  {
+    this->make(p, 1);
+    return this->Forms[p];
+  }
+
+  /// Of the patches made or asked for: forms made, and patches without one composed by their
+  /// blossom.
+  size_t made() const { return this->Made; }
+  size_t blossoms() const { return this->Blossoms; }
+
+private:
+  void make(size_t p, int threads)
+  {
+    std::call_once(this->Once[p],
+      [&]
+      {
+        const bool made =
+          makeFrustumForm(this->Affine[p], this->WorldToClip, this->ClipToWorld, this->Drawn,
+            this->Forms[p], [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); });
+        this->Made += made ? 1 : 0;
+        this->Blossoms += !made && !this->Affine[p].terms.empty() ? 1 : 0;
+      });
+  }
+
+  const std::vector<AffinePatch>& Affine;
+  const glm::dmat4 WorldToClip, ClipToWorld;
+  const DrawnPixels Drawn;
+  std::vector<FrustumForm> Forms;
+  std::unique_ptr<std::once_flag[]> Once;
+  std::atomic<size_t> Made{ 0 }, Blossoms{ 0 };
+};
 
 /// Removes the work items of affine patches (ray composition's) from the band's lists, so that
 /// the SST's rounds see the others only.
@@ -148,9 +189,9 @@ inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Set
 /// In first-hit mode a pixel's items beyond its nearest hit so far are skipped, and without
 /// clipping planes a ray's roots beyond its first are not looked for.
 inline void rayCompositionPass(const View& view, const Settings& settings,
-  const std::vector<AffinePatch>& affine, const std::vector<FrustumForm>& forms,
-  const LoopState<CpuExec>& s, const Node* initialNodes, int threads,
-  std::vector<std::vector<RawHit>>& ordered, FrameReport& report)
+  const std::vector<AffinePatch>& affine, FrustumForms& forms, const LoopState<CpuExec>& s,
+  const Node* initialNodes, int threads, std::vector<std::vector<RawHit>>& ordered,
+  FrameReport& report)
 {
   static const std::vector<ChebyshevInterpolation> interpolation = []
   {
@@ -216,7 +257,7 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
           const glm::dvec3 u0 = patch.inverse * (origin + t0 * direction - patch.origin);
           const glm::dvec3 du = patch.inverse * ((t1 - t0) * direction);
           double coefficients[kMaxOrder];
-          const FrustumForm& form = forms[size_t(node.patch)];
+          const FrustumForm& form = forms.of(size_t(node.patch));
           if (form.degree >= 0)
           {
             composeFrustumRay(form, settings.isovalues[size_t(node.iso)], x, y, t0, t1,
