@@ -28,32 +28,31 @@ struct PowerTerm
 
 namespace detail
 {
+/// The coefficient of s^a in (1 + s)^i (1 - s)^(n - i), an integer.
+inline double expansionCoefficient(int n, int i, int a)
+{
+  double sum = 0;
+  for (int j = std::max(0, a - (n - i)); j <= std::min(i, a); ++j)
+    sum += ((a - j) % 2 ? -1.0 : 1.0) * binomial(i, j) * binomial(n - i, a - j);
+  return sum;
+}
+
 /// Row i of B_i^n((1 + s) / 2) = sum_a m[i][a] s^a: C(n, i) 2^-n (1 + s)^i (1 - s)^(n - i),
 /// exact in double (integers below 2^53 over a power of two).
 inline void bernsteinToCentredPower(int n, double (&m)[kMaxOrder][kMaxOrder])
 {
   for (int i = 0; i <= n; ++i)
     for (int a = 0; a <= n; ++a)
-    {
-      double sum = 0;
-      for (int j = std::max(0, a - (n - i)); j <= std::min(i, a); ++j)
-        sum += ((a - j) % 2 ? -1.0 : 1.0) * binomial(i, j) * binomial(n - i, a - j);
-      m[i][a] = binomial(n, i) * sum / std::ldexp(1.0, n);
-    }
+      m[i][a] = binomial(n, i) * expansionCoefficient(n, i, a) / std::ldexp(1.0, n);
 }
 
 /// Row a of s^a = sum_i p[a][i] B_i^n(u), s = 2 u - 1: the blossom of s^a (as degree n) at i
-/// ones and n - i minus ones.
+/// ones and n - i minus ones, the same expansion's coefficient over C(n, a).
 inline void centredPowerToBernstein(int n, double (&p)[kMaxOrder][kMaxOrder])
 {
   for (int a = 0; a <= n; ++a)
     for (int i = 0; i <= n; ++i)
-    {
-      double sum = 0;
-      for (int j = std::max(0, a - (n - i)); j <= std::min(i, a); ++j)
-        sum += ((a - j) % 2 ? -1.0 : 1.0) * binomial(i, j) * binomial(n - i, a - j);
-      p[a][i] = sum / binomial(n, a);
-    }
+      p[a][i] = expansionCoefficient(n, i, a) / binomial(n, a);
 }
 
 /// Applies rows[d] (one matrix a direction) along each direction of a (n0+1)(n1+1)(n2+1) tensor
