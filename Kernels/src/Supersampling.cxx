@@ -14,9 +14,10 @@ namespace sst
 View offsetView(const View& view, int width, int height, double dx, double dy)
 {
   // A translation of normalized device coordinates, applied to clip coordinates before the
-  // division by w, so that it moves every depth's point by the same window offset.
+  // division by w, so that it moves every depth's point by the same window offset: by -(dx, dy),
+  // so that the pixel centres see what lay at +(dx, dy).
   View moved = view;
-  const glm::dvec3 shift(2.0 * dx / width, 2.0 * dy / height, 0.0);
+  const glm::dvec3 shift(-2.0 * dx / width, -2.0 * dy / height, 0.0);
   moved.worldToClip = glm::translate(glm::dmat4(1.0), shift) * view.worldToClip;
   return moved;
 }

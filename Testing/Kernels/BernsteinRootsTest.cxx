@@ -246,6 +246,17 @@ TEST(BernsteinRoots, TheEvenRootSearchRunsOnlyWhereTheOddSearchCannotRuleItOut)
     }
     EXPECT_GT(skipped, cases / 2) << "of " << cases << " searches for " << wanted;
   }
+  // A near touch within rounding (minimum 1e-14 at t = 0.88064019577) beside the rounding's own
+  // sign change: Bézier clipping's clipped-off margins must not hide it.
+  const double touch[3] = { 0.77552715441517506, -0.10511304136012856, 0.01424676286456783 };
+  for (iga::RootFinder finder : kFinders)
+  {
+    const auto found = iga::findBernsteinRoots(touch, 2, finder);
+    bool seen = false;
+    for (int k = 0; k < found.count; ++k)
+      seen = seen || std::fabs(found.t[k] - 0.88064019577) < 1e-8;
+    EXPECT_TRUE(seen) << iga::rootFinderName(finder) << ": " << found.count << " roots";
+  }
   // Double roots: found, whether the odd search's rounding saw them or the even search did.
   for (int trial = 0; trial < 20; ++trial)
   {

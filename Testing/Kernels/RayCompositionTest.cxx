@@ -193,8 +193,8 @@ TEST(RayComposition, FrustumFormComposesTheRaysComposeRayDoes)
 
 /// The gallery's power forms: the expression's terms in the centred parameter (the
 /// super-sphere's four, 0.7^16 s^16 for x^16 over [-0.7, 0.7]), certified; random rays through
-/// each patch composed by the blossom as directly, within the certificate's tolerance of K; the
-/// certificate refuses what it cannot prove.
+/// each patch composed by the blossom as directly (within its rounding) and as the expression
+/// gives along the ray; the certificate refuses what it cannot prove.
 TEST(PowerForm, GalleryBlossomsComposeTheRaysComposeRayDoes)
 {
   int count = 0;
@@ -219,8 +219,22 @@ TEST(PowerForm, GalleryBlossomsComposeTheRaysComposeRayDoes)
       iga::composeRay(patch, 0.25, u0, u1 - u0, interpolation, direct);
       iga::blossomAlongRay(patch.terms.data(), int(patch.terms.size()), patch.rayDegree,
         2.0 * u0 - 1.0, 2.0 * u1 - 1.0, 0.25, blossom);
+      // Against direct composition, within its rounding (its degree-16 collocation: 1e-10 K)...
       for (int k = 0; k <= patch.rayDegree; ++k)
-        ASSERT_NEAR(blossom[k], direct[k], iga::kPowerFormTolerance * largest) << k;
+        ASSERT_NEAR(blossom[k], direct[k], 1e-9 * largest) << k;
+      // ... and against the expression itself along the segment, within 1e-13 K.
+      const double* box = gallery[g].box;
+      for (double sigma : { 0.0, 0.3, 0.7, 1.0 })
+      {
+        double x[3];
+        for (int d = 0; d < 3; ++d)
+          x[d] = box[2 * d] + (box[2 * d + 1] - box[2 * d]) * (u0[d] + sigma * (u1[d] - u0[d]));
+        double basis[iga::kMaxOrder], unused[iga::kMaxOrder], value = 0;
+        iga::bernsteinBasis(patch.rayDegree, sigma, basis, unused);
+        for (int k = 0; k <= patch.rayDegree; ++k)
+          value += basis[k] * blossom[k];
+        EXPECT_NEAR(value, v.field.evaluate(x[0], x[1], x[2]) - 0.25, 1e-13 * largest) << sigma;
+      }
       // The gradient in s against central differences of the blossom's values.
       const glm::dvec3 s = 2.0 * u0 - 1.0;
       const glm::dvec3 gradient =
@@ -248,18 +262,23 @@ TEST(PowerForm, GalleryBlossomsComposeTheRaysComposeRayDoes)
     const int degree = term.power[0] + term.power[1] + term.power[2];
     EXPECT_TRUE(
       degree == 16 ? std::max({ term.power[0], term.power[1], term.power[2] }) == 16 : degree == 0);
-    // Within the rounding of the field's conversions (K = 3 0.7^16 = 0.01).
-    EXPECT_NEAR(term.coefficient, degree == 16 ? std::pow(0.7, 16) : -1e-4, 1e-13);
+    // To rounding: the source's blossom conversion and the power form's are exact but for it.
+    EXPECT_NEAR(term.coefficient, degree == 16 ? std::pow(0.7, 16) : -1e-4, 1e-17);
   }
-  // Its field holds the conversion's rounding besides: proving the four terms to 1e-20 of K
-  // fails, and so does a form of fewer terms than the field needs.
+  // The certificate holds for the four terms; it refuses fewer than the field needs, and a form
+  // one of whose terms is off by a millionth.
   std::vector<double> power, bound;
   iga::centredPowerForm(patch.field, patch.degree, power, bound);
   std::vector<iga::PowerTerm> terms;
-  EXPECT_FALSE(iga::sparsePowerForm(patch.field, patch.degree, power, bound, 1000, 1e-20, terms));
+  EXPECT_TRUE(iga::sparsePowerForm(
+    patch.field, patch.degree, power, bound, 4, iga::kPowerFormTolerance, terms));
+  EXPECT_FALSE(iga::sparsePowerForm(
+    patch.field, patch.degree, power, bound, 3, iga::kPowerFormTolerance, terms));
+  std::vector<double> altered = power;
+  *std::max_element(altered.begin(), altered.end()) *= 1 + 1e-6;
+  EXPECT_FALSE(iga::sparsePowerForm(
+    patch.field, patch.degree, altered, bound, 1000, iga::kPowerFormTolerance, terms));
   EXPECT_TRUE(terms.empty());
-  EXPECT_FALSE(iga::sparsePowerForm(patch.field, patch.degree, power, bound, 3, 1e-8, terms));
-  EXPECT_TRUE(iga::sparsePowerForm(patch.field, patch.degree, power, bound, 4, 1e-8, terms));
 }
 
 /// A field of random Bernstein coefficients has a dense power form: no blossom where it would

@@ -78,8 +78,9 @@ TEST(Supersampling, TheMovedViewShiftsEveryDepthByTheOffset)
     {
       const glm::dvec4 x(coordinate(random), 3 * coordinate(random), coordinate(random), 1);
       const glm::dvec4 a = before * x, b = after * x;
-      EXPECT_NEAR(b.x / b.w - a.x / a.w, 0.375, 1e-9);
-      EXPECT_NEAR(b.y / b.w - a.y / a.w, -0.125, 1e-9);
+      // What lay at (x + 0.375, y - 0.125) lies at (x, y): a pixel samples its centre moved so.
+      EXPECT_NEAR(b.x / b.w - a.x / a.w, -0.375, 1e-9);
+      EXPECT_NEAR(b.y / b.w - a.y / a.w, 0.125, 1e-9);
       EXPECT_NEAR(b.z / b.w, a.z / a.w, 1e-12);
     }
     EXPECT_EQ(moved.eye, view.eye);

@@ -53,29 +53,32 @@ struct Polynomial3
 };
 
 /// Bernstein coefficients (degree n) on [lo, hi] of the monomials x^a, a = 0..maxPower:
-/// result[a * (n+1) + j]. With x = lo + h s: x^a = sum_k C(a,k) lo^(a-k) h^k s^k and
-/// s^k = sum_{j>=k} C(j,k) / C(n,k) B_j^n(s).
+/// result[a * (n+1) + j]. Coefficient j is the blossom of x^a (as degree n) at j copies of hi and
+/// n - j of lo: sum_k C(j, k) C(n - j, a - k) hi^k lo^(a-k) / C(n, a). Products of the ends
+/// without the cancellation of expanding (lo + (hi - lo) s)^a: x^16 over [-0.7, 0.7] is
+/// hi^j lo^(16-j), to the last bit.
 inline std::vector<double> monomialToBernstein(int maxPower, int n, double lo, double hi)
 {
-  const double h = hi - lo;
   std::vector<double> result(static_cast<size_t>(maxPower + 1) * (n + 1), 0.0);
   for (int a = 0; a <= maxPower; ++a)
   {
-    for (int k = 0; k <= a; ++k)
+    for (int j = 0; j <= n; ++j)
     {
-      double term = binomial(a, k);
-      for (int i = 0; i < a - k; ++i)
+      double sum = 0;
+      for (int k = maxValue(0, a - (n - j)); k <= minValue(a, j); ++k)
       {
-        term *= lo;
+        double term = binomial(j, k) * binomial(n - j, a - k);
+        for (int i = 0; i < k; ++i)
+        {
+          term *= hi;
+        }
+        for (int i = 0; i < a - k; ++i)
+        {
+          term *= lo;
+        }
+        sum += term;
       }
-      for (int i = 0; i < k; ++i)
-      {
-        term *= h;
-      }
-      for (int j = k; j <= n; ++j)
-      {
-        result[a * (n + 1) + j] += term * binomial(j, k) / binomial(n, k);
-      }
+      result[a * (n + 1) + j] = sum / binomial(n, a);
     }
   }
   return result;

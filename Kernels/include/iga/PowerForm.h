@@ -4,7 +4,7 @@
 // polynomial's blossom at the segment's two ends (Seland and Dokken), here from products of
 // the linear forms s(sigma) = s0 (1 - sigma) + s1 sigma, a few products a term, where direct
 // composition evaluates every coefficient of the patch at d + 1 points. The form is kept only
-// where the Bernstein coefficients of its difference to the field prove it within a tolerance.
+// where the Bernstein coefficients of its difference to the field prove it within rounding.
 #pragma once
 
 #include "iga/Portability.h"
@@ -109,10 +109,10 @@ inline bool significantPower(double value, double bound, const int* n)
 }
 
 /// The terms of the power form (centredPowerForm's `value` and `bound`) that stand above their
-/// rounding, less the smallest whose magnitudes add up to half the tolerance (a term is at most
-/// its coefficient in the patch), when at most `maxTerms` are left and the Bernstein
-/// coefficients of their sum differ from the field's by at most `tolerance` times the largest
-/// (which bounds the difference everywhere in the patch); false, and no terms, otherwise.
+/// rounding, when there are at most `maxTerms` of them and the Bernstein coefficients of their
+/// sum differ from the field's by at most `tolerance` times the largest (which bounds the
+/// difference everywhere in the patch); false, and no terms, otherwise. Nothing above rounding
+/// is dropped: near its isosurface a field may be far smaller than its largest coefficient.
 inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
   const std::vector<double>& value, const std::vector<double>& bound, size_t maxTerms,
   double tolerance, std::vector<PowerTerm>& terms)
@@ -124,34 +124,19 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
     index[1] = int(p / size_t(n[0] + 1) % size_t(n[1] + 1));
     index[2] = int(p / size_t((n[0] + 1) * (n[1] + 1)));
   };
-  double largest = 0;
-  for (double c : field)
-  {
-    largest = std::max(largest, std::fabs(c));
-  }
   for (size_t p = 0; p < value.size(); ++p)
   {
     if (significantPower(value[p], bound[p], n))
     {
+      if (terms.size() == maxTerms)
+      {
+        terms.clear();
+        return false;
+      }
       int a[3];
       indices(p, a);
       terms.push_back({ value[p], { int8_t(a[0]), int8_t(a[1]), int8_t(a[2]) } });
     }
-  }
-  std::sort(terms.begin(), terms.end(),
-    [](const PowerTerm& a, const PowerTerm& b)
-    { return std::fabs(a.coefficient) > std::fabs(b.coefficient); });
-  double dropped = 0;
-  while (
-    !terms.empty() && dropped + std::fabs(terms.back().coefficient) <= 0.5 * tolerance * largest)
-  {
-    dropped += std::fabs(terms.back().coefficient);
-    terms.pop_back();
-  }
-  if (terms.size() > maxTerms)
-  {
-    terms.clear();
-    return false;
   }
   // The certificate: the kept terms back in Bernstein form against the field.
   double toBernstein[3][kMaxOrder][kMaxOrder];
@@ -159,7 +144,7 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
   {
     detail::centredPowerToBernstein(n[d], toBernstein[d]);
   }
-  double difference = 0;
+  double largest = 0, difference = 0;
   for (size_t p = 0; p < field.size(); ++p)
   {
     int i[3];
@@ -170,6 +155,7 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
       back += term.coefficient * toBernstein[0][term.power[0]][i[0]] *
               toBernstein[1][term.power[1]][i[1]] * toBernstein[2][term.power[2]][i[2]];
     }
+    largest = std::max(largest, std::fabs(field[p]));
     difference = std::max(difference, std::fabs(back - field[p]));
   }
   if (!(difference <= tolerance * largest))

@@ -36,9 +36,9 @@ struct AffinePatch
   std::vector<PowerTerm> terms;
 };
 
-/// How far a power form may stand from its field: a fraction of the field's largest Bernstein
-/// coefficient, far below the root finders' resolution.
-constexpr double kPowerFormTolerance = 1e-8;
+/// How far a power form may stand from its field, a fraction of the field's largest Bernstein
+/// coefficient: the rounding of the conversions, which drop nothing above it.
+constexpr double kPowerFormTolerance = 1e-12;
 
 /// Products a ray's coefficients cost when composed directly: the patch's field at d + 1
 /// points.

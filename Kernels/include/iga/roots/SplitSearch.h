@@ -74,15 +74,18 @@ IGA_HD void splitSearch(
     }
     const Cut cut = choose(piece, context, roots.cost);
     ++splits;
+    if (cut.clip && !roots.touched && !holdsNoEvenRoot(piece, context.zero))
+    {
+      // A clip drops the piece outside [a, b]: it holds no odd root, but may touch zero.
+      roots.touched = cut.a > cut.b ||
+                      (cut.a > 0 && !holdsNoEvenRoot(clipPiece(piece, 0, cut.a), context.zero)) ||
+                      (cut.b < 1 && !holdsNoEvenRoot(clipPiece(piece, cut.b, 1), context.zero));
+    }
     if (cut.clip && (cut.b - cut.a) * (piece.hi - piece.lo) <= context.tolerance)
     {
       if (cut.a <= cut.b)
       {
         roots.add(globalOf(piece, 0.5 * (cut.a + cut.b)), context.merge);
-      }
-      else
-      {
-        roots.touched = roots.touched || !holdsNoEvenRoot(piece, context.zero);
       }
       continue;
     }
