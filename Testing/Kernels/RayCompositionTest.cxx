@@ -265,6 +265,18 @@ TEST(PowerForm, GalleryBlossomsComposeTheRaysComposeRayDoes)
     // To rounding: the source's blossom conversion and the power form's are exact but for it.
     EXPECT_NEAR(term.coefficient, degree == 16 ? std::pow(0.7, 16) : -1e-4, 1e-17);
   }
+  // A constant a hundred million times below K is a term like the others: the surface hangs on
+  // it.
+  const Volume flat = algebraicVolume("x^16 + y^16 + z^16 - 1e-9", gallery[count - 1].box);
+  iga::AffinePatch flatPatch;
+  ASSERT_TRUE(iga::affineGeometry(flat.patches[0].view(), iga::kFirstAttributeChannel, flatPatch));
+  ASSERT_EQ(flatPatch.terms.size(), 4u);
+  EXPECT_EQ(std::count_if(flatPatch.terms.begin(), flatPatch.terms.end(),
+              [](const iga::PowerTerm& t) {
+                return t.power[0] + t.power[1] + t.power[2] == 0 &&
+                       std::fabs(t.coefficient + 1e-9) < 1e-17;
+              }),
+    1);
   // The certificate holds for the four terms; it refuses fewer than the field needs, and a form
   // one of whose terms is off by a millionth.
   std::vector<double> power, bound;
