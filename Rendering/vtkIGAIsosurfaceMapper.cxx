@@ -700,6 +700,12 @@ void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* propert
   rgba[3] = float(opacity);
 }
 
+/// A hit's window depth in [0, 1], as the depth buffer holds it.
+float windowDepth(const iga::sst::Hit& hit)
+{
+  return float(0.5 * (hit.ndcDepth + 1.0));
+}
+
 /// The colour VTK's hardware selector expects for a 24-bit id (vtkHardwareSelector::Convert).
 void selectionColour(vtkIdType id, float* rgba)
 {
@@ -1533,7 +1539,7 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
       {
         LayerImage& layer = *in.Layers[size_t(k)];
         this->ShadeHit(frame, property, hits[k], &layer.Colour[4 * p]);
-        layer.Depth[p] = float(0.5 * (hits[k].ndcDepth + 1.0));
+        layer.Depth[p] = windowDepth(hits[k]);
       }
     }
   }
@@ -1619,7 +1625,7 @@ void vtkIGAIsosurfaceMapper::SmoothSilhouettes(vtkActor* actor, const Frame& fra
       this->ShadeHit(frame, actor->GetProperty(), hit, rgba);
       for (int c = 0; c < 4; ++c)
         sum[c] += rgba[c] / iga::sst::kRotatedGridSamples;
-      nearest = std::min(nearest, float(0.5 * (hit.ndcDepth + 1.0)));
+      nearest = std::min(nearest, windowDepth(hit));
     }
     std::copy(sum, sum + 4, &image.Colour[4 * p]);
     image.Depth[p] = in.GBuffer.offsets[p] < in.GBuffer.offsets[p + 1] ? image.Depth[p] : nearest;

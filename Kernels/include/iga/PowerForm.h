@@ -26,6 +26,21 @@ struct PowerTerm
   int8_t power[3];
 };
 
+/// The indices (i, j, k) of entry p of a (n0+1)(n1+1)(n2+1) tensor, p = i + (n0 + 1)(j + (n1 + 1)
+/// k): a patch's control points, and the powers of its power form.
+inline void tensorIndices(size_t p, const int* n, int* index)
+{
+  index[0] = int(p % size_t(n[0] + 1));
+  index[1] = int(p / size_t(n[0] + 1) % size_t(n[1] + 1));
+  index[2] = int(p / size_t((n[0] + 1) * (n[1] + 1)));
+}
+
+/// Products a ray's blossom costs (blossomAlongRay): about (d + 1)^2 / 2 a term.
+inline double blossomRayCost(size_t terms, int rayDegree)
+{
+  return 0.5 * double(terms) * (rayDegree + 1) * (rayDegree + 1);
+}
+
 namespace detail
 {
 /// The coefficient of s^a in (1 + s)^i (1 - s)^(n - i), an integer.
@@ -118,12 +133,6 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
   double tolerance, std::vector<PowerTerm>& terms)
 {
   terms.clear();
-  const auto indices = [&](size_t p, int* index)
-  {
-    index[0] = int(p % size_t(n[0] + 1));
-    index[1] = int(p / size_t(n[0] + 1) % size_t(n[1] + 1));
-    index[2] = int(p / size_t((n[0] + 1) * (n[1] + 1)));
-  };
   for (size_t p = 0; p < value.size(); ++p)
   {
     if (significantPower(value[p], bound[p], n))
@@ -134,7 +143,7 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
         return false;
       }
       int a[3];
-      indices(p, a);
+      tensorIndices(p, n, a);
       terms.push_back({ value[p], { int8_t(a[0]), int8_t(a[1]), int8_t(a[2]) } });
     }
   }
@@ -148,7 +157,7 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
   for (size_t p = 0; p < field.size(); ++p)
   {
     int i[3];
-    indices(p, i);
+    tensorIndices(p, n, i);
     double back = 0;
     for (const PowerTerm& term : terms)
     {

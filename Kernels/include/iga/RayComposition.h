@@ -91,9 +91,9 @@ inline bool affineGeometry(
   }
   for (int p = 0; p < patch.pointCount(); ++p)
   {
-    const int i = p % (n[0] + 1), j = p / (n[0] + 1) % (n[1] + 1),
-              k = p / ((n[0] + 1) * (n[1] + 1));
-    const glm::dvec3 greville(double(i) / n[0], double(j) / n[1], double(k) / n[2]);
+    int i[3];
+    tensorIndices(size_t(p), n, i);
+    const glm::dvec3 greville(double(i[0]) / n[0], double(i[1]) / n[1], double(i[2]) / n[2]);
     if (!(glm::length(detail::euclideanPoint(patch, p) -
                       (affine.origin + affine.axes * greville)) <= 1e-12 * size))
     {
@@ -116,9 +116,9 @@ inline bool affineGeometry(
   {
     if (significantPower(power[p], bound[p], n))
     {
-      affine.rayDegree = std::max(
-        affine.rayDegree, int(p % size_t(n[0] + 1) + p / size_t(n[0] + 1) % size_t(n[1] + 1) +
-                              p / size_t((n[0] + 1) * (n[1] + 1))));
+      int a[3];
+      tensorIndices(p, n, a);
+      affine.rayDegree = std::max(affine.rayDegree, a[0] + a[1] + a[2]);
     }
   }
   if (affine.rayDegree > kMaxDegree)
@@ -126,8 +126,7 @@ inline bool affineGeometry(
     return false;
   }
   // Its blossom where that costs a ray less than direct composition.
-  const double termCost = 0.5 * (affine.rayDegree + 1) * (affine.rayDegree + 1);
-  const size_t maxTerms = size_t(directRayCost(affine) / termCost);
+  const size_t maxTerms = size_t(directRayCost(affine) / blossomRayCost(1, affine.rayDegree));
   affine.terms.clear();
   if (maxTerms > 0)
   {
@@ -140,9 +139,8 @@ inline bool affineGeometry(
 /// a power form, else its field at d + 1 points.
 inline double composedRayCost(const AffinePatch& patch)
 {
-  return patch.terms.empty()
-           ? directRayCost(patch)
-           : 0.5 * double(patch.terms.size()) * (patch.rayDegree + 1) * (patch.rayDegree + 1);
+  return patch.terms.empty() ? directRayCost(patch)
+                             : blossomRayCost(patch.terms.size(), patch.rayDegree);
 }
 
 /// Chebyshev points on [0, 1] and, per degree, the inverse of the Bernstein collocation matrix
