@@ -143,11 +143,12 @@ IGA_HD inline double polishRoot(
     roots::valueAndSlope(piece, t, f, slope);
     ++evaluations;
     const double step = slope != 0 ? f / slope : 0;
-    if (!(absValue(step) <= limit) || step == 0)
+    const double next = minValue(maxValue(t - step, 0.0), 1.0);
+    if (!(absValue(step) <= limit) || next == t)
     {
-      break;
+      break; // a step that moves nothing would be the same again
     }
-    t = minValue(maxValue(t - step, 0.0), 1.0);
+    t = next;
   }
   return t;
 }
@@ -170,8 +171,12 @@ IGA_HD inline bool noEvenRoots(const roots::Piece& piece, const roots::RootList&
   }
   const double last = odd.t[odd.count - 1];
   const double a = maxValue(last - 1e-3, 0.0), b = minValue(last + 1e-3, 1.0);
-  return roots::keepsOneSign(
-    roots::clipPiece(roots::normalised(roots::derivativeOf(piece)), a, b), context.zero);
+  // clipPiece(slope, a, b) with the parts written over each other, not copied
+  roots::Piece slope = roots::derivativeOf(piece), left, right;
+  roots::normalise(slope);
+  roots::splitPiece(slope, b, left, right);
+  roots::splitPiece(left, b > 0 ? a / b : 0, right, left);
+  return roots::keepsOneSign(left, context.zero);
 }
 
 /// The roots inside (0, 1) of `piece` (end coefficients nonzero), sorted, the first
@@ -251,13 +256,13 @@ IGA_HD inline bool rootProblem(const double* c, int degree, const RootSettings& 
   context.maxSplits = settings.maxSplits;
   context.limit = settings.maxRoots;
   context.zero = 32.0 * (degree + 1) * Epsilon<double>::value;
-  piece = roots::normalised(piece);
+  roots::normalise(piece);
   return !result.invalid && !result.identicallyZero;
 }
 
 /// The roots in [0, 1] of the problem rootProblem prepared (`piece`, `context`), the first
-/// context.limit of them, added to `result`.
-IGA_HD inline void rootsOf(roots::Piece piece, roots::RootContext context, RootFinder finder,
+/// context.limit of them, added to `result`; roots at the ends are divided out of `piece`.
+IGA_HD inline void rootsOf(roots::Piece& piece, roots::RootContext context, RootFinder finder,
   bool evenRoots, BernsteinRoots& result)
 {
   // Coefficients of one sign beyond rounding bound the polynomial away from zero: no root at
@@ -277,7 +282,7 @@ IGA_HD inline void rootsOf(roots::Piece piece, roots::RootContext context, RootF
       piece.c[i] = piece.c[i + 1] * piece.degree / (i + 1);
     }
     --piece.degree;
-    piece = roots::normalised(piece);
+    roots::normalise(piece);
   }
   while (piece.degree > 0 && roots::signOf(piece.c[piece.degree], context.zero) == 0)
   {
@@ -287,7 +292,7 @@ IGA_HD inline void rootsOf(roots::Piece piece, roots::RootContext context, RootF
       piece.c[i] = piece.c[i] * piece.degree / (piece.degree - i);
     }
     --piece.degree;
-    piece = roots::normalised(piece);
+    roots::normalise(piece);
   }
   const int wanted = context.limit;
   if (atZero)
@@ -362,7 +367,7 @@ IGA_HD inline BernsteinRoots findNearestRoot(const double* c, int degree, double
     const int ends =
       roots::signOf(middle.c[0], context.zero) * roots::signOf(middle.c[degree], context.zero);
     seeded = (a == 0 || roots::keepsOneSign(before, context.zero)) && ends < 0 &&
-             roots::keepsOneSign(roots::normalised(roots::derivativeOf(middle)), context.zero);
+             roots::slopeKeepsOneSign(middle, context.zero);
   }
   if (!seeded)
   {

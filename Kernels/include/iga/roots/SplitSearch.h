@@ -44,32 +44,38 @@ IGA_HD void splitSearch(
   constexpr int kStackSize = 96;
   Piece stack[kStackSize];
   int top = 0;
-  stack[top++] = whole;
+  copyPiece(whole, stack[top++]);
   const int d = whole.degree;
   long splits = 0;
   while (top > 0 && roots.count < context.limit)
   {
-    const Piece piece = stack[--top];
+    // The top piece is worked on in place: a split writes its right part over it and the left
+    // one above (copying whole pieces just written stalls, see copyPiece).
+    Piece& piece = stack[top - 1];
     if (piece.lo > context.until)
     {
+      --top;
       continue;
     }
     if (piece.degree < 0)
     {
       roots.add(piece.lo, context.merge);
+      --top;
       continue;
     }
     if (!changesSign(piece, context.zero))
     {
       roots.touched = roots.touched || !holdsNoEvenRoot(piece, context.zero);
+      --top;
       continue;
     }
     if (piece.hi - piece.lo <= context.tolerance || splits >= context.maxSplits ||
-        top + 3 > kStackSize)
+        top + 2 > kStackSize)
     {
       roots.cost.capped = roots.cost.capped || piece.hi - piece.lo > context.tolerance;
       const double zero = firstPolygonZero(piece, context.zero);
       roots.add(globalOf(piece, zero < 0 ? 0.5 : zero), context.merge);
+      --top;
       continue;
     }
     const Cut cut = choose(piece, context, roots.cost);
@@ -87,12 +93,14 @@ IGA_HD void splitSearch(
       {
         roots.add(globalOf(piece, 0.5 * (cut.a + cut.b)), context.merge);
       }
+      --top;
       continue;
     }
     if (cut.clip)
     {
       // A clip may end on a root: its value there is zero to rounding.
       const Piece middle = clipPiece(piece, cut.a, cut.b);
+      --top;
       roots.cost.insertions += 2 * d;
       if (signOf(middle.c[d], context.zero) == 0)
       {
@@ -105,15 +113,15 @@ IGA_HD void splitSearch(
       }
       continue;
     }
-    Piece left, right;
-    splitPiece(piece, cut.a, left, right);
+    splitPiece(piece, cut.a, stack[top], piece);
     roots.cost.insertions += d;
-    stack[top++] = right;
-    if (signOf(right.c[0], context.zero) == 0)
+    if (signOf(piece.c[0], context.zero) == 0)
     {
-      stack[top++] = detail::rootMarker(right.lo);
+      // A root at the split point, kept between the two parts.
+      copyPiece(stack[top], stack[top + 1]);
+      stack[top++] = detail::rootMarker(piece.lo);
     }
-    stack[top++] = left;
+    ++top;
   }
 }
 
