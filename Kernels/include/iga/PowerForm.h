@@ -147,6 +147,10 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
       terms.push_back({ value[p], { int8_t(a[0]), int8_t(a[1]), int8_t(a[2]) } });
     }
   }
+  // By total degree, as blossomAlongRay sums them.
+  std::stable_sort(terms.begin(), terms.end(),
+    [](const PowerTerm& a, const PowerTerm& b)
+    { return a.power[0] + a.power[1] + a.power[2] < b.power[0] + b.power[1] + b.power[2]; });
   // The certificate: the kept terms back in Bernstein form against the field.
   double toBernstein[3][kMaxOrder][kMaxOrder];
   for (int d = 0; d < 3; ++d)
@@ -175,19 +179,37 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
   return true;
 }
 
+namespace detail
+{
+/// Degree elevation of scaled Bernstein coefficients (coefficient i times C(order - 1, i)):
+/// times lambda + mu, `order` coefficients to order + 1.
+IGA_HD inline void elevateScaled(double* c, int order)
+{
+  c[order] = c[order - 1];
+  for (int k = order - 1; k > 0; --k)
+  {
+    c[k] += c[k - 1];
+  }
+}
+} // namespace detail
+
 /// The Bernstein coefficients, degree `degree` (at least each term's total degree) on sigma in
 /// [0, 1], of the form minus `isovalue` along s(sigma) = s0 (1 - sigma) + s1 sigma: its blossom
 /// at (s0, ..., s0, s1, ..., s1), i times s1 for coefficient i. Each term is a product of the
-/// linear forms s0 lambda + s1 mu in homogeneous (lambda, mu) = (1 - sigma, sigma), elevated by
-/// (lambda + mu)^(degree - its degree); coefficient i of that product over C(degree, i).
+/// linear forms s0 lambda + s1 mu in homogeneous (lambda, mu) = (1 - sigma, sigma); coefficient i
+/// of the sum, elevated by (lambda + mu) to `degree`, over C(degree, i). The terms' products are
+/// summed as their degrees rise and the sum elevated on the way, once a degree (sparsePowerForm
+/// sorts the terms so), not each term to the full degree.
 IGA_HD inline void blossomAlongRay(const PowerTerm* terms, int count, int degree,
   const glm::dvec3& s0, const glm::dvec3& s1, double isovalue, double* coefficients)
 {
-  double sum[kMaxOrder] = {};
+  double sum[kMaxOrder] = { 0.0 };
+  int sumOrder = 1; // coefficients in `sum`
   for (int t = 0; t < count; ++t)
   {
     const PowerTerm& term = terms[t];
-    double product[kMaxOrder] = { term.coefficient };
+    double product[kMaxOrder];
+    product[0] = term.coefficient;
     int order = 1; // coefficients in `product`
     for (int d = 0; d < 3; ++d)
     {
@@ -201,22 +223,28 @@ IGA_HD inline void blossomAlongRay(const PowerTerm* terms, int count, int degree
         product[0] *= s0[d];
       }
     }
-    for (; order <= degree; ++order) // times lambda + mu
+    for (; sumOrder < order; ++sumOrder)
     {
-      product[order] = product[order - 1];
-      for (int k = order - 1; k > 0; --k)
-      {
-        product[k] += product[k - 1];
-      }
+      detail::elevateScaled(sum, sumOrder);
     }
-    for (int k = 0; k <= degree; ++k)
+    for (; order < sumOrder; ++order) // a term out of degree order
+    {
+      detail::elevateScaled(product, order);
+    }
+    for (int k = 0; k < order; ++k)
     {
       sum[k] += product[k];
     }
   }
+  for (; sumOrder <= degree; ++sumOrder)
+  {
+    detail::elevateScaled(sum, sumOrder);
+  }
+  double choose = 1; // C(degree, k), exact
   for (int k = 0; k <= degree; ++k)
   {
-    coefficients[k] = sum[k] / binomial(degree, k) - isovalue;
+    coefficients[k] = sum[k] / choose - isovalue;
+    choose = choose * (degree - k) / (k + 1);
   }
 }
 
