@@ -60,6 +60,7 @@ void addPassReport(FrameReport& total, const FrameReport& pass)
   total.rayCompositionPatches += pass.rayCompositionPatches;
   total.frustumPatches += pass.frustumPatches;
   total.blossomPatches += pass.blossomPatches;
+  total.isosurfaceCells += pass.isosurfaceCells;
   total.composedRays += pass.composedRays;
   total.rootFinderSteps += pass.rootFinderSteps;
   total.cappedRays += pass.cappedRays;
@@ -194,14 +195,11 @@ public:
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::bezierClipping); });
         break;
       case Method::RayComposition:
-        this->Affine = affinePatches(this->Patches, this->Config, this->Plan.threads, this->Report);
-        this->prepareComposition();
+        this->prepareComposition(affinePatches);
         drawFrame(s, this->Config, [&] { this->referencePass(&Renderer::rayComposition); });
         break;
       case Method::Automatic:
-        this->Affine =
-          affineWherePossible(this->Patches, this->Config, this->Plan.threads, this->Report);
-        this->prepareComposition();
+        this->prepareComposition(affineWherePossible);
         drawFrame(s, this->Config, [&] { this->automaticPass(); });
         break;
     }
@@ -544,11 +542,19 @@ private:
 
   // ---- ray composition ---------------------------------------------------------------------
 
-  /// The affine patches' frustum forms, and their power forms for shading.
-  void prepareComposition()
+  /// Ray composition's setup, part of the frame's (msSetup): the patches' affine forms (by
+  /// `affineForms`: where possible, or throwing for a patch without), their frustum forms, the
+  /// pixels their isosurface cells cover, and their power forms for shading.
+  template<class AffineForms>
+  void prepareComposition(AffineForms affineForms)
   {
+    const Clock::time_point start = Clock::now();
+    this->Affine = affineForms(this->Patches, this->Config, this->Plan.threads, this->Report);
     this->Forms =
       std::make_unique<FrustumForms>(this->Affine, this->TheView, this->Config, this->Plan.threads);
+    this->Coverage =
+      std::make_unique<CellCoverage>(this->Affine, this->TheView, this->Config, this->Plan.threads);
+    this->Report.isosurfaceCells = this->Coverage->cells();
     this->PowerShadings.assign(this->Affine.size(), PowerShading());
     this->PowerPool.clear();
     for (size_t p = 0; p < this->Affine.size(); ++p)
@@ -566,13 +572,14 @@ private:
     }
     this->Loop.powerShading = this->PowerPool.empty() ? nullptr : this->PowerShadings.data();
     this->Loop.powerTerms = this->PowerPool.data();
+    this->Report.msSetup += millisecondsSince(start);
   }
 
   void rayComposition()
   {
     std::vector<std::vector<RawHit>> runs;
-    rayCompositionPass(this->TheView, this->Config, this->Affine, *this->Forms, this->Loop,
-      this->Plan.initialNodes.data(), this->Plan.threads, runs, this->Report);
+    rayCompositionPass(this->TheView, this->Config, this->Affine, *this->Forms, *this->Coverage,
+      this->Loop, this->Plan.initialNodes.data(), this->Plan.threads, runs, this->Report);
     this->appendPixelHits(runs);
   }
 
@@ -637,6 +644,7 @@ private:
   std::vector<PatchShape> Shapes;
   std::vector<AffinePatch> Affine;         // ray composition: each patch's affine form
   std::unique_ptr<FrustumForms> Forms;     // and its frustum form where one pays
+  std::unique_ptr<CellCoverage> Coverage;  // and the pixels its isosurface's cells cover
   std::vector<PowerShading> PowerShadings; // and its power form for shading, from PowerPool
   std::vector<PowerTerm> PowerPool;
   LoopState<CpuExec> Loop;

@@ -6,6 +6,7 @@
 
 #include "ParallelFor.h"
 #include "iga/FrustumForm.h"
+#include "iga/IsosurfaceCells.h"
 #include "iga/RayComposition.h"
 #include "iga/sst/Engine.h"
 #include "sst/CpuExec.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -132,6 +134,182 @@ private:
   std::atomic<size_t> Made{ 0 }, Blossoms{ 0 };
 };
 
+/// Per affine patch and isovalue, the pixels whose rays may meet its isosurface: those the window
+/// boxes of its isosurfaceCells cover, or every pixel where the patch has no cells (a box under
+/// kCellPixels across, a degree above kCellDegree, a corner behind the eye, or
+/// Settings::isosurfaceCells off).
+class CellCoverage
+{
+public:
+  /// A patch whose window box spans fewer pixels than this gets no cells; one that spans more
+  /// gets cells about this size (at most kCellLevels halvings).
+  static constexpr double kCellPixels = 16;
+  static constexpr int kCellLevels = 4;
+  /// Above this degree along a direction the octree costs more than the rays it saves.
+  static constexpr int kCellDegree = 8;
+
+  CellCoverage(
+    const std::vector<AffinePatch>& affine, const View& view, const Settings& settings, int threads)
+    : Isovalues(settings.isovalues.size())
+    , Masks(affine.size() * settings.isovalues.size())
+  {
+    const glm::dmat4 window = windowFromWorld(view, settings.width, settings.height);
+    std::vector<int> levels(this->Masks.size(), 0);
+    parallelFor(settings.isosurfaceCells ? affine.size() : 0, threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t p = begin; p < end; ++p)
+        {
+          for (size_t iso = 0; iso < this->Isovalues; ++iso)
+          {
+            levels[p * this->Isovalues + iso] = cellLevels(affine[p], window);
+          }
+        }
+      });
+    // The octants of the masks with cells, side by side; then each mask from its octants.
+    std::vector<size_t> octants; // mask * 8 + octant
+    for (size_t m = 0; m < this->Masks.size(); ++m)
+    {
+      for (size_t k = 0; k < 8 && levels[m] > 0; ++k)
+      {
+        octants.push_back(8 * m + k);
+      }
+    }
+    std::vector<std::vector<ParameterCell>> cells(octants.size());
+    parallelFor(octants.size(), threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t k = begin; k < end; ++k)
+        {
+          const size_t m = octants[k] / 8;
+          cells[k] = isosurfaceCells(affine[m / this->Isovalues],
+            settings.isovalues[m % this->Isovalues], levels[m], int(octants[k] % 8));
+        }
+      });
+    parallelFor(octants.size() / 8, threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t k = begin; k < end; ++k)
+        {
+          const size_t m = octants[8 * k] / 8;
+          cover(affine[m / this->Isovalues], &cells[8 * k], window, settings, this->Masks[m]);
+        }
+      });
+    for (const auto& octant : cells)
+    {
+      this->Cells += octant.size();
+    }
+  }
+
+  /// Whether the ray of `pixel` may meet the isosurface of patch `patch` at isovalue `iso`.
+  bool mayHit(int patch, int iso, size_t pixel) const
+  {
+    const Mask& mask = this->Masks[size_t(patch) * this->Isovalues + size_t(iso)];
+    return mask.bits.empty() || (mask.bits[pixel / 64] >> (pixel % 64) & 1);
+  }
+
+  /// Cells kept over all patches and isovalues.
+  size_t cells() const { return this->Cells; }
+
+private:
+  struct Mask
+  {
+    std::vector<uint64_t> bits; ///< one a pixel of the image; empty: every pixel
+  };
+
+  /// The window box of the parameter box [lo, lo + size]^3 of an affine patch (its corners'
+  /// images: the patch is a parallelepiped); false where a corner is not in front of the eye.
+  static bool windowBox(const AffinePatch& patch, const glm::dmat4& window, const glm::dvec3& lo,
+    double size, Box3<double>& box)
+  {
+    for (int d = 0; d < 2; ++d)
+    {
+      box.lo[d] = std::numeric_limits<double>::infinity();
+      box.hi[d] = -std::numeric_limits<double>::infinity();
+    }
+    for (int c = 0; c < 8; ++c)
+    {
+      const glm::dvec3 u =
+        lo + size * glm::dvec3(double(c & 1), double(c >> 1 & 1), double(c >> 2));
+      const glm::dvec4 x = window * glm::dvec4(patch.origin + patch.axes * u, 1.0);
+      if (!(x.w > 0))
+      {
+        return false;
+      }
+      for (int d = 0; d < 2; ++d)
+      {
+        box.lo[d] = std::min(box.lo[d], x[d] / x.w);
+        box.hi[d] = std::max(box.hi[d], x[d] / x.w);
+      }
+    }
+    return true;
+  }
+
+  /// Sets bits first..last.
+  static void setBits(std::vector<uint64_t>& bits, size_t first, size_t last)
+  {
+    const auto from = [](size_t bit) { return ~uint64_t(0) << (bit % 64); };
+    const size_t a = first / 64, b = last / 64;
+    const uint64_t upTo = ~uint64_t(0) >> (63 - last % 64);
+    if (a == b)
+    {
+      bits[a] |= from(first) & upTo;
+      return;
+    }
+    bits[a] |= from(first);
+    for (size_t w = a + 1; w < b; ++w)
+    {
+      bits[w] = ~uint64_t(0);
+    }
+    bits[b] |= upTo;
+  }
+
+  /// The octree levels of the patch's cells: about kCellPixels across in the window, none (0)
+  /// where the patch gets no cells.
+  static int cellLevels(const AffinePatch& patch, const glm::dmat4& window)
+  {
+    Box3<double> box;
+    if (patch.rayDegree < 0 || *std::max_element(patch.degree, patch.degree + 3) > kCellDegree ||
+        !windowBox(patch, window, glm::dvec3(0.0), 1.0, box))
+    {
+      return 0;
+    }
+    const double extent = std::max(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1]);
+    return std::max(0, std::min(kCellLevels, int(std::floor(std::log2(extent / kCellPixels)))));
+  }
+
+  /// Sets `mask` to the pixels the cells of its 8 octants cover, or leaves it empty (every
+  /// pixel) where a cell is not in front of the eye.
+  static void cover(const AffinePatch& patch, const std::vector<ParameterCell>* octants,
+    const glm::dmat4& window, const Settings& settings, Mask& mask)
+  {
+    mask.bits.assign((size_t(settings.width) * settings.height + 63) / 64, 0);
+    for (int k = 0; k < 8; ++k)
+    {
+      for (const ParameterCell& cell : octants[k])
+      {
+        Box3<double> box;
+        int range[4];
+        if (!windowBox(patch, window, cell.lo, cell.size, box))
+        {
+          mask.bits.clear();
+          return;
+        }
+        pixelRange(box, settings.width, 0, settings.height, range);
+        for (int j = range[2]; j <= range[3] && range[0] <= range[1]; ++j)
+        {
+          const size_t row = size_t(j) * size_t(settings.width);
+          setBits(mask.bits, row + size_t(range[0]), row + size_t(range[1]));
+        }
+      }
+    }
+  }
+
+  const size_t Isovalues;
+  std::vector<Mask> Masks; ///< patch * isovalues + iso
+  size_t Cells = 0;
+};
+
 /// Removes the work items of affine patches (ray composition's) from the band's lists, so that
 /// the SST's rounds see the others only.
 inline void dropAffineItems(
@@ -189,9 +367,9 @@ inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Set
 /// In first-hit mode a pixel's items beyond its nearest hit so far are skipped, and without
 /// clipping planes a ray's roots beyond its first are not looked for.
 inline void rayCompositionPass(const View& view, const Settings& settings,
-  const std::vector<AffinePatch>& affine, FrustumForms& forms, const LoopState<CpuExec>& s,
-  const Node* initialNodes, int threads, std::vector<std::vector<RawHit>>& ordered,
-  FrameReport& report)
+  const std::vector<AffinePatch>& affine, FrustumForms& forms, const CellCoverage& coverage,
+  const LoopState<CpuExec>& s, const Node* initialNodes, int threads,
+  std::vector<std::vector<RawHit>>& ordered, FrameReport& report)
 {
   static const std::vector<ChebyshevInterpolation> interpolation = []
   {
@@ -238,7 +416,8 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
           {
             break; // the items are sorted by nearest depth
           }
-          bool seen = affine[size_t(node.patch)].rayDegree < 0;
+          bool seen =
+            affine[size_t(node.patch)].rayDegree < 0 || !coverage.mayHit(node.patch, node.iso, p);
           for (int d = 0; d < doneCount; ++d)
           {
             seen = seen || (done[d][0] == node.patch && done[d][1] == node.iso);

@@ -8,6 +8,7 @@
 #include "iga/Camera.h"
 #include "iga/Deformation.h"
 #include "iga/FrustumForm.h"
+#include "iga/IsosurfaceCells.h"
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Engine.h"
 
@@ -598,6 +599,120 @@ TEST(RayComposition, AbsFieldsAgreeWithTheTree)
     const iga::VolumeView<const double> patch = field.set.patches[size_t(hit.patch)].view();
     iga::evaluateHomogeneous<double, 3>(patch, &hit.uvw[0], values, nullptr);
     EXPECT_LT(std::fabs(values[iga::kFirstAttributeChannel]), 1e-9);
+  }
+}
+
+TEST(IsosurfaceCells, HoldEveryRootOfTheFieldAndOnlyCellsThatMay)
+{
+  // Random segments through the parameter cube, sampled: each sign change of the field (the
+  // polynomial itself, not its Bernstein form) bisected to its root, which must lie in a kept
+  // cell; and every dropped cell's samples of one sign.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const char* name : { "kiss", "heart", "dervish", "klein", "tangle" })
+  {
+    const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
+    const Volume v = algebraicVolume(surface->expression, surface->box);
+    iga::AffinePatch patch;
+    ASSERT_TRUE(iga::affineGeometry(v.patches[0].view(), iga::kFirstAttributeChannel, patch));
+    const int levels = 3, side = 1 << levels;
+    std::vector<char> kept(size_t(side) * side * side, 0);
+    for (int octant = 0; octant < 8; ++octant)
+    {
+      for (const iga::ParameterCell& cell : iga::isosurfaceCells(patch, 0.0, levels, octant))
+      {
+        ASSERT_DOUBLE_EQ(cell.size, 1.0 / side) << name;
+        const glm::ivec3 c = glm::ivec3(glm::round(cell.lo * double(side)));
+        kept[size_t((c.z * side + c.y) * side + c.x)] = 1;
+      }
+    }
+    const auto field = [&](const glm::dvec3& u)
+    {
+      const glm::dvec3 x = patch.origin + patch.axes * u;
+      return v.field.evaluate(x.x, x.y, x.z);
+    };
+    const auto cellOf = [&](const glm::dvec3& u)
+    { return glm::min(glm::ivec3(u * double(side)), glm::ivec3(side - 1)); };
+    size_t roots = 0;
+    for (int segment = 0; segment < 400; ++segment)
+    {
+      const glm::dvec3 a(unit(random), unit(random), unit(random));
+      const glm::dvec3 b(unit(random), unit(random), unit(random));
+      double previous = field(a);
+      for (int k = 1; k <= 400; ++k)
+      {
+        const double current = field(a + (k / 400.0) * (b - a));
+        if (previous * current < 0)
+        {
+          double lo = (k - 1) / 400.0, hi = k / 400.0;
+          for (int i = 0; i < 60; ++i)
+          {
+            const double mid = 0.5 * (lo + hi);
+            (field(a + mid * (b - a)) * previous > 0 ? lo : hi) = mid;
+          }
+          const glm::ivec3 c = cellOf(a + lo * (b - a));
+          EXPECT_TRUE(kept[size_t((c.z * side + c.y) * side + c.x)])
+            << name << " root in a dropped cell";
+          ++roots;
+        }
+        previous = current;
+      }
+    }
+    EXPECT_GT(roots, 100u) << name;
+    size_t dropped = 0;
+    for (int c = 0; c < side * side * side; ++c)
+    {
+      if (kept[size_t(c)])
+        continue;
+      ++dropped;
+      const glm::dvec3 lo(c % side, c / side % side, c / (side * side));
+      int signs[2] = { 0, 0 };
+      for (int q = 0; q < 9 * 9 * 9; ++q)
+      {
+        const glm::dvec3 u = (lo + glm::dvec3(q % 9, q / 9 % 9, q / 81) / 8.0) / double(side);
+        ++signs[field(u) > 0 ? 1 : 0];
+      }
+      EXPECT_TRUE(signs[0] == 0 || signs[1] == 0) << name << " dropped cell " << c;
+    }
+    EXPECT_GT(dropped, 0u) << name;
+  }
+}
+
+TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
+{
+  // The same frames bit for bit with and without the cells' culling, first and all hits, with
+  // fewer rays composed: the culled rays would have found nothing.
+  for (const char* name : { "kiss", "heart", "klein" })
+  {
+    const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
+    const Volume v = algebraicVolume(surface->expression, surface->box);
+    for (bool firstHit : { true, false })
+    {
+      GBuffer frames[2];
+      iga::sst::FrameReport reports[2];
+      for (int culled = 0; culled < 2; ++culled)
+      {
+        iga::sst::Settings settings;
+        settings.width = settings.height = 256;
+        settings.isovalues = { 0.0 };
+        settings.threads = 2;
+        settings.firstHitOnly = firstHit;
+        settings.isosurfaceCells = culled == 1;
+        reports[culled] = iga::sst::render(
+          iga::sst::Scene(v.patches), cameraOf(v), settings, Method::Automatic, frames[culled]);
+      }
+      const std::string what = std::string(name) + (firstHit ? " first hit" : " all hits");
+      EXPECT_EQ(reports[0].isosurfaceCells, 0u) << what;
+      EXPECT_GT(reports[1].isosurfaceCells, 0u) << what;
+      EXPECT_LT(reports[1].composedRays, reports[0].composedRays * 3 / 4) << what;
+      ASSERT_EQ(frames[0].offsets, frames[1].offsets) << what;
+      ASSERT_GT(frames[0].hits.size(), 1000u) << what;
+      for (size_t h = 0; h < frames[0].hits.size(); ++h)
+      {
+        ASSERT_EQ(frames[0].hits[h].position, frames[1].hits[h].position) << what;
+        ASSERT_EQ(frames[0].hits[h].normal, frames[1].hits[h].normal) << what;
+      }
+    }
   }
 }
 

@@ -93,6 +93,10 @@ struct Settings
   double deadlineMs = 0;
   /// Ray composition only: the roots' finder.
   RootFinder rootFinder = RootFinder::PointInsertion;
+  /// Ray composition only: compose only the rays through the window boxes of the cells that may
+  /// hold the isosurface (IsosurfaceCells.h). The hits are the same without; off, every ray
+  /// through a patch's box is composed (for comparisons).
+  bool isosurfaceCells = true;
   /// Ray composition only, frame coherency: the previous frame's G-buffer (the same size), whose
   /// first hits seed first-hit rays through the same pixels (findNearestRoot: a seed is taken
   /// only where it is proved, so the hits are a cold frame's); null for none.
@@ -145,6 +149,7 @@ struct FrameReport
   size_t rayCompositionPatches = 0; ///< patches ray composition drew
   size_t frustumPatches = 0;        ///< of those, composed through a frustum form
   size_t blossomPatches = 0;        ///< of those, composed by their power form's blossom
+  size_t isosurfaceCells = 0;       ///< ray composition: cells bounding the pixels composed
   size_t composedRays = 0;          ///< ray composition: (pixel, patch) polynomials composed
   size_t rootFinderSteps = 0;       ///< their finders' knot insertions and evaluations
   size_t cappedRays = 0;            ///< rays whose finder ran out of splits (roots may be missing)
