@@ -278,7 +278,7 @@ private:
       {
         return; // no item is left for the tree
       }
-      dropAffineItems(s, this->Affine, this->Plan.initialNodes.data());
+      dropAffineItems(s, *this->Affine, this->Plan.initialNodes.data());
     }
     solveRounds(s);
   }
@@ -550,16 +550,16 @@ private:
   {
     const Clock::time_point start = Clock::now();
     this->Affine = affineForms(this->Patches, this->Config, this->Plan.threads, this->Report);
-    this->Forms =
-      std::make_unique<FrustumForms>(this->Affine, this->TheView, this->Config, this->Plan.threads);
-    this->Coverage =
-      std::make_unique<CellCoverage>(this->Affine, this->TheView, this->Config, this->Plan.threads);
+    this->Forms = std::make_unique<FrustumForms>(
+      *this->Affine, this->TheView, this->Config, this->Plan.threads);
+    this->Coverage = std::make_unique<CellCoverage>(
+      *this->Affine, this->TheView, this->Config, this->Plan.threads);
     this->Report.isosurfaceCells = this->Coverage->cells();
-    this->PowerShadings.assign(this->Affine.size(), PowerShading());
+    this->PowerShadings.assign(this->Affine->size(), PowerShading());
     this->PowerPool.clear();
-    for (size_t p = 0; p < this->Affine.size(); ++p)
+    for (size_t p = 0; p < this->Affine->size(); ++p)
     {
-      const AffinePatch& patch = this->Affine[p];
+      const AffinePatch& patch = (*this->Affine)[p];
       if (patch.rayDegree >= 0 && !patch.terms.empty())
       {
         PowerShading& power = this->PowerShadings[p];
@@ -578,7 +578,7 @@ private:
   void rayComposition()
   {
     std::vector<std::vector<RawHit>> runs;
-    rayCompositionPass(this->TheView, this->Config, this->Affine, *this->Forms, *this->Coverage,
+    rayCompositionPass(this->TheView, this->Config, *this->Affine, *this->Forms, *this->Coverage,
       this->Loop, this->Plan.initialNodes.data(), this->Plan.threads, runs, this->Report);
     this->appendPixelHits(runs);
   }
@@ -642,7 +642,7 @@ private:
   FrameReport& Report;
   FramePlan Plan;
   std::vector<PatchShape> Shapes;
-  std::vector<AffinePatch> Affine;         // ray composition: each patch's affine form
+  AffineForms Affine;                      // ray composition: each patch's affine form
   std::unique_ptr<FrustumForms> Forms;     // and its frustum form where one pays
   std::unique_ptr<CellCoverage> Coverage;  // and the pixels its isosurface's cells cover
   std::vector<PowerShading> PowerShadings; // and its power form for shading, from PowerPool

@@ -24,37 +24,93 @@ namespace iga
 namespace sst
 {
 
+using AffineForms = std::shared_ptr<const std::vector<AffinePatch>>;
+
+/// What names a scene's affine analysis between frames: Settings::dataVersion (the same
+/// non-zero version, the same patches, as for the CUDA driver's copy of them), the surface
+/// attribute, and as a check the patches' shapes and first and last values.
+struct AffineKey
+{
+  uint64_t version = 0;
+  int attribute = 0;
+  std::vector<double> fingerprint;
+
+  AffineKey(const Scene& scene, const Settings& settings)
+    : version(settings.dataVersion)
+    , attribute(settings.surfaceAttribute)
+  {
+    fingerprint.reserve(4 * scene.size() + 1);
+    fingerprint.push_back(double(scene.volumeCount()));
+    for (size_t p = 0; p < scene.size(); ++p)
+    {
+      const auto v = scene[p];
+      fingerprint.push_back(v.degree[0] + 32.0 * (v.degree[1] + 32.0 * v.degree[2]));
+      fingerprint.push_back(v.channels);
+      fingerprint.push_back(v.coeffs[0]);
+      fingerprint.push_back(v.coeffs[v.valueCount() - 1]);
+    }
+  }
+  bool operator==(const AffineKey& other) const
+  {
+    return version == other.version && attribute == other.attribute &&
+           fingerprint == other.fingerprint;
+  }
+};
+
 /// Each patch's affine form, rayDegree -1 for the surfaces and the volumes without one (which
-/// the SST draws), on `threads` threads; sets the report's counts of patches per path.
-inline std::vector<AffinePatch> affineWherePossible(
+/// the SST draws), on `threads` threads; sets the report's counts of patches per path. The
+/// analysis of the last scene with a non-zero data version is kept for the next frame of that
+/// version (a camera move: thousands of ABS patches take some 12 ms).
+inline AffineForms affineWherePossible(
   const Scene& scene, const Settings& settings, int threads, FrameReport& report)
 {
-  std::vector<AffinePatch> affine(scene.size());
-  parallelFor(scene.size(), threads,
-    [&](size_t begin, size_t end)
-    {
-      for (size_t p = begin; p < end; ++p)
+  static std::mutex keptMutex;
+  static std::unique_ptr<AffineKey> keptKey;
+  static AffineForms kept;
+  std::unique_ptr<AffineKey> key;
+  AffineForms forms;
+  if (settings.dataVersion != 0)
+  {
+    key = std::make_unique<AffineKey>(scene, settings);
+    std::lock_guard<std::mutex> lock(keptMutex);
+    forms = keptKey && *keptKey == *key ? kept : nullptr;
+  }
+  if (!forms)
+  {
+    auto affine = std::make_shared<std::vector<AffinePatch>>(scene.size());
+    parallelFor(scene.size(), threads,
+      [&](size_t begin, size_t end)
       {
-        if (p >= scene.volumeCount() ||
-            !affineGeometry(
-              scene[p], kFirstAttributeChannel + settings.surfaceAttribute, affine[p]))
+        for (size_t p = begin; p < end; ++p)
         {
-          affine[p] = AffinePatch();
-          affine[p].rayDegree = -1;
+          AffinePatch& patch = (*affine)[p];
+          if (p >= scene.volumeCount() ||
+              !affineGeometry(scene[p], kFirstAttributeChannel + settings.surfaceAttribute, patch))
+          {
+            patch = AffinePatch();
+            patch.rayDegree = -1;
+          }
         }
-      }
-    });
-  for (const AffinePatch& patch : affine)
+      });
+    forms = affine;
+  }
+  if (key)
+  {
+    std::lock_guard<std::mutex> lock(keptMutex);
+    keptKey = std::move(key);
+    kept = forms;
+  }
+  for (const AffinePatch& patch : *forms)
   {
     report.rayCompositionPatches += patch.rayDegree >= 0 ? 1 : 0;
   }
   report.sstPatches = scene.size() - report.rayCompositionPatches;
-  return affine;
+  return forms;
 }
 
 /// Every volume's affine form (on `threads` threads); throws std::invalid_argument naming a patch
 /// that has none (or a surface, which ray composition does not draw).
-inline std::vector<AffinePatch> affinePatches(
+inline AffineForms affinePatches(
   const Scene& scene, const Settings& settings, int threads, FrameReport& report)
 {
   if (scene.surfaceCount() > 0)
@@ -62,10 +118,10 @@ inline std::vector<AffinePatch> affinePatches(
     throw std::invalid_argument("ray composition draws volumes only, the scene has " +
                                 std::to_string(scene.surfaceCount()) + " surfaces");
   }
-  std::vector<AffinePatch> affine = affineWherePossible(scene, settings, threads, report);
+  AffineForms affine = affineWherePossible(scene, settings, threads, report);
   for (size_t p = 0; p < scene.size(); ++p)
   {
-    if (affine[p].rayDegree < 0)
+    if ((*affine)[p].rayDegree < 0)
     {
       throw std::invalid_argument("ray composition needs affine geometry and a degree along rays "
                                   "of at most 16: " +

@@ -12,6 +12,7 @@
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Engine.h"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -714,6 +715,44 @@ TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
       }
     }
   }
+}
+
+TEST(RayComposition, AffineFormsAreKeptForTheSameDataVersionOnly)
+{
+  // A camera move under one data version reuses the analysis; another scene, even under a
+  // reused version (a caller's mistake the patches' fingerprint catches), gets its own.
+  const auto frame = [](const char* name, uint64_t version, double turn)
+  {
+    const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
+    const Volume v = algebraicVolume(surface->expression, surface->box);
+    iga::Camera camera = cameraOf(v);
+    camera.position =
+      camera.focalPoint + glm::dvec3(glm::rotate(glm::dmat4(1.0), turn, glm::dvec3(0, 0, 1)) *
+                                     glm::dvec4(camera.position - camera.focalPoint, 0));
+    iga::sst::Settings settings;
+    settings.width = settings.height = 96;
+    settings.isovalues = { 0.0 };
+    settings.threads = 2;
+    settings.dataVersion = version;
+    GBuffer out;
+    iga::sst::render(iga::sst::Scene(v.patches), camera, settings, Method::Automatic, out);
+    return out;
+  };
+  const auto same = [](const GBuffer& a, const GBuffer& b)
+  {
+    if (a.offsets != b.offsets)
+      return false;
+    for (size_t h = 0; h < a.hits.size(); ++h)
+      if (a.hits[h].position != b.hits[h].position || a.hits[h].normal != b.hits[h].normal)
+        return false;
+    return true;
+  };
+  frame("kiss", 9, 0.0);
+  EXPECT_TRUE(same(frame("kiss", 9, 0.3), frame("kiss", 0, 0.3)));
+  frame("kiss", 9, 0.0);
+  const GBuffer heart = frame("heart", 9, 0.0);
+  EXPECT_TRUE(same(heart, frame("heart", 0, 0.0)));
+  EXPECT_FALSE(same(heart, frame("kiss", 0, 0.0)));
 }
 
 TEST(RayComposition, MethodNamesParseBack)
