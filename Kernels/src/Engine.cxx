@@ -579,7 +579,7 @@ private:
   {
     std::vector<std::vector<RawHit>> runs;
     rayCompositionPass(this->TheView, this->Config, *this->Affine, *this->Forms, *this->Coverage,
-      this->Loop, this->Plan.initialNodes.data(), this->Plan.threads, runs, this->Report);
+      this->Loop, this->Plan.threads, runs, this->Report);
     this->appendPixelHits(runs);
   }
 

@@ -28,16 +28,17 @@ using AffineForms = std::shared_ptr<const std::vector<AffinePatch>>;
 
 /// What names a scene's affine analysis between frames: Settings::dataVersion (the same
 /// non-zero version, the same patches, as for the CUDA driver's copy of them), the surface
-/// attribute, and as a check the patches' shapes and first and last values.
+/// attribute and the isovalues, and as a check the patches' shapes and first and last values.
 struct AffineKey
 {
   uint64_t version = 0;
   int attribute = 0;
-  std::vector<double> fingerprint;
+  std::vector<double> isovalues, fingerprint;
 
   AffineKey(const Scene& scene, const Settings& settings)
     : version(settings.dataVersion)
     , attribute(settings.surfaceAttribute)
+    , isovalues(settings.isovalues)
   {
     fingerprint.reserve(4 * scene.size() + 1);
     fingerprint.push_back(double(scene.volumeCount()));
@@ -53,7 +54,7 @@ struct AffineKey
   bool operator==(const AffineKey& other) const
   {
     return version == other.version && attribute == other.attribute &&
-           fingerprint == other.fingerprint;
+           isovalues == other.isovalues && fingerprint == other.fingerprint;
   }
 };
 
@@ -417,6 +418,207 @@ inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Set
   return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
 }
 
+namespace detail
+{
+/// What the pass reads of an initial node, packed: node records are large, and an ABS field's
+/// pixels go through thousands of them.
+struct ComposedNode
+{
+  int patch;
+  int iso;
+  double nearest; ///< NDC depth
+};
+
+/// A pixel's ray: its NDC x and y, and origin + t direction from the near (t = 0) to the far
+/// plane (t = 1).
+struct PixelRay
+{
+  double x, y;
+  glm::dvec3 origin, direction;
+};
+
+inline PixelRay pixelRay(const glm::dmat4& clipToWorld, const Settings& settings, size_t p)
+{
+  PixelRay ray;
+  ray.x = 2 * (double(p % settings.width) + 0.5) / settings.width - 1;
+  ray.y = 2 * (double(p / settings.width) + 0.5) / settings.height - 1;
+  const glm::dvec4 nearPoint = clipToWorld * glm::dvec4(ray.x, ray.y, -1, 1);
+  const glm::dvec4 farPoint = clipToWorld * glm::dvec4(ray.x, ray.y, 1, 1);
+  ray.origin = glm::dvec3(nearPoint) / nearPoint.w;
+  ray.direction = glm::dvec3(farPoint) / farPoint.w - ray.origin;
+  return ray;
+}
+
+/// Counts of the pass, per thread then summed.
+struct CompositionCounts
+{
+  size_t rays = 0, steps = 0, capped = 0, seeded = 0;
+};
+} // namespace detail
+
+/// The ray-composition pass over a band's pixels: its inputs, and a pixel's work.
+class CompositionPass
+{
+public:
+  CompositionPass(const View& view, const Settings& settings,
+    const std::vector<AffinePatch>& affine, FrustumForms& forms, const CellCoverage& coverage,
+    const LoopState<CpuExec>& s)
+    : TheView(view)
+    , Config(settings)
+    , Affine(affine)
+    , Forms(forms)
+    , Coverage(coverage)
+    , Loop(s)
+    , ClipToWorld(glm::inverse(view.worldToClip))
+    , Nodes(s.initialCount)
+  {
+    // A (patch, isovalue) with several roots (split at the eye plane) has its ray composed once
+    // a pixel; where none has, no pixel keeps a list of those done.
+    std::vector<std::pair<int, int>> roots(s.initialCount);
+    for (size_t n = 0; n < s.initialCount; ++n)
+    {
+      const Node& node = s.initialNodes[n];
+      this->Nodes[n] = { node.patch, node.iso, node.info.box.lo[2] };
+      roots[n] = { node.patch, node.iso };
+    }
+    std::sort(roots.begin(), roots.end());
+    this->RepeatedRoots = std::adjacent_find(roots.begin(), roots.end()) != roots.end();
+    // A first hit needs a ray's nearest root alone, unless a clipping plane may cut it away.
+    this->Roots.maxRoots =
+      s.frame.hits.firstHitOnly && settings.clipPlanes.empty() ? 1 : roots::kMaxRoots;
+  }
+
+  /// Appends pixel p's hits on the affine patches its work items name, nearest first where the
+  /// hit policy keeps the nearest only.
+  void drawPixel(size_t p, std::vector<RawHit>& hits, detail::CompositionCounts& counts) const
+  {
+    const detail::PixelRay ray = detail::pixelRay(this->ClipToWorld, this->Config, p);
+    int done[64][2], doneCount = 0; // (patch, isovalue) pairs met in earlier items
+    double best = this->Loop.BestDepth[p];
+    for (uint32_t item = this->Loop.ItemOffsets[p]; item < this->Loop.ItemOffsets[p + 1]; ++item)
+    {
+      const detail::ComposedNode& node = this->Nodes[this->Loop.ItemNodes[item]];
+      if (!this->Loop.frame.hits.mayMatter(node.nearest, best))
+      {
+        break; // the items are sorted by nearest depth
+      }
+      bool seen = false;
+      for (int d = 0; d < doneCount; ++d)
+      {
+        seen = seen || (done[d][0] == node.patch && done[d][1] == node.iso);
+      }
+      if (seen || this->Affine[size_t(node.patch)].rayDegree < 0 ||
+          !this->Coverage.mayHit(node.patch, node.iso, p))
+      {
+        continue;
+      }
+      if (this->RepeatedRoots && doneCount < 64)
+      {
+        done[doneCount][0] = node.patch;
+        done[doneCount++][1] = node.iso;
+      }
+      this->drawPatch(p, ray, node, hits, counts, best);
+    }
+  }
+
+private:
+  /// The hits of the pixel's ray on one patch and isovalue.
+  void drawPatch(size_t p, const detail::PixelRay& ray, const detail::ComposedNode& node,
+    std::vector<RawHit>& hits, detail::CompositionCounts& counts, double& best) const
+  {
+    const AffinePatch& patch = this->Affine[size_t(node.patch)];
+    double t0, t1;
+    if (!rayInPatch(patch, ray.origin, ray.direction, 0, 1, t0, t1))
+    {
+      return;
+    }
+    const glm::dvec3 u0 = patch.inverse * (ray.origin + t0 * ray.direction - patch.origin);
+    const glm::dvec3 du = patch.inverse * ((t1 - t0) * ray.direction);
+    const double isovalue = this->Config.isovalues[size_t(node.iso)];
+    double coefficients[kMaxOrder];
+    const FrustumForm& form = this->Forms.of(size_t(node.patch));
+    if (form.degree >= 0)
+    {
+      composeFrustumRay(
+        form, isovalue, ray.x, ray.y, t0, t1, interpolation(patch.rayDegree), coefficients);
+    }
+    else if (!patch.terms.empty())
+    {
+      blossomAlongRay(patch.terms.data(), int(patch.terms.size()), patch.rayDegree, 2.0 * u0 - 1.0,
+        2.0 * (u0 + du) - 1.0, isovalue, coefficients);
+    }
+    else
+    {
+      composeRay(patch, isovalue, u0, du, interpolation(patch.rayDegree), coefficients);
+    }
+    bool seeded;
+    const BernsteinRoots roots = rayRoots(coefficients, patch.rayDegree, this->Config, this->Roots,
+      ray.origin, ray.direction, t0, t1, p, seeded);
+    ++counts.rays;
+    counts.seeded += seeded ? 1 : 0;
+    counts.steps += size_t(roots.cost.insertions + roots.cost.evaluations);
+    counts.capped += roots.cost.capped ? 1 : 0;
+    for (int r = 0; r < roots.count; ++r)
+    {
+      const glm::dvec3 position = ray.origin + (t0 + roots.t[r] * (t1 - t0)) * ray.direction;
+      if (!this->keptByClipPlanes(position))
+      {
+        continue;
+      }
+      const glm::dvec4 clip = this->TheView.worldToClip * glm::dvec4(position, 1);
+      RawHit hit;
+      hit.pixel = uint32_t(p);
+      hit.patch = node.patch;
+      hit.iso = node.iso;
+      hit.ndcDepth = clip.z / clip.w;
+      const glm::dvec3 u = u0 + roots.t[r] * du;
+      for (int d = 0; d < 3; ++d)
+      {
+        hit.u[d] = std::min(std::max(u[d], 0.0), 1.0);
+      }
+      hits.push_back(hit);
+      best = this->Loop.frame.hits.afterHit(best, hit.ndcDepth);
+    }
+  }
+
+  bool keptByClipPlanes(const glm::dvec3& x) const
+  {
+    for (const auto& plane : this->Config.clipPlanes)
+    {
+      if (!(plane[0] * x.x + plane[1] * x.y + plane[2] * x.z + plane[3] >= 0))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  static const ChebyshevInterpolation& interpolation(int degree)
+  {
+    static const std::vector<ChebyshevInterpolation> table = []
+    {
+      std::vector<ChebyshevInterpolation> made;
+      for (int d = 0; d <= kMaxDegree; ++d)
+      {
+        made.push_back(chebyshevInterpolation(d));
+      }
+      return made;
+    }();
+    return table[size_t(degree)];
+  }
+
+  const View& TheView;
+  const Settings& Config;
+  const std::vector<AffinePatch>& Affine;
+  FrustumForms& Forms;
+  const CellCoverage& Coverage;
+  const LoopState<CpuExec>& Loop;
+  const glm::dmat4 ClipToWorld;
+  std::vector<detail::ComposedNode> Nodes;
+  bool RepeatedRoots = false;
+  RootSettings Roots;
+};
+
 /// The hits of the band's pixels (s.frame's) on the affine patches (rayDegree >= 0), in pixel
 /// order: `ordered` holds those of consecutive runs of pixels, one list a run, so that the cost
 /// follows the pixels with work (a supersampling pass draws few) rather than the image's size.
@@ -424,134 +626,32 @@ inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Set
 /// clipping planes a ray's roots beyond its first are not looked for.
 inline void rayCompositionPass(const View& view, const Settings& settings,
   const std::vector<AffinePatch>& affine, FrustumForms& forms, const CellCoverage& coverage,
-  const LoopState<CpuExec>& s, const Node* initialNodes, int threads,
-  std::vector<std::vector<RawHit>>& ordered, FrameReport& report)
+  const LoopState<CpuExec>& s, int threads, std::vector<std::vector<RawHit>>& ordered,
+  FrameReport& report)
 {
-  static const std::vector<ChebyshevInterpolation> interpolation = []
-  {
-    std::vector<ChebyshevInterpolation> table;
-    for (int d = 0; d <= kMaxDegree; ++d)
-    {
-      table.push_back(chebyshevInterpolation(d));
-    }
-    return table;
-  }();
-  const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
+  const CompositionPass pass(view, settings, affine, forms, coverage, s);
   const size_t first = passFirstPixel(s.frame), count = passPixelCount(s.frame);
-  // A first hit needs a ray's nearest root alone, unless a clipping plane may cut it away.
-  RootSettings rootSettings;
-  rootSettings.maxRoots =
-    s.frame.hits.firstHitOnly && settings.clipPlanes.empty() ? 1 : roots::kMaxRoots;
   std::vector<std::pair<size_t, std::vector<RawHit>>> runs; // (first pixel, its run's hits)
+  detail::CompositionCounts total;
   std::mutex runsMutex;
-  std::atomic<size_t> rays{ 0 }, steps{ 0 }, capped{ 0 }, seededRays{ 0 };
   parallelFor(count, threads,
     [&](size_t begin, size_t end)
     {
       std::vector<RawHit> hits;
-      size_t localRays = 0, localSteps = 0, localCapped = 0, localSeeded = 0;
-      for (size_t k = begin; k < end; ++k)
+      detail::CompositionCounts counts;
+      for (size_t p = first + begin; p < first + end; ++p)
       {
-        const size_t p = first + k;
-        if (s.ItemOffsets[p] == s.ItemOffsets[p + 1])
+        if (s.ItemOffsets[p] < s.ItemOffsets[p + 1]) // else no patch (nor for a skipped pixel)
         {
-          continue; // no patch (a skipped pixel's none either)
-        }
-        const double x = 2 * (double(p % settings.width) + 0.5) / settings.width - 1;
-        const double y = 2 * (double(p / settings.width) + 0.5) / settings.height - 1;
-        const glm::dvec4 nearPoint = clipToWorld * glm::dvec4(x, y, -1, 1);
-        const glm::dvec4 farPoint = clipToWorld * glm::dvec4(x, y, 1, 1);
-        const glm::dvec3 origin = glm::dvec3(nearPoint) / nearPoint.w;
-        const glm::dvec3 direction = glm::dvec3(farPoint) / farPoint.w - origin;
-        int done[64][2], doneCount = 0; // (patch, isovalue) pairs met in earlier items
-        double best = s.BestDepth[p];
-        for (uint32_t item = s.ItemOffsets[p]; item < s.ItemOffsets[p + 1]; ++item)
-        {
-          const Node& node = initialNodes[s.ItemNodes[item]];
-          if (!s.frame.hits.mayMatter(node.info.box.lo[2], best))
-          {
-            break; // the items are sorted by nearest depth
-          }
-          bool seen =
-            affine[size_t(node.patch)].rayDegree < 0 || !coverage.mayHit(node.patch, node.iso, p);
-          for (int d = 0; d < doneCount; ++d)
-          {
-            seen = seen || (done[d][0] == node.patch && done[d][1] == node.iso);
-          }
-          double t0, t1;
-          const AffinePatch& patch = affine[size_t(node.patch)];
-          if (seen || !rayInPatch(patch, origin, direction, 0, 1, t0, t1))
-          {
-            continue;
-          }
-          if (doneCount < 64)
-          {
-            done[doneCount][0] = node.patch;
-            done[doneCount++][1] = node.iso;
-          }
-          const glm::dvec3 u0 = patch.inverse * (origin + t0 * direction - patch.origin);
-          const glm::dvec3 du = patch.inverse * ((t1 - t0) * direction);
-          double coefficients[kMaxOrder];
-          const FrustumForm& form = forms.of(size_t(node.patch));
-          if (form.degree >= 0)
-          {
-            composeFrustumRay(form, settings.isovalues[size_t(node.iso)], x, y, t0, t1,
-              interpolation[size_t(patch.rayDegree)], coefficients);
-          }
-          else if (!patch.terms.empty())
-          {
-            blossomAlongRay(patch.terms.data(), int(patch.terms.size()), patch.rayDegree,
-              2.0 * u0 - 1.0, 2.0 * (u0 + du) - 1.0, settings.isovalues[size_t(node.iso)],
-              coefficients);
-          }
-          else
-          {
-            composeRay(patch, settings.isovalues[size_t(node.iso)], u0, du,
-              interpolation[size_t(patch.rayDegree)], coefficients);
-          }
-          bool seeded;
-          const BernsteinRoots roots = rayRoots(coefficients, patch.rayDegree, settings,
-            rootSettings, origin, direction, t0, t1, p, seeded);
-          ++localRays;
-          localSeeded += seeded ? 1 : 0;
-          localSteps += size_t(roots.cost.insertions + roots.cost.evaluations);
-          localCapped += roots.cost.capped ? 1 : 0;
-          for (int r = 0; r < roots.count; ++r)
-          {
-            const glm::dvec3 position = origin + (t0 + roots.t[r] * (t1 - t0)) * direction;
-            const glm::dvec4 clip = view.worldToClip * glm::dvec4(position, 1);
-            bool kept = true;
-            for (const auto& plane : settings.clipPlanes)
-            {
-              kept = kept && plane[0] * position.x + plane[1] * position.y + plane[2] * position.z +
-                                 plane[3] >=
-                               0;
-            }
-            if (!kept)
-            {
-              continue;
-            }
-            RawHit hit;
-            hit.pixel = uint32_t(p);
-            hit.patch = node.patch;
-            hit.iso = node.iso;
-            hit.ndcDepth = clip.z / clip.w;
-            const glm::dvec3 u = u0 + roots.t[r] * du;
-            for (int d = 0; d < 3; ++d)
-            {
-              hit.u[d] = std::min(std::max(u[d], 0.0), 1.0);
-            }
-            hits.push_back(hit);
-            best = s.frame.hits.afterHit(best, hit.ndcDepth);
-          }
+          pass.drawPixel(p, hits, counts);
         }
       }
-      rays += localRays;
-      steps += localSteps;
-      capped += localCapped;
-      seededRays += localSeeded;
       std::lock_guard<std::mutex> lock(runsMutex);
       runs.emplace_back(begin, std::move(hits));
+      total.rays += counts.rays;
+      total.steps += counts.steps;
+      total.capped += counts.capped;
+      total.seeded += counts.seeded;
     });
   std::sort(
     runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -560,10 +660,10 @@ inline void rayCompositionPass(const View& view, const Settings& settings,
   {
     ordered.push_back(std::move(run.second));
   }
-  report.composedRays += rays;
-  report.rootFinderSteps += steps;
-  report.cappedRays += capped;
-  report.seededRays += seededRays;
+  report.composedRays += total.rays;
+  report.rootFinderSteps += total.steps;
+  report.cappedRays += total.capped;
+  report.seededRays += total.seeded;
 }
 
 } // namespace sst

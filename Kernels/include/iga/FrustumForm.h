@@ -374,7 +374,7 @@ inline void composeFrustumRay(const FrustumForm& form, double isovalue, double x
   double ta[kMaxOrder], tb[kMaxOrder];
   detail::chebyshevValues(d, (x - form.a[0]) / form.a[1], ta);
   detail::chebyshevValues(d, (y - form.b[0]) / form.b[1], tb);
-  double series[kMaxOrder];
+  double series[kMaxOrder] = {};
   const double* g = form.series.data();
   for (int m = 0; m < n; ++m)
   {
