@@ -234,19 +234,19 @@ inline glm::dvec3 unproject(const glm::dmat4& clipToWorld, double x, double y, d
 }
 } // namespace detail
 
-/// Products a pixel's ray costs through a frustum form of degree d.
+/// A pixel's ray through a frustum form of degree d (priced as directRayCost): its series'
+/// (d + 1) triangles of products, its values and their Bernstein coefficients.
 inline double frustumRayCost(int d)
 {
-  return double(d + 1) * detail::triangleSize(d) + 2.0 * (d + 1) * (d + 1);
+  return 0.7 * (double(d + 1) * detail::triangleSize(d) + 2.0 * (d + 1) * (d + 1));
 }
 
 /// Whether a frustum form costs less than composing `rays` rays without it (composedRayCost):
-/// its (d + 1)^3 samples of the patch and the rays through it.
+/// the patch's field at its (d + 1)^3 samples, and the rays through it.
 inline bool frustumFormPays(const AffinePatch& patch, double rays)
 {
   const double samples = std::pow(double(patch.rayDegree + 1), 3);
-  return samples * directRayCost(patch) / double(patch.rayDegree + 1) +
-           rays * frustumRayCost(patch.rayDegree) <
+  return samples * fieldProducts(patch) + rays * frustumRayCost(patch.rayDegree) <
          rays * composedRayCost(patch);
 }
 

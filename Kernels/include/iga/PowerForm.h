@@ -35,7 +35,8 @@ inline void tensorIndices(size_t p, const int* n, int* index)
   index[2] = int(p / size_t((n[0] + 1) * (n[1] + 1)));
 }
 
-/// Products a ray's blossom costs (blossomAlongRay): about (d + 1)^2 / 2 a term.
+/// A ray's blossom (blossomAlongRay), priced as directRayCost (RayComposition.h): about
+/// (d + 1)^2 / 2 a term.
 inline double blossomRayCost(size_t terms, int rayDegree)
 {
   return 0.5 * double(terms) * (rayDegree + 1) * (rayDegree + 1);

@@ -40,12 +40,27 @@ struct AffinePatch
 /// coefficient: the rounding of the conversions, which drop nothing above it.
 constexpr double kPowerFormTolerance = 1e-12;
 
-/// Products a ray's coefficients cost when composed directly: the patch's field at d + 1
-/// points.
+/// The products of the patch's field at a point: one a coefficient.
+inline double fieldProducts(const AffinePatch& patch)
+{
+  return double(patch.degree[0] + 1) * (patch.degree[1] + 1) * (patch.degree[2] + 1);
+}
+
+// The ways to compose a ray are priced in about nanoseconds on the project's machines, fitted to
+// each way's measured time on gallery and ABS patches of degree 2 to 16 (docs/benchmarks.md):
+// only their ratios decide.
+
+/// A ray's cost when composed directly: the field at d + 1 points, their Bernstein bases, and a
+/// fixed part.
 inline double directRayCost(const AffinePatch& patch)
 {
-  return double(patch.rayDegree + 1) * (patch.degree[0] + 1) * (patch.degree[1] + 1) *
-         (patch.degree[2] + 1);
+  const double points = patch.rayDegree + 1;
+  double bases = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    bases += 0.5 * patch.degree[d] * (patch.degree[d] + 1);
+  }
+  return 0.45 * points * fieldProducts(patch) + 3 * points * bases + 100;
 }
 
 namespace detail
@@ -135,8 +150,8 @@ inline bool affineGeometry(
   return true;
 }
 
-/// Products a ray's coefficients cost without a frustum form: its blossom's where the patch has
-/// a power form, else its field at d + 1 points.
+/// A ray's cost without a frustum form: its blossom's where the patch has a power form, else
+/// direct composition's.
 inline double composedRayCost(const AffinePatch& patch)
 {
   return patch.terms.empty() ? directRayCost(patch)
