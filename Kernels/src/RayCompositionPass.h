@@ -492,7 +492,8 @@ public:
   /// hit policy keeps the nearest only.
   void drawPixel(size_t p, std::vector<RawHit>& hits, detail::CompositionCounts& counts) const
   {
-    const detail::PixelRay ray = detail::pixelRay(this->ClipToWorld, this->Config, p);
+    detail::PixelRay ray;
+    bool rayMade = false; // not for a pixel whose items all miss (cells, patches the SST draws)
     int done[64][2], doneCount = 0; // (patch, isovalue) pairs met in earlier items
     double best = this->Loop.BestDepth[p];
     for (uint32_t item = this->Loop.ItemOffsets[p]; item < this->Loop.ItemOffsets[p + 1]; ++item)
@@ -516,6 +517,11 @@ public:
       {
         done[doneCount][0] = node.patch;
         done[doneCount++][1] = node.iso;
+      }
+      if (!rayMade)
+      {
+        ray = detail::pixelRay(this->ClipToWorld, this->Config, p);
+        rayMade = true;
       }
       this->drawPatch(p, ray, node, hits, counts, best);
     }
