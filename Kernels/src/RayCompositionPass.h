@@ -265,6 +265,19 @@ public:
     return mask.bits.empty() || (mask.bits[pixel / 64] >> (pixel % 64) & 1);
   }
 
+  /// The NDC depths the cells covering `pixel` span; false where the patch has no cells.
+  bool depths(int patch, int iso, size_t pixel, double& nearest, double& farthest) const
+  {
+    const Mask& mask = this->Masks[size_t(patch) * this->Isovalues + size_t(iso)];
+    if (mask.bits.empty())
+    {
+      return false;
+    }
+    nearest = mask.nearest[pixel];
+    farthest = mask.farthest[pixel];
+    return true;
+  }
+
   /// Cells kept over all patches and isovalues.
   size_t cells() const { return this->Cells; }
 
@@ -272,6 +285,8 @@ private:
   struct Mask
   {
     std::vector<uint64_t> bits; ///< one a pixel of the image; empty: every pixel
+    /// Per pixel with its bit set, the NDC depths its cells' boxes span (rounded outwards).
+    std::vector<float> nearest, farthest;
   };
 
   /// The window box of the parameter box [lo, lo + size]^3 of an affine patch (its corners'
@@ -279,7 +294,7 @@ private:
   static bool windowBox(const AffinePatch& patch, const glm::dmat4& window, const glm::dvec3& lo,
     double size, Box3<double>& box)
   {
-    for (int d = 0; d < 2; ++d)
+    for (int d = 0; d < 3; ++d)
     {
       box.lo[d] = std::numeric_limits<double>::infinity();
       box.hi[d] = -std::numeric_limits<double>::infinity();
@@ -293,7 +308,7 @@ private:
       {
         return false;
       }
-      for (int d = 0; d < 2; ++d)
+      for (int d = 0; d < 3; ++d)
       {
         box.lo[d] = std::min(box.lo[d], x[d] / x.w);
         box.hi[d] = std::max(box.hi[d], x[d] / x.w);
@@ -340,7 +355,10 @@ private:
   static void cover(const AffinePatch& patch, const std::vector<ParameterCell>* octants,
     const glm::dmat4& window, const Settings& settings, Mask& mask)
   {
-    mask.bits.assign((size_t(settings.width) * settings.height + 63) / 64, 0);
+    const size_t pixels = size_t(settings.width) * settings.height;
+    mask.bits.assign((pixels + 63) / 64, 0);
+    mask.nearest.assign(pixels, std::numeric_limits<float>::infinity());
+    mask.farthest.assign(pixels, -std::numeric_limits<float>::infinity());
     for (int k = 0; k < 8; ++k)
     {
       for (const ParameterCell& cell : octants[k])
@@ -349,14 +367,21 @@ private:
         int range[4];
         if (!windowBox(patch, window, cell.lo, cell.size, box))
         {
-          mask.bits.clear();
+          mask = Mask();
           return;
         }
         pixelRange(box, settings.width, 0, settings.height, range);
+        const float nearest = std::nextafter(float(box.lo[2]), -INFINITY);
+        const float farthest = std::nextafter(float(box.hi[2]), INFINITY);
         for (int j = range[2]; j <= range[3] && range[0] <= range[1]; ++j)
         {
           const size_t row = size_t(j) * size_t(settings.width);
           setBits(mask.bits, row + size_t(range[0]), row + size_t(range[1]));
+          for (size_t p = row + size_t(range[0]); p <= row + size_t(range[1]); ++p)
+          {
+            mask.nearest[p] = std::min(mask.nearest[p], nearest);
+            mask.farthest[p] = std::max(mask.farthest[p], farthest);
+          }
         }
       }
     }
@@ -534,7 +559,8 @@ private:
   {
     const AffinePatch& patch = this->Affine[size_t(node.patch)];
     double t0, t1;
-    if (!rayInPatch(patch, ray.origin, ray.direction, 0, 1, t0, t1))
+    if (!rayInPatch(patch, ray.origin, ray.direction, 0, 1, t0, t1) ||
+        !this->clipToCells(p, ray, node, t0, t1))
     {
       return;
     }
@@ -585,6 +611,27 @@ private:
       hits.push_back(hit);
       best = this->Loop.frame.hits.afterHit(best, hit.ndcDepth);
     }
+  }
+
+  /// Narrows [t0, t1] to the depths of the cells covering the pixel (no isosurface lies
+  /// nearer or farther); false where nothing is left.
+  bool clipToCells(size_t p, const detail::PixelRay& ray, const detail::ComposedNode& node,
+    double& t0, double& t1) const
+  {
+    double nearest, farthest;
+    if (!this->Coverage.depths(node.patch, node.iso, p, nearest, farthest))
+    {
+      return true;
+    }
+    const auto along = [&](double depth)
+    {
+      const glm::dvec4 x = this->ClipToWorld * glm::dvec4(ray.x, ray.y, depth, 1);
+      return glm::dot(glm::dvec3(x) / x.w - ray.origin, ray.direction) /
+             glm::dot(ray.direction, ray.direction);
+    };
+    t0 = std::max(t0, along(std::max(nearest, -1.0)) - 1e-9);
+    t1 = std::min(t1, along(std::min(farthest, 1.0)) + 1e-9);
+    return t0 < t1;
   }
 
   bool keptByClipPlanes(const glm::dvec3& x) const

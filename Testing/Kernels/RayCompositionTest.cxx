@@ -12,6 +12,8 @@
 #include "iga/PolynomialExpression.h"
 #include "iga/sst/Engine.h"
 
+#include "RayCompositionPass.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
@@ -63,6 +65,29 @@ GBuffer draw(const Volume& v, int size, Method method,
   if (report)
     *report = r;
   return out;
+}
+
+/// The surface's largest Bernstein coefficient K (Reimers and Seland's scale).
+double largestCoefficient(const Volume& v)
+{
+  double largest = 0;
+  for (int p = 0; p < v.patches[0].view().pointCount(); ++p)
+    largest =
+      std::max(largest, std::fabs(v.patches[0].view().point(p)[iga::kFirstAttributeChannel]));
+  return largest;
+}
+
+/// Whether a hit at x, seen from `eye`, is trusted to 1e-6: rounding's 1e-13 K moves the root
+/// along the ray by less than 1e-7 there (not at nodes, self-intersections, flat roots or grazing
+/// rays, where no method does better).
+bool wellConditioned(const Volume& v, double size, const glm::dvec3& eye, const glm::dvec3& x)
+{
+  const double h = 1e-6 * size;
+  const glm::dvec3 ray = glm::normalize(x - eye);
+  const glm::dvec3 up = x + h * ray, down = x - h * ray;
+  const double slope =
+    (v.field.evaluate(up.x, up.y, up.z) - v.field.evaluate(down.x, down.y, down.z)) / (2 * h);
+  return 1e-13 * largestCoefficient(v) <= 1e-7 * std::fabs(slope);
 }
 
 /// How two G-buffers' first hits compare: pixels covered by one only; the largest distance
@@ -356,23 +381,10 @@ TEST(RayComposition, GallerySurfacesAgreeWithTheTreeForEveryFinder)
     const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
     const Volume v = algebraicVolume(surface->expression, surface->box);
     const GBuffer tree = draw(v, 64, Method::SharedSubdivisionTree);
-    double largest = 0; // K: the largest Bernstein coefficient
-    for (int p = 0; p < v.patches[0].view().pointCount(); ++p)
-      largest =
-        std::max(largest, std::fabs(v.patches[0].view().point(p)[iga::kFirstAttributeChannel]));
-    // Positions are trusted to 1e-6 where rounding's 1e-13 K moves the root along the ray by
-    // less than 1e-7: not at nodes, self-intersections, flat (triple) roots or grazing rays,
-    // where no method does better.
-    const double h = 1e-6 * (surface->box[1] - surface->box[0]);
+    const double largest = largestCoefficient(v);
     const glm::dvec3 eye = cameraOf(v).position;
     const auto trusted = [&](const iga::sst::Hit& hit)
-    {
-      const glm::dvec3 x = hit.position, ray = glm::normalize(x - eye);
-      const glm::dvec3 up = x + h * ray, down = x - h * ray;
-      const double slope =
-        (v.field.evaluate(up.x, up.y, up.z) - v.field.evaluate(down.x, down.y, down.z)) / (2 * h);
-      return 1e-13 * largest <= 1e-7 * std::fabs(slope);
-    };
+    { return wellConditioned(v, surface->box[1] - surface->box[0], eye, hit.position); };
     for (int f = 0; f < iga::kRootFinderCount; ++f)
     {
       const auto finder = iga::RootFinder(f);
@@ -681,12 +693,15 @@ TEST(IsosurfaceCells, HoldEveryRootOfTheFieldAndOnlyCellsThatMay)
 
 TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
 {
-  // The same frames bit for bit with and without the cells' culling, first and all hits, with
-  // fewer rays composed: the culled rays would have found nothing.
+  // The same frames with and without the cells, first and all hits: fewer rays composed and
+  // fewer finder steps (the cells shorten the rays' segments), the same hits at well
+  // conditioned roots to rounding. At the heart's flat (triple) roots near z = 0 rounding alone
+  // moves a root by 5e-5 or splits it in three: there the frames may differ, in a pixel or two.
   for (const char* name : { "kiss", "heart", "klein" })
   {
     const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
     const Volume v = algebraicVolume(surface->expression, surface->box);
+    const double size = surface->box[1] - surface->box[0];
     for (bool firstHit : { true, false })
     {
       GBuffer frames[2];
@@ -706,12 +721,72 @@ TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
       EXPECT_EQ(reports[0].isosurfaceCells, 0u) << what;
       EXPECT_GT(reports[1].isosurfaceCells, 0u) << what;
       EXPECT_LT(reports[1].composedRays, reports[0].composedRays * 3 / 4) << what;
-      ASSERT_EQ(frames[0].offsets, frames[1].offsets) << what;
+      EXPECT_LT(reports[1].rootFinderSteps, reports[0].rootFinderSteps) << what;
       ASSERT_GT(frames[0].hits.size(), 1000u) << what;
-      for (size_t h = 0; h < frames[0].hits.size(); ++h)
+      size_t differing = 0, compared = 0;
+      for (int j = 0; j < 256; ++j)
       {
-        ASSERT_EQ(frames[0].hits[h].position, frames[1].hits[h].position) << what;
-        ASSERT_EQ(frames[0].hits[h].normal, frames[1].hits[h].normal) << what;
+        for (int i = 0; i < 256; ++i)
+        {
+          const size_t p = size_t(j) * 256 + i;
+          const int count = frames[0].hitCount(i, j);
+          if (count != frames[1].hitCount(i, j))
+          {
+            ++differing;
+            continue;
+          }
+          for (int k = 0; k < count; ++k)
+          {
+            const auto& a = frames[0].hits[frames[0].offsets[p] + k];
+            const auto& b = frames[1].hits[frames[1].offsets[p] + k];
+            if (wellConditioned(v, size, cameraOf(v).position, a.position))
+            {
+              EXPECT_LT(glm::length(a.position - b.position), 1e-9 * size) << what;
+              ++compared;
+            }
+          }
+        }
+      }
+      EXPECT_LE(differing, 2u) << what;
+      EXPECT_GT(compared, frames[0].hits.size() * 9 / 10) << what;
+    }
+  }
+}
+
+TEST(RayComposition, CellCoverageBoundsEveryHit)
+{
+  // Every hit of a frame drawn without the cells (all hits) lies in its pixel's mask and within
+  // the depths that mask gives it: what the pass skips and cuts away holds none.
+  for (const char* name : { "kiss", "heart", "klein", "dervish" })
+  {
+    const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
+    const Volume v = algebraicVolume(surface->expression, surface->box);
+    iga::sst::Settings settings;
+    settings.width = settings.height = 256;
+    settings.isovalues = { 0.0 };
+    settings.threads = 2;
+    settings.firstHitOnly = false;
+    settings.isosurfaceCells = false;
+    GBuffer frame;
+    iga::sst::render(
+      iga::sst::Scene(v.patches), cameraOf(v), settings, Method::RayComposition, frame);
+    settings.isosurfaceCells = true;
+    iga::sst::FrameReport report;
+    const auto affine =
+      iga::sst::affineWherePossible(iga::sst::Scene(v.patches), settings, 2, report);
+    const iga::sst::View view = iga::sst::makeView(cameraOf(v), 256, 256);
+    const iga::sst::CellCoverage coverage(*affine, view, settings, 2);
+    ASSERT_GT(coverage.cells(), 100u) << name;
+    ASSERT_GT(frame.hits.size(), 1000u) << name;
+    for (size_t p = 0; p + 1 < frame.offsets.size(); ++p)
+    {
+      for (uint32_t h = frame.offsets[p]; h < frame.offsets[p + 1]; ++h)
+      {
+        double nearest, farthest;
+        ASSERT_TRUE(coverage.mayHit(0, 0, p)) << name << " pixel " << p;
+        ASSERT_TRUE(coverage.depths(0, 0, p, nearest, farthest)) << name;
+        EXPECT_LE(nearest, frame.hits[h].ndcDepth) << name << " pixel " << p;
+        EXPECT_GE(farthest, frame.hits[h].ndcDepth) << name << " pixel " << p;
       }
     }
   }
