@@ -208,6 +208,8 @@ public:
   CellCoverage(
     const std::vector<AffinePatch>& affine, const View& view, const Settings& settings, int threads)
     : Isovalues(settings.isovalues.size())
+    , Width(size_t(settings.width))
+    , TileColumns((size_t(settings.width) + kTile - 1) / kTile)
     , Masks(affine.size() * settings.isovalues.size())
   {
     const glm::dmat4 window = windowFromWorld(view, settings.width, settings.height);
@@ -249,7 +251,7 @@ public:
         for (size_t k = begin; k < end; ++k)
         {
           const size_t m = octants[8 * k] / 8;
-          cover(affine[m / this->Isovalues], &cells[8 * k], window, settings, this->Masks[m]);
+          this->cover(affine[m / this->Isovalues], &cells[8 * k], window, settings, this->Masks[m]);
         }
       });
     for (const auto& octant : cells)
@@ -265,7 +267,7 @@ public:
     return mask.bits.empty() || (mask.bits[pixel / 64] >> (pixel % 64) & 1);
   }
 
-  /// The NDC depths the cells covering `pixel` span; false where the patch has no cells.
+  /// The NDC depths the cells covering `pixel`'s tile span; false where the patch has no cells.
   bool depths(int patch, int iso, size_t pixel, double& nearest, double& farthest) const
   {
     const Mask& mask = this->Masks[size_t(patch) * this->Isovalues + size_t(iso)];
@@ -273,8 +275,9 @@ public:
     {
       return false;
     }
-    nearest = mask.nearest[pixel];
-    farthest = mask.farthest[pixel];
+    const size_t tile = this->tileOf(pixel % this->Width, pixel / this->Width);
+    nearest = mask.nearest[tile];
+    farthest = mask.farthest[tile];
     return true;
   }
 
@@ -282,12 +285,19 @@ public:
   size_t cells() const { return this->Cells; }
 
 private:
+  /// Depths are kept per tile of kTile x kTile pixels: per pixel they would cost a frame more
+  /// in writing them (and the pages) than the rays save.
+  static constexpr size_t kTile = 4;
+
   struct Mask
   {
     std::vector<uint64_t> bits; ///< one a pixel of the image; empty: every pixel
-    /// Per pixel with its bit set, the NDC depths its cells' boxes span (rounded outwards).
+    /// Per tile, the NDC depths the boxes of the cells covering any of its pixels span
+    /// (rounded outwards).
     std::vector<float> nearest, farthest;
   };
+
+  size_t tileOf(size_t i, size_t j) const { return j / kTile * this->TileColumns + i / kTile; }
 
   /// The window box of the parameter box [lo, lo + size]^3 of an affine patch (its corners'
   /// images: the patch is a parallelepiped); false where a corner is not in front of the eye.
@@ -352,13 +362,14 @@ private:
 
   /// Sets `mask` to the pixels the cells of its 8 octants cover, or leaves it empty (every
   /// pixel) where a cell is not in front of the eye.
-  static void cover(const AffinePatch& patch, const std::vector<ParameterCell>* octants,
-    const glm::dmat4& window, const Settings& settings, Mask& mask)
+  void cover(const AffinePatch& patch, const std::vector<ParameterCell>* octants,
+    const glm::dmat4& window, const Settings& settings, Mask& mask) const
   {
     const size_t pixels = size_t(settings.width) * settings.height;
+    const size_t tiles = this->TileColumns * ((size_t(settings.height) + kTile - 1) / kTile);
     mask.bits.assign((pixels + 63) / 64, 0);
-    mask.nearest.assign(pixels, std::numeric_limits<float>::infinity());
-    mask.farthest.assign(pixels, -std::numeric_limits<float>::infinity());
+    mask.nearest.assign(tiles, std::numeric_limits<float>::infinity());
+    mask.farthest.assign(tiles, -std::numeric_limits<float>::infinity());
     for (int k = 0; k < 8; ++k)
     {
       for (const ParameterCell& cell : octants[k])
@@ -377,17 +388,22 @@ private:
         {
           const size_t row = size_t(j) * size_t(settings.width);
           setBits(mask.bits, row + size_t(range[0]), row + size_t(range[1]));
-          for (size_t p = row + size_t(range[0]); p <= row + size_t(range[1]); ++p)
+        }
+        for (size_t tj = size_t(range[2]) / kTile;
+             range[0] <= range[1] && range[2] <= range[3] && tj <= size_t(range[3]) / kTile; ++tj)
+        {
+          for (size_t ti = size_t(range[0]) / kTile; ti <= size_t(range[1]) / kTile; ++ti)
           {
-            mask.nearest[p] = std::min(mask.nearest[p], nearest);
-            mask.farthest[p] = std::max(mask.farthest[p], farthest);
+            const size_t tile = tj * this->TileColumns + ti;
+            mask.nearest[tile] = std::min(mask.nearest[tile], nearest);
+            mask.farthest[tile] = std::max(mask.farthest[tile], farthest);
           }
         }
       }
     }
   }
 
-  const size_t Isovalues;
+  const size_t Isovalues, Width, TileColumns;
   std::vector<Mask> Masks; ///< patch * isovalues + iso
   size_t Cells = 0;
 };
