@@ -210,8 +210,12 @@ public:
     : Isovalues(settings.isovalues.size())
     , Width(size_t(settings.width))
     , TileColumns((size_t(settings.width) + kTile - 1) / kTile)
+    , ClipToWorld(glm::inverse(view.worldToClip))
     , Masks(affine.size() * settings.isovalues.size())
   {
+    const double wScale = std::fabs(this->ClipToWorld[3][3]) + std::fabs(this->ClipToWorld[2][3]);
+    this->SharedDepths = std::fabs(this->ClipToWorld[0][3]) <= 1e-14 * wScale &&
+                         std::fabs(this->ClipToWorld[1][3]) <= 1e-14 * wScale;
     const glm::dmat4 window = windowFromWorld(view, settings.width, settings.height);
     std::vector<int> levels(this->Masks.size(), 0);
     parallelFor(settings.isosurfaceCells ? affine.size() : 0, threads,
@@ -267,17 +271,19 @@ public:
     return mask.bits.empty() || (mask.bits[pixel / 64] >> (pixel % 64) & 1);
   }
 
-  /// The NDC depths the cells covering `pixel`'s tile span; false where the patch has no cells.
-  bool depths(int patch, int iso, size_t pixel, double& nearest, double& farthest) const
+  /// The part [t0, t1] of pixel rays (origin + t direction from the near plane, t = 0, to the
+  /// far plane, t = 1) that the cells covering `pixel`'s tile span; false where the patch has no
+  /// cells or the view's rays do not share their depths' parameters.
+  bool segment(int patch, int iso, size_t pixel, double& t0, double& t1) const
   {
     const Mask& mask = this->Masks[size_t(patch) * this->Isovalues + size_t(iso)];
-    if (mask.bits.empty())
+    if (mask.first.empty())
     {
       return false;
     }
     const size_t tile = this->tileOf(pixel % this->Width, pixel / this->Width);
-    nearest = mask.nearest[tile];
-    farthest = mask.farthest[tile];
+    t0 = mask.first[tile];
+    t1 = mask.last[tile];
     return true;
   }
 
@@ -285,17 +291,32 @@ public:
   size_t cells() const { return this->Cells; }
 
 private:
-  /// Depths are kept per tile of kTile x kTile pixels: per pixel they would cost a frame more
+  /// Segments are kept per tile of kTile x kTile pixels: per pixel they would cost a frame more
   /// in writing them (and the pages) than the rays save.
   static constexpr size_t kTile = 4;
 
   struct Mask
   {
     std::vector<uint64_t> bits; ///< one a pixel of the image; empty: every pixel
-    /// Per tile, the NDC depths the boxes of the cells covering any of its pixels span
-    /// (rounded outwards).
-    std::vector<float> nearest, farthest;
+    /// Per tile, the ray parameters the boxes of the cells covering any of its pixels span
+    /// (rounded outwards); empty where the view's rays do not share them.
+    std::vector<float> first, last;
   };
+
+  /// The parameter t along a pixel ray of the point at NDC depth z. Where the unprojection's w
+  /// does not depend on the pixel (VTK's perspective and parallel views), a point's depth fixes
+  /// its eye depth, which runs from the near plane's to the far plane's linearly in t: one
+  /// parameter for every pixel, read off the middle ray.
+  double rayParameter(double z) const
+  {
+    const auto at = [&](double depth)
+    {
+      const glm::dvec4 x = this->ClipToWorld * glm::dvec4(0, 0, depth, 1);
+      return glm::dvec3(x) / x.w;
+    };
+    const glm::dvec3 origin = at(-1), direction = at(1) - origin;
+    return glm::dot(at(z) - origin, direction) / glm::dot(direction, direction);
+  }
 
   size_t tileOf(size_t i, size_t j) const { return j / kTile * this->TileColumns + i / kTile; }
 
@@ -360,16 +381,19 @@ private:
     return std::max(0, std::min(kCellLevels, int(std::floor(std::log2(extent / kCellPixels)))));
   }
 
-  /// Sets `mask` to the pixels the cells of its 8 octants cover, or leaves it empty (every
-  /// pixel) where a cell is not in front of the eye.
+  /// Sets `mask` to the pixels the cells of its 8 octants cover and their tiles' segments, or
+  /// leaves it empty (every pixel) where a cell is not in front of the eye.
   void cover(const AffinePatch& patch, const std::vector<ParameterCell>* octants,
     const glm::dmat4& window, const Settings& settings, Mask& mask) const
   {
     const size_t pixels = size_t(settings.width) * settings.height;
     const size_t tiles = this->TileColumns * ((size_t(settings.height) + kTile - 1) / kTile);
     mask.bits.assign((pixels + 63) / 64, 0);
-    mask.nearest.assign(tiles, std::numeric_limits<float>::infinity());
-    mask.farthest.assign(tiles, -std::numeric_limits<float>::infinity());
+    if (this->SharedDepths)
+    {
+      mask.first.assign(tiles, std::numeric_limits<float>::infinity());
+      mask.last.assign(tiles, -std::numeric_limits<float>::infinity());
+    }
     for (int k = 0; k < 8; ++k)
     {
       for (const ParameterCell& cell : octants[k])
@@ -382,28 +406,45 @@ private:
           return;
         }
         pixelRange(box, settings.width, 0, settings.height, range);
-        const float nearest = std::nextafter(float(box.lo[2]), -INFINITY);
-        const float farthest = std::nextafter(float(box.hi[2]), INFINITY);
-        for (int j = range[2]; j <= range[3] && range[0] <= range[1]; ++j)
+        if (range[0] > range[1] || range[2] > range[3])
+        {
+          continue;
+        }
+        for (int j = range[2]; j <= range[3]; ++j)
         {
           const size_t row = size_t(j) * size_t(settings.width);
           setBits(mask.bits, row + size_t(range[0]), row + size_t(range[1]));
         }
-        for (size_t tj = size_t(range[2]) / kTile;
-             range[0] <= range[1] && range[2] <= range[3] && tj <= size_t(range[3]) / kTile; ++tj)
+        if (this->SharedDepths)
         {
-          for (size_t ti = size_t(range[0]) / kTile; ti <= size_t(range[1]) / kTile; ++ti)
-          {
-            const size_t tile = tj * this->TileColumns + ti;
-            mask.nearest[tile] = std::min(mask.nearest[tile], nearest);
-            mask.farthest[tile] = std::max(mask.farthest[tile], farthest);
-          }
+          this->widenSegments(box, range, mask);
         }
       }
     }
   }
 
+  /// Widens the segments of the tiles the pixel range of a cell's box touches to the box's
+  /// depths.
+  void widenSegments(const Box3<double>& box, const int* range, Mask& mask) const
+  {
+    const float first =
+      std::nextafter(float(this->rayParameter(std::max(box.lo[2], -1.0))), -INFINITY);
+    const float last =
+      std::nextafter(float(this->rayParameter(std::min(box.hi[2], 1.0))), INFINITY);
+    for (size_t tj = size_t(range[2]) / kTile; tj <= size_t(range[3]) / kTile; ++tj)
+    {
+      for (size_t ti = size_t(range[0]) / kTile; ti <= size_t(range[1]) / kTile; ++ti)
+      {
+        const size_t tile = tj * this->TileColumns + ti;
+        mask.first[tile] = std::min(mask.first[tile], first);
+        mask.last[tile] = std::max(mask.last[tile], last);
+      }
+    }
+  }
+
   const size_t Isovalues, Width, TileColumns;
+  const glm::dmat4 ClipToWorld;
+  bool SharedDepths;       ///< the view's pixel rays share their depths' parameters (rayParameter)
   std::vector<Mask> Masks; ///< patch * isovalues + iso
   size_t Cells = 0;
 };
@@ -576,7 +617,7 @@ private:
     const AffinePatch& patch = this->Affine[size_t(node.patch)];
     double t0, t1;
     if (!rayInPatch(patch, ray.origin, ray.direction, 0, 1, t0, t1) ||
-        !this->clipToCells(p, ray, node, t0, t1))
+        !this->clipToCells(p, node, t0, t1))
     {
       return;
     }
@@ -629,24 +670,17 @@ private:
     }
   }
 
-  /// Narrows [t0, t1] to the depths of the cells covering the pixel (no isosurface lies
+  /// Narrows [t0, t1] to the segment of the cells covering the pixel (no isosurface lies
   /// nearer or farther); false where nothing is left.
-  bool clipToCells(size_t p, const detail::PixelRay& ray, const detail::ComposedNode& node,
-    double& t0, double& t1) const
+  bool clipToCells(size_t p, const detail::ComposedNode& node, double& t0, double& t1) const
   {
-    double nearest, farthest;
-    if (!this->Coverage.depths(node.patch, node.iso, p, nearest, farthest))
+    double first, last;
+    if (!this->Coverage.segment(node.patch, node.iso, p, first, last))
     {
       return true;
     }
-    const auto along = [&](double depth)
-    {
-      const glm::dvec4 x = this->ClipToWorld * glm::dvec4(ray.x, ray.y, depth, 1);
-      return glm::dot(glm::dvec3(x) / x.w - ray.origin, ray.direction) /
-             glm::dot(ray.direction, ray.direction);
-    };
-    t0 = std::max(t0, along(std::max(nearest, -1.0)) - 1e-9);
-    t1 = std::min(t1, along(std::min(farthest, 1.0)) + 1e-9);
+    t0 = std::max(t0, first - 1e-9);
+    t1 = std::min(t1, last + 1e-9);
     return t0 < t1;
   }
 

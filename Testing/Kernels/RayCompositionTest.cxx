@@ -755,38 +755,49 @@ TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
 
 TEST(RayComposition, CellCoverageBoundsEveryHit)
 {
-  // Every hit of a frame drawn without the cells (all hits) lies in its pixel's mask and within
-  // the depths that mask gives it: what the pass skips and cuts away holds none.
+  // Every hit of a frame drawn without the cells (all hits, perspective and parallel views) lies
+  // in its pixel's mask and within the segment of the ray the mask gives it: what the pass skips
+  // and cuts away holds none.
   for (const char* name : { "kiss", "heart", "klein", "dervish" })
   {
     const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
     const Volume v = algebraicVolume(surface->expression, surface->box);
-    iga::sst::Settings settings;
-    settings.width = settings.height = 256;
-    settings.isovalues = { 0.0 };
-    settings.threads = 2;
-    settings.firstHitOnly = false;
-    settings.isosurfaceCells = false;
-    GBuffer frame;
-    iga::sst::render(
-      iga::sst::Scene(v.patches), cameraOf(v), settings, Method::RayComposition, frame);
-    settings.isosurfaceCells = true;
-    iga::sst::FrameReport report;
-    const auto affine =
-      iga::sst::affineWherePossible(iga::sst::Scene(v.patches), settings, 2, report);
-    const iga::sst::View view = iga::sst::makeView(cameraOf(v), 256, 256);
-    const iga::sst::CellCoverage coverage(*affine, view, settings, 2);
-    ASSERT_GT(coverage.cells(), 100u) << name;
-    ASSERT_GT(frame.hits.size(), 1000u) << name;
-    for (size_t p = 0; p + 1 < frame.offsets.size(); ++p)
+    for (bool parallel : { false, true })
     {
-      for (uint32_t h = frame.offsets[p]; h < frame.offsets[p + 1]; ++h)
+      iga::Camera camera = cameraOf(v);
+      camera.parallelProjection = parallel;
+      camera.parallelScale = 0.6 * (surface->box[1] - surface->box[0]);
+      iga::sst::Settings settings;
+      settings.width = settings.height = 256;
+      settings.isovalues = { 0.0 };
+      settings.threads = 2;
+      settings.firstHitOnly = false;
+      settings.isosurfaceCells = false;
+      GBuffer frame;
+      iga::sst::render(iga::sst::Scene(v.patches), camera, settings, Method::RayComposition, frame);
+      settings.isosurfaceCells = true;
+      iga::sst::FrameReport report;
+      const auto affine =
+        iga::sst::affineWherePossible(iga::sst::Scene(v.patches), settings, 2, report);
+      const iga::sst::View view = iga::sst::makeView(camera, 256, 256);
+      const iga::sst::CellCoverage coverage(*affine, view, settings, 2);
+      const std::string what = std::string(name) + (parallel ? " parallel" : " perspective");
+      ASSERT_GT(coverage.cells(), 100u) << what;
+      ASSERT_GT(frame.hits.size(), 1000u) << what;
+      const glm::dmat4 clipToWorld = glm::inverse(view.worldToClip);
+      for (size_t p = 0; p + 1 < frame.offsets.size(); ++p)
       {
-        double nearest, farthest;
-        ASSERT_TRUE(coverage.mayHit(0, 0, p)) << name << " pixel " << p;
-        ASSERT_TRUE(coverage.depths(0, 0, p, nearest, farthest)) << name;
-        EXPECT_LE(nearest, frame.hits[h].ndcDepth) << name << " pixel " << p;
-        EXPECT_GE(farthest, frame.hits[h].ndcDepth) << name << " pixel " << p;
+        const auto ray = iga::sst::detail::pixelRay(clipToWorld, settings, p);
+        for (uint32_t h = frame.offsets[p]; h < frame.offsets[p + 1]; ++h)
+        {
+          double first, last;
+          ASSERT_TRUE(coverage.mayHit(0, 0, p)) << what << " pixel " << p;
+          ASSERT_TRUE(coverage.segment(0, 0, p, first, last)) << what;
+          const double t = glm::dot(frame.hits[h].position - ray.origin, ray.direction) /
+                           glm::dot(ray.direction, ray.direction);
+          EXPECT_LE(first, t + 1e-12) << what << " pixel " << p;
+          EXPECT_GE(last, t - 1e-12) << what << " pixel " << p;
+        }
       }
     }
   }
