@@ -141,11 +141,12 @@ inline bool affineGeometry(
     return false;
   }
   // Its blossom where that costs a ray less than direct composition.
-  const size_t maxTerms = size_t(directRayCost(affine) / blossomRayCost(1, affine.rayDegree));
-  affine.terms.clear();
-  if (maxTerms > 0)
+  const double direct = directRayCost(affine);
+  sparsePowerForm(affine.field, n, power, bound, size_t(direct / kLeastTermCost) + 1,
+    kPowerFormTolerance, affine.terms);
+  if (!(blossomRayCost(affine.terms, affine.rayDegree) < direct))
   {
-    sparsePowerForm(affine.field, n, power, bound, maxTerms, kPowerFormTolerance, affine.terms);
+    affine.terms.clear();
   }
   return true;
 }
@@ -154,8 +155,7 @@ inline bool affineGeometry(
 /// direct composition's.
 inline double composedRayCost(const AffinePatch& patch)
 {
-  return patch.terms.empty() ? directRayCost(patch)
-                             : blossomRayCost(patch.terms.size(), patch.rayDegree);
+  return patch.terms.empty() ? directRayCost(patch) : blossomRayCost(patch.terms, patch.rayDegree);
 }
 
 /// Chebyshev points on [0, 1] and, per degree, the inverse of the Bernstein collocation matrix
