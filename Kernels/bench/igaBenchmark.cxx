@@ -24,8 +24,9 @@
 // --algebraic: the gallery's algebraic surfaces (AlgebraicGallery.h), each one polynomial volume
 // over its box, SST against ray composition with each root finder at 512^2 (256^2 quick), with
 // the finders' knot insertions and evaluations per composed ray; the cost of silhouette
-// anti-aliasing (the frame with the rotated-grid samples of its edge pixels); and an orbit of a
-// degree a frame drawn cold and with frame coherency (each frame seeded by the one before).
+// anti-aliasing (the frame with the rotated-grid samples of its edge pixels); the frame without
+// isosurface cells (every ray through the boxes composed whole); and an orbit of a degree a frame
+// drawn cold and with frame coherency (each frame seeded by the one before).
 //
 // --screen-filling: scenes framed as users frame them, covering a third of a 1920x1080 image or
 // more (the sphere p2 close up, the teapot, the deforming blade's boundary, the dice's CSG solid).
@@ -396,11 +397,12 @@ std::string json(
         << ", \"downloadedMB\": " << r.downloadedBytes / 1048576.0
         << ", \"composedRays\": " << r.composedRays << ", \"rootFinderStepsPerRay\": "
         << (r.composedRays ? double(r.rootFinderSteps) / double(r.composedRays) : 0.0)
-        << ", \"seededRays\": " << r.seededRays << ", \"stagesMs\": {\"setup\": " << r.msSetup
-        << ", \"input\": " << r.msInput << ", \"sweepAndGroup\": " << r.msSweepAndGroup
-        << ", \"solution\": " << r.msSolution << ", \"overlap\": " << r.msOverlap
-        << ", \"subdivision\": " << r.msSubdivision << ", \"compaction\": " << r.msCompaction
-        << ", \"gbuffer\": " << r.msGBuffer << "}}" << (k + 1 < all.size() ? "," : "") << "\n";
+        << ", \"seededRays\": " << r.seededRays << ", \"isosurfaceCells\": " << r.isosurfaceCells
+        << ", \"stagesMs\": {\"setup\": " << r.msSetup << ", \"input\": " << r.msInput
+        << ", \"sweepAndGroup\": " << r.msSweepAndGroup << ", \"solution\": " << r.msSolution
+        << ", \"overlap\": " << r.msOverlap << ", \"subdivision\": " << r.msSubdivision
+        << ", \"compaction\": " << r.msCompaction << ", \"gbuffer\": " << r.msGBuffer << "}}"
+        << (k + 1 < all.size() ? "," : "") << "\n";
   }
   out << "  ],\n  \"ratios\": {\n";
   for (size_t k = 0; k < ratios.size(); ++k)
@@ -503,6 +505,25 @@ void supersampledSilhouettes(const std::string& name, const iga::VolumeSet<doubl
   all.push_back(std::move(smoothed));
 }
 
+/// The scene's ray composition without isosurface cells (every ray through the patches' boxes
+/// composed over its whole segment), against `withCells`: ratio `uncelledOverCelled_NAME`.
+void withoutCells(const std::string& name, const iga::VolumeSet<double>& set,
+  const iga::Camera& camera, int degree, int size, int threads, int reps,
+  const Measurement& withCells, std::vector<Measurement>& all,
+  std::vector<std::pair<std::string, double>>& ratios)
+{
+  auto uncelled = measureFrames("algebraic", name + "/without-cells", 0.0, degree, size, size,
+    threads, iga::sst::Method::RayComposition, reps, iga::sst::Backend::Cpu, false,
+    [&](int, const iga::sst::Settings& settings, iga::sst::Method m, iga::sst::GBuffer& out)
+    {
+      iga::sst::Settings uncelledSettings = settings;
+      uncelledSettings.isosurfaceCells = false;
+      return iga::sst::render(set.patches, camera, uncelledSettings, m, out);
+    });
+  ratios.emplace_back("uncelledOverCelled_" + name, uncelled.ms / withCells.ms);
+  all.push_back(std::move(uncelled));
+}
+
 /// One algebraic scene: the SST against ray composition with each root finder (ratio
 /// `sstOverComposition_NAME_FINDER`), its orbit with and without frame coherency, and the cost
 /// of anti-aliasing it.
@@ -530,7 +551,10 @@ void compareWithComposition(const std::string& name, const iga::VolumeSet<double
     ratios.emplace_back(
       "sstOverComposition_" + name + "_" + iga::rootFinderName(finder), sst.ms / composed.ms);
     if (finder == iga::RootFinder::PointInsertion)
+    {
       supersampledSilhouettes(name, set, degree, size, threads, reps, composed, all, ratios);
+      withoutCells(name, set, camera, degree, size, threads, reps, composed, all, ratios);
+    }
     all.push_back(std::move(composed));
   }
   orbitWithCoherency(name, set, degree, size, threads, std::max(reps, 5), all, ratios);
