@@ -552,8 +552,8 @@ private:
     this->Affine = affineForms(this->Patches, this->Config, this->Plan.threads, this->Report);
     this->Forms = std::make_unique<FrustumForms>(
       *this->Affine, this->TheView, this->Config, this->Plan.threads);
-    this->Coverage = std::make_unique<CellCoverage>(
-      *this->Affine, this->TheView, this->Config, this->Plan.threads);
+    this->Coverage =
+      std::make_unique<CellCoverage>(this->Affine, this->TheView, this->Config, this->Plan.threads);
     this->Report.isosurfaceCells = this->Coverage->cells();
     this->PowerShadings.assign(this->Affine->size(), PowerShading());
     this->PowerPool.clear();

@@ -200,67 +200,51 @@ class CellCoverage
 public:
   /// A patch whose window box spans fewer pixels than this gets no cells; one that spans more
   /// gets cells about this size (at most kCellLevels halvings).
-  static constexpr double kCellPixels = 16;
-  static constexpr int kCellLevels = 4;
+  static constexpr double kCellPixels = 8;
+  static constexpr int kCellLevels = 5;
   /// Above this degree along a direction the octree costs more than the rays it saves.
   static constexpr int kCellDegree = 8;
 
-  CellCoverage(
-    const std::vector<AffinePatch>& affine, const View& view, const Settings& settings, int threads)
+  CellCoverage(const AffineForms& affine, const View& view, const Settings& settings, int threads)
     : Isovalues(settings.isovalues.size())
     , Width(size_t(settings.width))
     , TileColumns((size_t(settings.width) + kTile - 1) / kTile)
     , ClipToWorld(glm::inverse(view.worldToClip))
-    , Masks(affine.size() * settings.isovalues.size())
+    , Masks(affine->size() * settings.isovalues.size())
   {
     const double wScale = std::fabs(this->ClipToWorld[3][3]) + std::fabs(this->ClipToWorld[2][3]);
     this->SharedDepths = std::fabs(this->ClipToWorld[0][3]) <= 1e-14 * wScale &&
                          std::fabs(this->ClipToWorld[1][3]) <= 1e-14 * wScale;
     const glm::dmat4 window = windowFromWorld(view, settings.width, settings.height);
     std::vector<int> levels(this->Masks.size(), 0);
-    parallelFor(settings.isosurfaceCells ? affine.size() : 0, threads,
+    parallelFor(settings.isosurfaceCells ? affine->size() : 0, threads,
       [&](size_t begin, size_t end)
       {
         for (size_t p = begin; p < end; ++p)
         {
           for (size_t iso = 0; iso < this->Isovalues; ++iso)
           {
-            levels[p * this->Isovalues + iso] = cellLevels(affine[p], window);
+            levels[p * this->Isovalues + iso] = cellLevels((*affine)[p], window);
           }
         }
       });
-    // The octants of the masks with cells, side by side; then each mask from its octants.
-    std::vector<size_t> octants; // mask * 8 + octant
-    for (size_t m = 0; m < this->Masks.size(); ++m)
-    {
-      for (size_t k = 0; k < 8 && levels[m] > 0; ++k)
+    const auto cells = cellsOf(affine, settings.isovalues, levels, threads);
+    parallelFor(cells->size(), threads,
+      [&](size_t begin, size_t end)
       {
-        octants.push_back(8 * m + k);
+        for (size_t k = begin; k < end; ++k)
+        {
+          const size_t m = (*cells)[k].first;
+          this->cover((*affine)[m / this->Isovalues], (*cells)[k].second.data(), window, settings,
+            this->Masks[m]);
+        }
+      });
+    for (const auto& mask : *cells)
+    {
+      for (const auto& octant : mask.second)
+      {
+        this->Cells += octant.size();
       }
-    }
-    std::vector<std::vector<ParameterCell>> cells(octants.size());
-    parallelFor(octants.size(), threads,
-      [&](size_t begin, size_t end)
-      {
-        for (size_t k = begin; k < end; ++k)
-        {
-          const size_t m = octants[k] / 8;
-          cells[k] = isosurfaceCells(affine[m / this->Isovalues],
-            settings.isovalues[m % this->Isovalues], levels[m], int(octants[k] % 8));
-        }
-      });
-    parallelFor(octants.size() / 8, threads,
-      [&](size_t begin, size_t end)
-      {
-        for (size_t k = begin; k < end; ++k)
-        {
-          const size_t m = octants[8 * k] / 8;
-          this->cover(affine[m / this->Isovalues], &cells[8 * k], window, settings, this->Masks[m]);
-        }
-      });
-    for (const auto& octant : cells)
-    {
-      this->Cells += octant.size();
     }
   }
 
@@ -365,6 +349,53 @@ private:
       bits[w] = ~uint64_t(0);
     }
     bits[b] |= upTo;
+  }
+
+  /// Per mask with cells (patch * isovalues + iso), the cells of its 8 octants.
+  using MaskCells = std::vector<std::pair<size_t, std::vector<std::vector<ParameterCell>>>>;
+
+  /// The cells of the masks with levels, the octants worked on side by side. Being the view's
+  /// only through their levels, they are kept for the next frame with the same affine forms
+  /// (the same data version: affineWherePossible), isovalues and levels.
+  static std::shared_ptr<const MaskCells> cellsOf(const AffineForms& affine,
+    const std::vector<double>& isovalues, const std::vector<int>& levels, int threads)
+  {
+    static std::mutex keptMutex;
+    static AffineForms keptForms;
+    static std::vector<double> keptIsovalues;
+    static std::vector<int> keptLevels;
+    static std::shared_ptr<const MaskCells> kept;
+    {
+      std::lock_guard<std::mutex> lock(keptMutex);
+      if (keptForms == affine && keptIsovalues == isovalues && keptLevels == levels)
+      {
+        return kept;
+      }
+    }
+    auto cells = std::make_shared<MaskCells>();
+    for (size_t m = 0; m < levels.size(); ++m)
+    {
+      if (levels[m] > 0)
+      {
+        cells->emplace_back(m, std::vector<std::vector<ParameterCell>>(8));
+      }
+    }
+    parallelFor(8 * cells->size(), threads,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t k = begin; k < end; ++k)
+        {
+          const size_t m = (*cells)[k / 8].first;
+          (*cells)[k / 8].second[k % 8] = isosurfaceCells((*affine)[m / isovalues.size()],
+            isovalues[m % isovalues.size()], levels[m], int(k % 8));
+        }
+      });
+    std::lock_guard<std::mutex> lock(keptMutex);
+    keptForms = affine;
+    keptIsovalues = isovalues;
+    keptLevels = levels;
+    kept = cells;
+    return kept;
   }
 
   /// The octree levels of the patch's cells: about kCellPixels across in the window, none (0)

@@ -780,7 +780,7 @@ TEST(RayComposition, CellCoverageBoundsEveryHit)
       const auto affine =
         iga::sst::affineWherePossible(iga::sst::Scene(v.patches), settings, 2, report);
       const iga::sst::View view = iga::sst::makeView(camera, 256, 256);
-      const iga::sst::CellCoverage coverage(*affine, view, settings, 2);
+      const iga::sst::CellCoverage coverage(affine, view, settings, 2);
       const std::string what = std::string(name) + (parallel ? " parallel" : " perspective");
       ASSERT_GT(coverage.cells(), 100u) << what;
       ASSERT_GT(frame.hits.size(), 1000u) << what;
