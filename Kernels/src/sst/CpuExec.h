@@ -195,6 +195,13 @@ struct CpuExec
   /// A stable radix sort on the pixel, then each pixel's run by (depth, node) on all threads.
   void sortByPixelThenDepth(Tuple* tuples, size_t n, const Node* nodes, size_t pixelCount) const
   {
+    // Pairs one a pixel in pixel order (one initial node: an algebraic surface's frame) are
+    // sorted already; checking costs a read of them, sorting a radix sort.
+    if (this->sum(n, [=](size_t k) { return k > 0 && tuples[k - 1].pixel >= tuples[k].pixel; }) ==
+        0)
+    {
+      return;
+    }
     this->sortByPixel(tuples, n, pixelCount);
     Buffer<uint32_t> runs(n + 1);
     const size_t runCount = pixelRuns(*this, tuples, n, runs.data());
