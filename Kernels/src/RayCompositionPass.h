@@ -13,6 +13,7 @@
 #include "sst/LoopState.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <limits>
 #include <memory>
@@ -208,7 +209,6 @@ public:
   CellCoverage(const AffineForms& affine, const View& view, const Settings& settings, int threads)
     : Isovalues(settings.isovalues.size())
     , Width(size_t(settings.width))
-    , TileColumns((size_t(settings.width) + kTile - 1) / kTile)
     , ClipToWorld(glm::inverse(view.worldToClip))
     , Masks(affine->size() * settings.isovalues.size())
   {
@@ -252,7 +252,12 @@ public:
   bool mayHit(int patch, int iso, size_t pixel) const
   {
     const Mask& mask = this->Masks[size_t(patch) * this->Isovalues + size_t(iso)];
-    return mask.bits.empty() || (mask.bits[pixel / 64] >> (pixel % 64) & 1);
+    if (mask.whole)
+    {
+      return true;
+    }
+    size_t local;
+    return mask.local(pixel, this->Width, local) && (mask.bits[local / 64] >> (local % 64) & 1);
   }
 
   /// The part [t0, t1] of pixel rays (origin + t direction from the near plane, t = 0, to the
@@ -261,11 +266,12 @@ public:
   bool segment(int patch, int iso, size_t pixel, double& t0, double& t1) const
   {
     const Mask& mask = this->Masks[size_t(patch) * this->Isovalues + size_t(iso)];
-    if (mask.first.empty())
+    size_t local;
+    if (mask.first.empty() || !mask.local(pixel, this->Width, local))
     {
       return false;
     }
-    const size_t tile = this->tileOf(pixel % this->Width, pixel / this->Width);
+    const size_t tile = mask.tileOf(local % mask.width, local / mask.width);
     t0 = mask.first[tile];
     t1 = mask.last[tile];
     return true;
@@ -279,12 +285,28 @@ private:
   /// in writing them (and the pages) than the rays save.
   static constexpr size_t kTile = 4;
 
+  /// A patch's pixels over the pixel rectangle its cells' window boxes cover, [x0, x0 + width)
+  /// x [y0, y0 + height) (a pixel outside it meets none of its isosurface), or every pixel.
   struct Mask
   {
-    std::vector<uint64_t> bits; ///< one a pixel of the image; empty: every pixel
-    /// Per tile, the ray parameters the boxes of the cells covering any of its pixels span
-    /// (rounded outwards); empty where the view's rays do not share them.
+    bool whole = true; ///< every pixel (no cells)
+    size_t x0 = 0, y0 = 0, width = 0, height = 0;
+    std::vector<uint64_t> bits; ///< one a pixel of the rectangle, row by row
+    /// Per tile of the rectangle, the ray parameters the boxes of the cells covering any of its
+    /// pixels span (rounded outwards); empty where the view's rays do not share them.
     std::vector<float> first, last;
+
+    /// Pixel `pixel`'s index in the rectangle; false outside it.
+    bool local(size_t pixel, size_t imageWidth, size_t& index) const
+    {
+      const size_t i = pixel % imageWidth - this->x0, j = pixel / imageWidth - this->y0;
+      index = j * this->width + i;
+      return i < this->width && j < this->height; // unsigned: left of or below it wraps
+    }
+    size_t tileOf(size_t i, size_t j) const
+    {
+      return j / kTile * ((this->width + kTile - 1) / kTile) + i / kTile;
+    }
   };
 
   /// The parameter t along a pixel ray of the point at NDC depth z. Where the unprojection's w
@@ -301,8 +323,6 @@ private:
     const glm::dvec3 origin = at(-1), direction = at(1) - origin;
     return glm::dot(at(z) - origin, direction) / glm::dot(direction, direction);
   }
-
-  size_t tileOf(size_t i, size_t j) const { return j / kTile * this->TileColumns + i / kTile; }
 
   /// The window box of the parameter box [lo, lo + size]^3 of an affine patch (its corners'
   /// images: the patch is a parallelepiped); false where a corner is not in front of the eye.
@@ -413,49 +433,66 @@ private:
   }
 
   /// Sets `mask` to the pixels the cells of its 8 octants cover and their tiles' segments, or
-  /// leaves it empty (every pixel) where a cell is not in front of the eye.
+  /// leaves it whole (every pixel) where a cell is not in front of the eye.
   void cover(const AffinePatch& patch, const std::vector<ParameterCell>* octants,
     const glm::dmat4& window, const Settings& settings, Mask& mask) const
   {
-    const size_t pixels = size_t(settings.width) * settings.height;
-    const size_t tiles = this->TileColumns * ((size_t(settings.height) + kTile - 1) / kTile);
-    mask.bits.assign((pixels + 63) / 64, 0);
-    if (this->SharedDepths)
-    {
-      mask.first.assign(tiles, std::numeric_limits<float>::infinity());
-      mask.last.assign(tiles, -std::numeric_limits<float>::infinity());
-    }
+    // The cells' window boxes and pixel ranges, and the rectangle of those.
+    std::vector<std::pair<Box3<double>, std::array<int, 4>>> boxes;
+    int rectangle[4] = { settings.width, -1, settings.height, -1 };
     for (int k = 0; k < 8; ++k)
     {
       for (const ParameterCell& cell : octants[k])
       {
         Box3<double> box;
-        int range[4];
+        std::array<int, 4> range;
         if (!windowBox(patch, window, cell.lo, cell.size, box))
         {
-          mask = Mask();
           return;
         }
-        pixelRange(box, settings.width, 0, settings.height, range);
-        if (range[0] > range[1] || range[2] > range[3])
+        pixelRange(box, settings.width, 0, settings.height, range.data());
+        if (range[0] <= range[1] && range[2] <= range[3])
         {
-          continue;
+          boxes.emplace_back(box, range);
+          for (int d = 0; d < 4; d += 2)
+          {
+            rectangle[d] = std::min(rectangle[d], range[size_t(d)]);
+            rectangle[d + 1] = std::max(rectangle[d + 1], range[size_t(d) + 1]);
+          }
         }
-        for (int j = range[2]; j <= range[3]; ++j)
-        {
-          const size_t row = size_t(j) * size_t(settings.width);
-          setBits(mask.bits, row + size_t(range[0]), row + size_t(range[1]));
-        }
-        if (this->SharedDepths)
-        {
-          this->widenSegments(box, range, mask);
-        }
+      }
+    }
+    mask.whole = false;
+    mask.x0 = size_t(std::max(rectangle[0], 0));
+    mask.y0 = size_t(std::max(rectangle[2], 0));
+    mask.width = size_t(std::max(rectangle[1] - rectangle[0] + 1, 0));
+    mask.height = size_t(std::max(rectangle[3] - rectangle[2] + 1, 0));
+    mask.bits.assign((mask.width * mask.height + 63) / 64, 0);
+    if (this->SharedDepths)
+    {
+      const size_t tiles = mask.tileOf(0, mask.height + kTile - 1);
+      mask.first.assign(tiles, std::numeric_limits<float>::infinity());
+      mask.last.assign(tiles, -std::numeric_limits<float>::infinity());
+    }
+    for (auto& [box, range] : boxes)
+    {
+      // The range in the rectangle's pixels.
+      range[0] -= int(mask.x0), range[1] -= int(mask.x0);
+      range[2] -= int(mask.y0), range[3] -= int(mask.y0);
+      for (int j = range[2]; j <= range[3]; ++j)
+      {
+        const size_t row = size_t(j) * mask.width;
+        setBits(mask.bits, row + size_t(range[0]), row + size_t(range[1]));
+      }
+      if (this->SharedDepths)
+      {
+        this->widenSegments(box, range.data(), mask);
       }
     }
   }
 
-  /// Widens the segments of the tiles the pixel range of a cell's box touches to the box's
-  /// depths.
+  /// Widens the segments of the tiles the pixel range (in the rectangle) of a cell's box
+  /// touches to the box's depths.
   void widenSegments(const Box3<double>& box, const int* range, Mask& mask) const
   {
     const float first =
@@ -466,14 +503,14 @@ private:
     {
       for (size_t ti = size_t(range[0]) / kTile; ti <= size_t(range[1]) / kTile; ++ti)
       {
-        const size_t tile = tj * this->TileColumns + ti;
+        const size_t tile = mask.tileOf(ti * kTile, tj * kTile);
         mask.first[tile] = std::min(mask.first[tile], first);
         mask.last[tile] = std::max(mask.last[tile], last);
       }
     }
   }
 
-  const size_t Isovalues, Width, TileColumns;
+  const size_t Isovalues, Width;
   const glm::dmat4 ClipToWorld;
   bool SharedDepths;       ///< the view's pixel rays share their depths' parameters (rayParameter)
   std::vector<Mask> Masks; ///< patch * isovalues + iso
