@@ -94,8 +94,8 @@ struct Settings
   /// Ray composition only: the roots' finder.
   RootFinder rootFinder = RootFinder::PointInsertion;
   /// Ray composition only: compose only the rays through the window boxes of the cells that may
-  /// hold the isosurface (IsosurfaceCells.h). The hits are the same without; off, every ray
-  /// through a patch's box is composed (for comparisons).
+  /// hold the isosurface (IsosurfaceCells.h), over the part of them those boxes span. Off, every
+  /// ray through a patch's box is composed whole (for comparisons): the same hits, to rounding.
   bool isosurfaceCells = true;
   /// Ray composition only, frame coherency: the previous frame's G-buffer (the same size), whose
   /// first hits seed first-hit rays through the same pixels (findNearestRoot: a seed is taken
