@@ -32,9 +32,10 @@ using AffineForms = std::shared_ptr<const std::vector<AffinePatch>>;
 class CellCoverage
 {
 public:
-  /// A patch whose window box spans fewer pixels than this gets no cells; one that spans more
-  /// gets cells about this size (at most kCellLevels halvings).
-  static constexpr double kCellPixels = 8;
+  /// A patch whose window box spans fewer than twice this many pixels gets no cells; one that
+  /// spans more gets cells about this size, at most kCellLevels halvings (an ABS field's patches
+  /// of 8-16 pixels one halving, a gallery surface's box of 370 about 11-pixel cells).
+  static constexpr double kCellPixels = 4;
   static constexpr int kCellLevels = 5;
   /// Above this degree along a direction the octree costs more than the rays it saves.
   static constexpr int kCellDegree = 8;
