@@ -212,15 +212,17 @@ inline void dropAffineItems(
   s.ItemNodes.resize(kept);
 }
 
-/// Half the width, in the ray segment's parameter, of the bracket about a seed's root.
+/// Half the width, a fraction of the ray's segment through the patch, of the bracket about a
+/// seed's root.
 constexpr double kSeedHalfWidth = 0.01;
 
 /// A ray's roots on its segment [t0, t1] of origin + t direction: by the finder, or where a
 /// first hit is all it needs and the seed frame has a hit at the pixel, from that hit's place
-/// along the ray (findNearestRoot, which proves or drops it; `seeded` says which).
+/// along the ray (findNearestRoot, which proves or drops it; `seeded` says which), bracketed
+/// by `halfWidth` of the segment.
 inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Settings& settings,
   const RootSettings& rootSettings, const glm::dvec3& origin, const glm::dvec3& direction,
-  double t0, double t1, size_t pixel, bool& seeded)
+  double t0, double t1, size_t pixel, double halfWidth, bool& seeded)
 {
   seeded = false;
   const GBuffer* seed = settings.seedFrame;
@@ -230,10 +232,10 @@ inline BernsteinRoots rayRoots(const double* coefficients, int degree, const Set
     const glm::dvec3 hit = seed->hits[seed->offsets[pixel]].position;
     const double t = glm::dot(hit - origin, direction) / glm::dot(direction, direction);
     const double guess = (t - t0) / (t1 - t0);
-    if (guess > -kSeedHalfWidth && guess < 1 + kSeedHalfWidth) // else a hit on another patch
+    if (guess > -halfWidth && guess < 1 + halfWidth) // else a hit on another patch
     {
       return findNearestRoot(
-        coefficients, degree, guess, kSeedHalfWidth, settings.rootFinder, rootSettings, seeded);
+        coefficients, degree, guess, halfWidth, settings.rootFinder, rootSettings, seeded);
     }
   }
   return findBernsteinRoots(coefficients, degree, settings.rootFinder, rootSettings);
@@ -355,11 +357,17 @@ private:
   {
     const AffinePatch& patch = this->Affine[size_t(node.patch)];
     double t0, t1;
-    if (!rayInPatch(patch, ray.origin, ray.direction, 0, 1, t0, t1) ||
-        !this->clipToCells(p, node, t0, t1))
+    if (!rayInPatch(patch, ray.origin, ray.direction, 0, 1, t0, t1))
     {
       return;
     }
+    // A seed's bracket keeps its width along the ray where the cells shorten the segment.
+    const double throughPatch = t1 - t0;
+    if (!this->clipToCells(p, node, t0, t1))
+    {
+      return;
+    }
+    const double seedHalfWidth = std::min(0.5, kSeedHalfWidth * throughPatch / (t1 - t0));
     const glm::dvec3 u0 = patch.inverse * (ray.origin + t0 * ray.direction - patch.origin);
     const glm::dvec3 du = patch.inverse * ((t1 - t0) * ray.direction);
     const double isovalue = this->Config.isovalues[size_t(node.iso)];
@@ -381,7 +389,7 @@ private:
     }
     bool seeded;
     const BernsteinRoots roots = rayRoots(coefficients, patch.rayDegree, this->Config, this->Roots,
-      ray.origin, ray.direction, t0, t1, p, seeded);
+      ray.origin, ray.direction, t0, t1, p, seedHalfWidth, seeded);
     ++counts.rays;
     counts.seeded += seeded ? 1 : 0;
     counts.steps += size_t(roots.cost.insertions + roots.cost.evaluations);
