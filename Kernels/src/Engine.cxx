@@ -543,13 +543,13 @@ private:
   // ---- ray composition ---------------------------------------------------------------------
 
   /// Ray composition's setup, part of the frame's (msSetup): the patches' affine forms (by
-  /// `affineForms`: where possible, or throwing for a patch without), their frustum forms, the
+  /// `analyze`: where possible, or throwing for a patch without), their frustum forms, the
   /// pixels their isosurface cells cover, and their power forms for shading.
-  template<class AffineForms>
-  void prepareComposition(AffineForms affineForms)
+  template<class Analyze>
+  void prepareComposition(Analyze analyze)
   {
     const Clock::time_point start = Clock::now();
-    this->Affine = affineForms(this->Patches, this->Config, this->Plan.threads, this->Report);
+    this->Affine = analyze(this->Patches, this->Config, this->Plan.threads, this->Report);
     this->Forms = std::make_unique<FrustumForms>(
       *this->Affine, this->TheView, this->Config, this->Plan.threads);
     this->Coverage =

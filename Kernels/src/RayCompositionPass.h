@@ -24,18 +24,17 @@ namespace sst
 {
 
 /// What names a scene's affine analysis between frames: Settings::dataVersion (the same
-/// non-zero version, the same patches, as for the CUDA driver's copy of them), the surface
-/// attribute and the isovalues, and as a check the patches' shapes and first and last values.
+/// non-zero version, the same patches, as for the CUDA driver's copy of them) and the surface
+/// attribute, and as a check the patches' shapes and first and last values.
 struct AffineKey
 {
   uint64_t version = 0;
   int attribute = 0;
-  std::vector<double> isovalues, fingerprint;
+  std::vector<double> fingerprint;
 
   AffineKey(const Scene& scene, const Settings& settings)
     : version(settings.dataVersion)
     , attribute(settings.surfaceAttribute)
-    , isovalues(settings.isovalues)
   {
     fingerprint.reserve(4 * scene.size() + 1);
     fingerprint.push_back(double(scene.volumeCount()));
@@ -51,7 +50,7 @@ struct AffineKey
   bool operator==(const AffineKey& other) const
   {
     return version == other.version && attribute == other.attribute &&
-           isovalues == other.isovalues && fingerprint == other.fingerprint;
+           fingerprint == other.fingerprint;
   }
 };
 

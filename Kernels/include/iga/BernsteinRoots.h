@@ -171,12 +171,9 @@ IGA_HD inline bool noEvenRoots(const roots::Piece& piece, const roots::RootList&
   }
   const double last = odd.t[odd.count - 1];
   const double a = maxValue(last - 1e-3, 0.0), b = minValue(last + 1e-3, 1.0);
-  // clipPiece(slope, a, b) with the parts written over each other, not copied
-  roots::Piece slope = roots::derivativeOf(piece), left, right;
+  roots::Piece slope = roots::derivativeOf(piece);
   roots::normalise(slope);
-  roots::splitPiece(slope, b, left, right);
-  roots::splitPiece(left, b > 0 ? a / b : 0, right, left);
-  return roots::keepsOneSign(left, context.zero);
+  return roots::keepsOneSign(roots::clipPiece(slope, a, b), context.zero);
 }
 
 /// The roots inside (0, 1) of `piece` (end coefficients nonzero), sorted, the first

@@ -24,7 +24,8 @@ namespace detail
 {
 /// Halves a (n0+1)(n1+1)(n2+1) Bernstein tensor (index i + (n0 + 1)(j + (n1 + 1) k)) along
 /// `axis` at 1/2 into `left` and `right`: de Casteljau on whole rows of the lines along `axis`
-/// (the indices below it run contiguously), in place in `right`.
+/// (the indices below it run contiguously), in place in `right`. splitMidpoint (BezierPatch.h),
+/// a line at a time, takes three times as long on a one-channel tensor (measured).
 inline void halveTensor(const double* c, const int* n, int axis, double* left, double* right)
 {
   const size_t size[3] = { size_t(n[0] + 1), size_t(n[1] + 1), size_t(n[2] + 1) };

@@ -24,6 +24,8 @@ struct PowerTerm
 {
   double coefficient;
   int8_t power[3];
+
+  IGA_HD int degree() const { return power[0] + power[1] + power[2]; }
 };
 
 /// The indices (i, j, k) of entry p of a (n0+1)(n1+1)(n2+1) tensor, p = i + (n0 + 1)(j + (n1 + 1)
@@ -44,8 +46,7 @@ inline double blossomRayCost(const std::vector<PowerTerm>& terms, int rayDegree)
   double products = 0;
   for (const PowerTerm& term : terms)
   {
-    const int q = term.power[0] + term.power[1] + term.power[2];
-    products += q * (q + 1);
+    products += term.degree() * (term.degree() + 1);
   }
   return 0.8 * products + 0.5 * (rayDegree + 1) * (rayDegree + 1) + 20;
 }
@@ -161,8 +162,7 @@ inline bool sparsePowerForm(const std::vector<double>& field, const int* n,
   }
   // By total degree, as blossomAlongRay sums them.
   std::stable_sort(terms.begin(), terms.end(),
-    [](const PowerTerm& a, const PowerTerm& b)
-    { return a.power[0] + a.power[1] + a.power[2] < b.power[0] + b.power[1] + b.power[2]; });
+    [](const PowerTerm& a, const PowerTerm& b) { return a.degree() < b.degree(); });
   // The certificate: the kept terms back in Bernstein form against the field.
   double toBernstein[3][kMaxOrder][kMaxOrder];
   for (int d = 0; d < 3; ++d)

@@ -196,9 +196,10 @@ struct CpuExec
   void sortByPixelThenDepth(Tuple* tuples, size_t n, const Node* nodes, size_t pixelCount) const
   {
     // Pairs one a pixel in pixel order (one initial node: an algebraic surface's frame) are
-    // sorted already; checking costs a read of them, sorting a radix sort.
-    if (this->sum(n, [=](size_t k) { return k > 0 && tuples[k - 1].pixel >= tuples[k].pixel; }) ==
-        0)
+    // sorted already. The check stops at the first pair out of that order, where most frames'
+    // second node begins.
+    if (std::adjacent_find(tuples, tuples + n,
+          [](const Tuple& a, const Tuple& b) { return a.pixel >= b.pixel; }) == tuples + n)
     {
       return;
     }
