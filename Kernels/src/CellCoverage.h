@@ -34,8 +34,9 @@ class CellCoverage
 public:
   /// A patch whose window box spans fewer than twice this many pixels gets no cells; one that
   /// spans more gets cells about this size, at most kCellLevels halvings (an ABS field's patches
-  /// of 8-16 pixels one halving, a gallery surface's box of 370 about 11-pixel cells).
-  static constexpr double kCellPixels = 4;
+  /// of 8-16 pixels two or three halvings, a gallery surface's box of 370 about 11-pixel cells).
+  /// Finer cells cost more in covering than the rays they save.
+  static constexpr double kCellPixels = 2;
   static constexpr int kCellLevels = 5;
   /// Above this degree along a direction the octree costs more than the rays it saves.
   static constexpr int kCellDegree = 8;
@@ -111,6 +112,49 @@ public:
     return true;
   }
 
+  /// Narrows the boxes of initial nodes whose patch and isovalue have cells to the cells'
+  /// window boxes (an empty box where none covers a pixel): the sweep then pairs a node with the
+  /// pixels its cells cover only, and orders a pixel's items by their cells' nearest depth.
+  void narrowNodes(Node* nodes, size_t count) const
+  {
+    for (size_t n = 0; n < count; ++n)
+    {
+      Box3<double>& box = nodes[n].info.box;
+      const size_t m = size_t(nodes[n].patch) * this->Isovalues + size_t(nodes[n].iso);
+      if (nodes[n].iso < 0 || m >= this->Masks.size() || this->Masks[m].whole)
+      {
+        continue;
+      }
+      const Box3<double>& cells = this->Masks[m].bounds;
+      for (int d = 0; d < 3; ++d)
+      {
+        box.lo[d] = std::max(box.lo[d], cells.lo[d]);
+        box.hi[d] = std::min(box.hi[d], cells.hi[d]);
+      }
+      if (!(box.lo[0] <= box.hi[0] && box.lo[1] <= box.hi[1] && box.lo[2] <= box.hi[2]))
+      {
+        box = Box3<double>{ { 1, 1, 1 }, { 0, 0, 0 } }; // covers no pixel centre
+      }
+    }
+  }
+
+  /// The pixels whose rays may meet the patch's isosurfaces, summed over its isovalues (an
+  /// upper bound of the rays composed through it); infinite where a mask is whole.
+  double pixels(size_t patch) const
+  {
+    double sum = 0;
+    for (size_t iso = 0; iso < this->Isovalues; ++iso)
+    {
+      const Mask& mask = this->Masks[patch * this->Isovalues + iso];
+      if (mask.whole)
+      {
+        return std::numeric_limits<double>::infinity();
+      }
+      sum += double(mask.count);
+    }
+    return sum;
+  }
+
   /// Cells kept over all patches and isovalues.
   size_t cells() const { return this->Cells; }
 
@@ -126,6 +170,9 @@ private:
     bool whole = true; ///< every pixel (no cells)
     size_t x0 = 0, y0 = 0, width = 0, height = 0;
     std::vector<uint64_t> bits; ///< one a pixel of the rectangle, row by row
+    size_t count = 0;           ///< of bits set
+    /// The window boxes of the cells covering pixels, together (empty: lo above hi).
+    Box3<double> bounds = { { 1, 1, 1 }, { 0, 0, 0 } };
     /// Per tile of the rectangle, the ray parameters the boxes of the cells covering any of its
     /// pixels span (rounded outwards); empty where the view's rays do not share them.
     std::vector<float> first, last;
@@ -158,11 +205,29 @@ private:
     return glm::dot(at(z) - origin, direction) / glm::dot(direction, direction);
   }
 
-  /// The window box of the parameter box [lo, lo + size]^3 of an affine patch (its corners'
-  /// images: the patch is a parallelepiped); false where a corner is not in front of the eye.
-  static bool windowBox(const AffinePatch& patch, const glm::dmat4& window, const glm::dvec3& lo,
-    double size, Box3<double>& box)
+  /// An affine patch's point at parameter u in homogeneous window coordinates: origin + u_0
+  /// axis[0] + u_1 axis[1] + u_2 axis[2] (the patch is a parallelepiped).
+  struct WindowMap
   {
+    glm::dvec4 origin, axis[3];
+
+    WindowMap(const AffinePatch& patch, const glm::dmat4& window)
+      : origin(window * glm::dvec4(patch.origin, 1.0))
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        this->axis[d] = window * glm::dvec4(patch.axes[d], 0.0);
+      }
+    }
+  };
+
+  /// The window box of the parameter box [lo, lo + size]^3 of an affine patch (its corners'
+  /// images); false where a corner is not in front of the eye.
+  static bool windowBox(const WindowMap& map, const glm::dvec3& lo, double size, Box3<double>& box)
+  {
+    const glm::dvec4 first =
+      map.origin + lo.x * map.axis[0] + lo.y * map.axis[1] + lo.z * map.axis[2];
+    const glm::dvec4 edge[3] = { size * map.axis[0], size * map.axis[1], size * map.axis[2] };
     for (int d = 0; d < 3; ++d)
     {
       box.lo[d] = std::numeric_limits<double>::infinity();
@@ -170,17 +235,20 @@ private:
     }
     for (int c = 0; c < 8; ++c)
     {
-      const glm::dvec3 u =
-        lo + size * glm::dvec3(double(c & 1), double(c >> 1 & 1), double(c >> 2));
-      const glm::dvec4 x = window * glm::dvec4(patch.origin + patch.axes * u, 1.0);
+      glm::dvec4 x = first;
+      for (int d = 0; d < 3; ++d)
+      {
+        x += (c >> d & 1) ? edge[d] : glm::dvec4(0.0);
+      }
       if (!(x.w > 0))
       {
         return false;
       }
+      const double inverse = 1 / x.w;
       for (int d = 0; d < 3; ++d)
       {
-        box.lo[d] = std::min(box.lo[d], x[d] / x.w);
-        box.hi[d] = std::max(box.hi[d], x[d] / x.w);
+        box.lo[d] = std::min(box.lo[d], x[d] * inverse);
+        box.hi[d] = std::max(box.hi[d], x[d] * inverse);
       }
     }
     return true;
@@ -258,7 +326,7 @@ private:
   {
     Box3<double> box;
     if (patch.rayDegree < 0 || *std::max_element(patch.degree, patch.degree + 3) > kCellDegree ||
-        !windowBox(patch, window, glm::dvec3(0.0), 1.0, box))
+        !windowBox(WindowMap(patch, window), glm::dvec3(0.0), 1.0, box))
     {
       return 0;
     }
@@ -274,19 +342,25 @@ private:
     // The cells' window boxes and pixel ranges, and the rectangle of those.
     std::vector<std::pair<Box3<double>, std::array<int, 4>>> boxes;
     int rectangle[4] = { settings.width, -1, settings.height, -1 };
+    const WindowMap map(patch, window);
     for (int k = 0; k < 8; ++k)
     {
       for (const ParameterCell& cell : octants[k])
       {
         Box3<double> box;
         std::array<int, 4> range;
-        if (!windowBox(patch, window, cell.lo, cell.size, box))
+        if (!windowBox(map, cell.lo, cell.size, box))
         {
           return;
         }
         pixelRange(box, settings.width, 0, settings.height, range.data());
         if (range[0] <= range[1] && range[2] <= range[3])
         {
+          for (int d = 0; d < 3; ++d)
+          {
+            mask.bounds.lo[d] = boxes.empty() ? box.lo[d] : std::min(mask.bounds.lo[d], box.lo[d]);
+            mask.bounds.hi[d] = boxes.empty() ? box.hi[d] : std::max(mask.bounds.hi[d], box.hi[d]);
+          }
           boxes.emplace_back(box, range);
           for (int d = 0; d < 4; d += 2)
           {
@@ -322,6 +396,10 @@ private:
       {
         this->widenSegments(box, range.data(), mask);
       }
+    }
+    for (uint64_t word : mask.bits)
+    {
+      mask.count += size_t(__builtin_popcountll(word));
     }
   }
 

@@ -550,11 +550,12 @@ private:
   {
     const Clock::time_point start = Clock::now();
     this->Affine = analyze(this->Patches, this->Config, this->Plan.threads, this->Report);
-    this->Forms = std::make_unique<FrustumForms>(
-      *this->Affine, this->TheView, this->Config, this->Plan.threads);
     this->Coverage =
       std::make_unique<CellCoverage>(this->Affine, this->TheView, this->Config, this->Plan.threads);
+    this->Forms = std::make_unique<FrustumForms>(
+      *this->Affine, this->TheView, this->Config, this->Plan.threads, *this->Coverage);
     this->Report.isosurfaceCells = this->Coverage->cells();
+    this->Coverage->narrowNodes(this->Plan.initialNodes.data(), this->Plan.initialNodes.size());
     this->PowerShadings.assign(this->Affine->size(), PowerShading());
     this->PowerPool.clear();
     for (size_t p = 0; p < this->Affine->size(); ++p)

@@ -135,9 +135,10 @@ inline AffineForms affinePatches(
 class FrustumForms
 {
 public:
-  FrustumForms(
-    const std::vector<AffinePatch>& affine, const View& view, const Settings& settings, int threads)
+  FrustumForms(const std::vector<AffinePatch>& affine, const View& view, const Settings& settings,
+    int threads, const CellCoverage& coverage)
     : Affine(affine)
+    , Coverage(coverage)
     , WorldToClip(view.worldToClip)
     , ClipToWorld(glm::inverse(view.worldToClip))
     , Drawn(settings.width, settings.height, settings.farDepths)
@@ -171,15 +172,16 @@ private:
     std::call_once(this->Once[p],
       [&]
       {
-        const bool made =
-          makeFrustumForm(this->Affine[p], this->WorldToClip, this->ClipToWorld, this->Drawn,
-            this->Forms[p], [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); });
+        const bool made = makeFrustumForm(this->Affine[p], this->WorldToClip, this->ClipToWorld,
+          this->Drawn, this->Coverage.pixels(p), this->Forms[p],
+          [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); });
         this->Made += made ? 1 : 0;
         this->Blossoms += !made && !this->Affine[p].terms.empty() ? 1 : 0;
       });
   }
 
   const std::vector<AffinePatch>& Affine;
+  const CellCoverage& Coverage;
   const glm::dmat4 WorldToClip, ClipToWorld;
   const DrawnPixels Drawn;
   std::vector<FrustumForm> Forms;

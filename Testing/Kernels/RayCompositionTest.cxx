@@ -187,7 +187,7 @@ TEST(RayComposition, FrustumFormComposesTheRaysComposeRayDoes)
       iga::FrustumForm form;
       const auto serial = [](size_t n, const auto& fn) { fn(size_t(0), n); };
       const bool made = iga::makeFrustumForm(
-        patch, view.worldToClip, clipToWorld, iga::DrawnPixels(256, 256), form, serial);
+        patch, view.worldToClip, clipToWorld, iga::DrawnPixels(256, 256), INFINITY, form, serial);
       ASSERT_EQ(made, g != count - 1) << gallery[g].name;
       if (!made)
         continue;

@@ -254,13 +254,14 @@ inline bool frustumFormPays(const AffinePatch& patch, double rays)
 
 /// The patch's frustum form for the view (worldToClip, its inverse clipToWorld) of an image
 /// whose `drawn` pixels are drawn; false, and no form, where it does not pay for the drawn
-/// pixels of the patch's screen box (frustumFormPays), the view's unprojection is not affine in (a,
-/// b) at fixed depth, a corner lies behind the eye, the patch covers no part of the screen and of t
-/// in [0, 1], or the field grows in the frustum's box past 1000 times its largest coefficient.
-/// `forEach(count, fn)` runs fn(begin, end) over [0, count) (on threads).
+/// pixels of the patch's screen box, at most `maxRays` (frustumFormPays), the view's unprojection
+/// is not affine in (a, b) at fixed depth, a corner lies behind the eye, the patch covers no part
+/// of the screen and of t in [0, 1], or the field grows in the frustum's box past 1000 times its
+/// largest coefficient. `forEach(count, fn)` runs fn(begin, end) over [0, count) (on threads).
 template<class ForEach>
 bool makeFrustumForm(const AffinePatch& patch, const glm::dmat4& worldToClip,
-  const glm::dmat4& clipToWorld, const DrawnPixels& drawn, FrustumForm& form, ForEach forEach)
+  const glm::dmat4& clipToWorld, const DrawnPixels& drawn, double maxRays, FrustumForm& form,
+  ForEach forEach)
 {
   form = FrustumForm();
   const int d = patch.rayDegree, n = d + 1;
@@ -296,7 +297,7 @@ bool makeFrustumForm(const AffinePatch& patch, const glm::dmat4& worldToClip,
   lo[1] = std::max(lo[1], -1.0), hi[1] = std::min(hi[1], 1.0);
   lo[2] = std::max(lo[2], 0.0), hi[2] = std::min(hi[2], 1.0);
   if (!(lo[0] < hi[0] && lo[1] < hi[1] && lo[2] < hi[2]) ||
-      !frustumFormPays(patch, drawn.in(lo, hi)))
+      !frustumFormPays(patch, std::min(maxRays, drawn.in(lo, hi))))
   {
     return false;
   }
