@@ -45,6 +45,7 @@ public:
     : Isovalues(settings.isovalues.size())
     , Width(size_t(settings.width))
     , ClipToWorld(glm::inverse(view.worldToClip))
+    , Middle(ClipToWorld)
     , Masks(affine->size() * settings.isovalues.size())
   {
     const double wScale = std::fabs(this->ClipToWorld[3][3]) + std::fabs(this->ClipToWorld[2][3]);
@@ -194,16 +195,29 @@ private:
   /// does not depend on the pixel (VTK's perspective and parallel views), a point's depth fixes
   /// its eye depth, which runs from the near plane's to the far plane's linearly in t: one
   /// parameter for every pixel, read off the middle ray.
-  double rayParameter(double z) const
+  struct MiddleRay
   {
-    const auto at = [&](double depth)
+    glm::dvec4 depthColumn, pointColumn; ///< the unprojection's columns for z and 1
+    glm::dvec3 origin, scaledDirection;  ///< its near point, and its direction / |direction|²
+
+    explicit MiddleRay(const glm::dmat4& clipToWorld)
+      : depthColumn(clipToWorld[2])
+      , pointColumn(clipToWorld[3])
+      , origin(at(-1))
     {
-      const glm::dvec4 x = this->ClipToWorld * glm::dvec4(0, 0, depth, 1);
+      const glm::dvec3 direction = at(1) - this->origin;
+      this->scaledDirection = direction / glm::dot(direction, direction);
+    }
+    glm::dvec3 at(double z) const
+    {
+      const glm::dvec4 x = z * this->depthColumn + this->pointColumn;
       return glm::dvec3(x) / x.w;
-    };
-    const glm::dvec3 origin = at(-1), direction = at(1) - origin;
-    return glm::dot(at(z) - origin, direction) / glm::dot(direction, direction);
-  }
+    }
+    double parameter(double z) const
+    {
+      return glm::dot(this->at(z) - this->origin, this->scaledDirection);
+    }
+  };
 
   /// An affine patch's point at parameter u in homogeneous window coordinates: origin + u_0
   /// axis[0] + u_1 axis[1] + u_2 axis[2] (the patch is a parallelepiped).
@@ -341,6 +355,12 @@ private:
   {
     // The cells' window boxes and pixel ranges, and the rectangle of those.
     std::vector<std::pair<Box3<double>, std::array<int, 4>>> boxes;
+    size_t cells = 0;
+    for (int k = 0; k < 8; ++k)
+    {
+      cells += octants[k].size();
+    }
+    boxes.reserve(cells);
     int rectangle[4] = { settings.width, -1, settings.height, -1 };
     const WindowMap map(patch, window);
     for (int k = 0; k < 8; ++k)
@@ -408,9 +428,9 @@ private:
   void widenSegments(const Box3<double>& box, const int* range, Mask& mask) const
   {
     const float first =
-      std::nextafter(float(this->rayParameter(std::max(box.lo[2], -1.0))), -INFINITY);
+      std::nextafter(float(this->Middle.parameter(std::max(box.lo[2], -1.0))), -INFINITY);
     const float last =
-      std::nextafter(float(this->rayParameter(std::min(box.hi[2], 1.0))), INFINITY);
+      std::nextafter(float(this->Middle.parameter(std::min(box.hi[2], 1.0))), INFINITY);
     for (size_t tj = size_t(range[2]) / kTile; tj <= size_t(range[3]) / kTile; ++tj)
     {
       for (size_t ti = size_t(range[0]) / kTile; ti <= size_t(range[1]) / kTile; ++ti)
@@ -424,7 +444,8 @@ private:
 
   const size_t Isovalues, Width;
   const glm::dmat4 ClipToWorld;
-  bool SharedDepths;       ///< the view's pixel rays share their depths' parameters (rayParameter)
+  const MiddleRay Middle;
+  bool SharedDepths;       ///< the view's pixel rays share their depths' parameters (MiddleRay)
   std::vector<Mask> Masks; ///< patch * isovalues + iso
   size_t Cells = 0;
 };

@@ -556,23 +556,10 @@ private:
       *this->Affine, this->TheView, this->Config, this->Plan.threads, *this->Coverage);
     this->Report.isosurfaceCells = this->Coverage->cells();
     this->Coverage->narrowNodes(this->Plan.initialNodes.data(), this->Plan.initialNodes.size());
-    this->PowerShadings.assign(this->Affine->size(), PowerShading());
-    this->PowerPool.clear();
-    for (size_t p = 0; p < this->Affine->size(); ++p)
-    {
-      const AffinePatch& patch = (*this->Affine)[p];
-      if (patch.rayDegree >= 0 && !patch.terms.empty())
-      {
-        PowerShading& power = this->PowerShadings[p];
-        power.origin = patch.origin;
-        power.axes = patch.axes;
-        power.first = uint32_t(this->PowerPool.size());
-        power.count = uint32_t(patch.terms.size());
-        this->PowerPool.insert(this->PowerPool.end(), patch.terms.begin(), patch.terms.end());
-      }
-    }
-    this->Loop.powerShading = this->PowerPool.empty() ? nullptr : this->PowerShadings.data();
-    this->Loop.powerTerms = this->PowerPool.data();
+    this->Shading = powerShadingOf(this->Affine);
+    this->Loop.powerShading =
+      this->Shading->terms.empty() ? nullptr : this->Shading->patches.data();
+    this->Loop.powerTerms = this->Shading->terms.data();
     this->Report.msSetup += millisecondsSince(start);
   }
 
@@ -643,11 +630,10 @@ private:
   FrameReport& Report;
   FramePlan Plan;
   std::vector<PatchShape> Shapes;
-  AffineForms Affine;                      // ray composition: each patch's affine form
-  std::unique_ptr<FrustumForms> Forms;     // and its frustum form where one pays
-  std::unique_ptr<CellCoverage> Coverage;  // and the pixels its isosurface's cells cover
-  std::vector<PowerShading> PowerShadings; // and its power form for shading, from PowerPool
-  std::vector<PowerTerm> PowerPool;
+  AffineForms Affine;                               // ray composition: each patch's affine form
+  std::unique_ptr<FrustumForms> Forms;              // and its frustum form where one pays
+  std::unique_ptr<CellCoverage> Coverage;           // and the pixels its isosurface's cells cover
+  std::shared_ptr<const PowerShadingTable> Shading; // and its power form for shading
   LoopState<CpuExec> Loop;
   std::vector<Node> Leaves; ///< brute force
   std::vector<double> LeafPool;

@@ -105,6 +105,49 @@ inline AffineForms affineWherePossible(
   return forms;
 }
 
+/// The affine patches' power forms for shading (PowerShading, count 0 for a patch without one)
+/// and their terms in one pool.
+struct PowerShadingTable
+{
+  std::vector<PowerShading> patches;
+  std::vector<PowerTerm> terms;
+};
+
+/// The power shading table of an affine analysis, kept with it for the next frame that has the
+/// same (thousands of ABS patches' terms are megabytes to copy).
+inline std::shared_ptr<const PowerShadingTable> powerShadingOf(const AffineForms& affine)
+{
+  static std::mutex keptMutex;
+  static AffineForms keptForms;
+  static std::shared_ptr<const PowerShadingTable> kept;
+  {
+    std::lock_guard<std::mutex> lock(keptMutex);
+    if (keptForms == affine)
+    {
+      return kept;
+    }
+  }
+  auto table = std::make_shared<PowerShadingTable>();
+  table->patches.assign(affine->size(), PowerShading());
+  for (size_t p = 0; p < affine->size(); ++p)
+  {
+    const AffinePatch& patch = (*affine)[p];
+    if (patch.rayDegree >= 0 && !patch.terms.empty())
+    {
+      PowerShading& power = table->patches[p];
+      power.origin = patch.origin;
+      power.axes = patch.axes;
+      power.first = uint32_t(table->terms.size());
+      power.count = uint32_t(patch.terms.size());
+      table->terms.insert(table->terms.end(), patch.terms.begin(), patch.terms.end());
+    }
+  }
+  std::lock_guard<std::mutex> lock(keptMutex);
+  keptForms = affine;
+  kept = table;
+  return kept;
+}
+
 /// Every volume's affine form (on `threads` threads); throws std::invalid_argument naming a patch
 /// that has none (or a surface, which ray composition does not draw).
 inline AffineForms affinePatches(
