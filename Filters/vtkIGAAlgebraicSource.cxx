@@ -1,6 +1,7 @@
 #include "vtkIGAAlgebraicSource.h"
 
 #include "vtkErrorCode.h"
+#include "vtkIGAAttributeRanges.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -133,7 +134,8 @@ int vtkIGAAlgebraicSource::RequestData(
     vtkErrorMacro(<< e.what());
     this->SetErrorCode(vtkErrorCode::UserError);
   }
-  vtkUnstructuredGrid::GetData(outInfo)->ShallowCopy(
-    vtkIGABezierHexahedra::ToUnstructuredGrid(set));
+  const auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(set);
+  vtkIGAAttributeRanges::Attach(grid);
+  vtkUnstructuredGrid::GetData(outInfo)->ShallowCopy(grid);
   return 1;
 }

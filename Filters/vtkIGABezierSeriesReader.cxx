@@ -2,6 +2,7 @@
 
 #include "IGAFileHead.h"
 #include "IGAXMLDocument.h"
+#include "vtkIGAAttributeRanges.h"
 #include "vtkIGABezierFileReading.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -202,6 +203,7 @@ int vtkIGABezierSeriesReader::RequestData(
                   << "': " << error);
     return 0;
   }
+  vtkIGAAttributeRanges::Attach(grid);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
   output->ShallowCopy(grid);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), this->Times[step]);

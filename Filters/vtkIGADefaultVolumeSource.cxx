@@ -1,5 +1,6 @@
 #include "vtkIGADefaultVolumeSource.h"
 
+#include "vtkIGAAttributeRanges.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -63,6 +64,7 @@ int vtkIGADefaultVolumeSource::RequestData(
     set.patches = std::move(mine);
   }
   auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(set);
+  vtkIGAAttributeRanges::Attach(grid);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
   output->ShallowCopy(grid);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);

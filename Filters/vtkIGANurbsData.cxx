@@ -5,6 +5,7 @@
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIGAAttributeRanges.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkInformation.h"
 #include "vtkIntArray.h"
@@ -523,6 +524,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
   grid->GetCellData()->AddArray(origins.patchIds);
   grid->GetCellData()->AddArray(origins.spans);
   describe(grid, s.Set, nets, s.Times.empty() ? 0.0 : s.Times[step]);
+  vtkIGAAttributeRanges::Attach(grid);
   this->CachedGrid = grid;
   this->CachedContents = contents;
   this->CachedStep = step;

@@ -2,8 +2,9 @@
 surface or of an expression over a box, the "IGA Isosurface" representation draws its f = 0 by
 ray composition (the mapper says which path its patches took), the same pixels as the shared
 subdivision tree and every root finder, a bad expression is one error naming its position (and
-a good one draws again), colouring by curvature_mean colours the sphere by its 1/r, and the
-representation's Antialiasing blends the silhouette's pixels with the background in quarters.
+a good one draws again), ParaView takes the field's range (not the control values'), colouring
+by curvature_mean colours the sphere by its 1/r, and the representation's Antialiasing blends the
+silhouette's pixels with the background in quarters.
 
 Usage: pvpython test_algebraic_source.py PLUGIN WORK_DIR"""
 import os
@@ -49,6 +50,25 @@ abs_grid = servermanager.Fetch(source)
 assert 100 < abs_grid.GetNumberOfCells() < 12 ** 3, abs_grid.GetNumberOfCells()
 assert abs_grid.GetNumberOfPoints() == 64 * abs_grid.GetNumberOfCells()
 source.SplineCells = 0
+
+# Ranges are the field's, not its control values': the sphere's f = r^2 - 1 over [-1.2, 1.2]^3
+# takes -1 .. 3.32 (its control values reach -5.32). ParaView's data information, a colour map
+# rescaled to the data and the IGA Isosurface's default isovalue (the middle) all take it.
+source.GallerySurface = "sphere"
+simple.UpdatePipeline(proxy=source)
+f_range = source.PointData["f"].GetRange()
+assert abs(f_range[0] + 1) < 1e-4 and abs(f_range[1] - 3.32) < 1e-4, f_range
+range_view = simple.CreateRenderView()
+range_display = simple.Show(source, range_view)
+simple.ColorBy(range_display, ("POINTS", "f"))
+range_display.RescaleTransferFunctionToDataRange(False, True)
+lut_points = simple.GetColorTransferFunction("f").RGBPoints
+assert abs(lut_points[0] + 1) < 1e-4 and abs(lut_points[-4] - 3.32) < 1e-4, lut_points
+range_display.SetRepresentationType("IGA Isosurface")
+assert abs(range_display.IGAIsovalues[0] - 1.16) < 1e-4, range_display.IGAIsovalues
+simple.Delete(range_display)
+simple.Delete(range_view)
+source.GallerySurface = "kummer"
 
 view = iga_scene.make_view()
 display = iga_scene.show_surface(source, view, "f", 0.0)

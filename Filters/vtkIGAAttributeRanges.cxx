@@ -1,0 +1,72 @@
+#include "vtkIGAAttributeRanges.h"
+
+#include "vtkDataArray.h"
+#include "vtkIGABezierHexahedra.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationInformationVectorKey.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "iga/AttributeRange.h"
+#include "iga/sst/Engine.h"
+
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkIGAAttributeRanges);
+
+namespace
+{
+/// Stores `range` as the array's cached range of component 0 and of its norm, plain and finite.
+void cacheRange(vtkDataArray* array, const double range[2])
+{
+  vtkInformation* info = array->GetInformation();
+  for (vtkInformationInformationVectorKey* key :
+    { vtkAbstractArray::PER_COMPONENT(), vtkAbstractArray::PER_FINITE_COMPONENT() })
+  {
+    vtkNew<vtkInformationVector> components;
+    components->SetNumberOfInformationObjects(1);
+    components->GetInformationObject(0)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
+    info->Set(key, components);
+  }
+  info->Set(vtkDataArray::L2_NORM_RANGE(), range, 2);
+  info->Set(vtkDataArray::L2_NORM_FINITE_RANGE(), range, 2);
+}
+}
+
+int vtkIGAAttributeRanges::Attach(vtkUnstructuredGrid* grid)
+{
+  vtkIGABezierHexahedra::Patches patches;
+  std::string error;
+  std::vector<std::string> warnings;
+  if (!grid || grid->GetNumberOfCells() == 0 ||
+      !vtkIGABezierHexahedra::FromUnstructuredGrid(grid, patches, error, warnings))
+  {
+    return 0;
+  }
+  const iga::sst::Scene scene(patches.volumes.patches, patches.surfaces);
+  const auto& names = patches.volumes.attributeNames;
+  int attached = 0;
+  for (size_t k = 0; k < names.size(); ++k)
+  {
+    vtkDataArray* array = grid->GetPointData()->GetArray(names[k].c_str());
+    if (!array || array->GetNumberOfComponents() != 1)
+    {
+      continue;
+    }
+    const auto extremes = iga::attributeExtremes<double, 3>(
+      long(scene.size()), [&](long p) { return scene[size_t(p)]; },
+      iga::kFirstAttributeChannel + int(k));
+    if (!extremes.empty())
+    {
+      const double range[2] = { extremes.min.value, extremes.max.value };
+      cacheRange(array, range);
+      ++attached;
+    }
+  }
+  return attached;
+}
