@@ -3,6 +3,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkDataArrayCollection.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIGAAttributeRanges.h"
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -313,6 +315,213 @@ const std::vector<double>& vtkIGANurbsData::GetControlNet(int step, int patch) c
     return empty;
   }
   return *s.Nets[step][patch];
+}
+
+double vtkIGANurbsData::GetTimeStep(int step) const
+{
+  const auto& times = this->Contents->Times;
+  return step >= 0 && step < static_cast<int>(times.size()) ? times[size_t(step)] : 0.0;
+}
+
+namespace
+{
+/// Calls fn(patch) with patch `index` of the set (a BSplinePatch of 3 or 2 directions); false
+/// when out of range.
+template<class Fn>
+bool withPatch(const iga::NurbsSet<double>& set, int index, Fn&& fn)
+{
+  const int volumes = static_cast<int>(set.volumes.size());
+  if (index >= 0 && index < volumes)
+  {
+    fn(set.volumes[size_t(index)]);
+    return true;
+  }
+  if (index >= volumes && index < set.patchCount())
+  {
+    fn(set.surfaces[size_t(index - volumes)]);
+    return true;
+  }
+  return false;
+}
+
+std::vector<double> valuesOf(vtkDataArray* array)
+{
+  std::vector<double> values;
+  if (array)
+  {
+    values.resize(size_t(array->GetNumberOfValues()));
+    for (vtkIdType i = 0; i < array->GetNumberOfValues(); ++i)
+    {
+      values[size_t(i)] = array->GetComponent(
+        i / array->GetNumberOfComponents(), int(i % array->GetNumberOfComponents()));
+    }
+  }
+  return values;
+}
+
+/// A patch from VTK arrays: degrees, knot vectors, a homogeneous net of `channels` components;
+/// "" or the problem.
+template<int Dim>
+std::string patchFromArrays(const int* degrees, vtkDataArray* const* knots, vtkDataArray* net,
+  int channels, iga::BSplinePatch<double, Dim>& patch)
+{
+  if (!net || net->GetNumberOfComponents() != channels)
+  {
+    return "the control net needs " + std::to_string(channels) +
+           " components (w x, w y, w z, w and w a per attribute), it has " +
+           std::to_string(net ? net->GetNumberOfComponents() : 0);
+  }
+  for (int d = 0; d < Dim; ++d)
+  {
+    if (!knots[d] || knots[d]->GetNumberOfComponents() != 1)
+    {
+      return "direction " + std::to_string(d) + " needs a knot vector of one component";
+    }
+    patch.degree[d] = degrees[d];
+    patch.knots[d] = valuesOf(knots[d]);
+    patch.netSize[d] = static_cast<int>(patch.knots[d].size()) - degrees[d] - 1;
+  }
+  patch.channels = channels;
+  patch.net = valuesOf(net);
+  return std::string();
+}
+}
+
+int vtkIGANurbsData::GetPatchDimension(int patch) const
+{
+  int dimension = 0;
+  withPatch(this->Contents->Set, patch,
+    [&](const auto& p) { dimension = PatchDimension<std::decay_t<decltype(p)>>::value; });
+  return dimension;
+}
+
+void vtkIGANurbsData::GetPatchDegrees(int patch, int degrees[3]) const
+{
+  std::fill(degrees, degrees + 3, 0);
+  withPatch(this->Contents->Set, patch,
+    [&](const auto& p) { std::copy(std::begin(p.degree), std::end(p.degree), degrees); });
+}
+
+void vtkIGANurbsData::GetPatchNetSize(int patch, int size[3]) const
+{
+  std::fill(size, size + 3, 1);
+  withPatch(this->Contents->Set, patch,
+    [&](const auto& p) { std::copy(std::begin(p.netSize), std::end(p.netSize), size); });
+}
+
+void vtkIGANurbsData::GetPatchKnots(int patch, int direction, vtkDoubleArray* knots) const
+{
+  knots->SetNumberOfTuples(0);
+  withPatch(this->Contents->Set, patch,
+    [&](const auto& p)
+    {
+      if (direction >= 0 && direction < PatchDimension<std::decay_t<decltype(p)>>::value)
+      {
+        for (double knot : p.knots[direction])
+        {
+          knots->InsertNextValue(knot);
+        }
+      }
+    });
+}
+
+int vtkIGANurbsData::GetNumberOfAttributes() const
+{
+  return static_cast<int>(this->Contents->Set.attributeNames.size());
+}
+
+const char* vtkIGANurbsData::GetAttributeName(int index) const
+{
+  const auto& names = this->Contents->Set.attributeNames;
+  return index >= 0 && index < static_cast<int>(names.size()) ? names[size_t(index)].c_str()
+                                                              : nullptr;
+}
+
+void vtkIGANurbsData::GetPatchControlNet(int step, int patch, vtkDoubleArray* net) const
+{
+  const int channels = this->Contents->Set.channels();
+  const std::vector<double>& values = this->GetControlNet(step, patch);
+  net->SetNumberOfComponents(channels);
+  net->SetNumberOfTuples(vtkIdType(values.size() / size_t(channels)));
+  std::copy(values.begin(), values.end(), net->GetPointer(0));
+}
+
+std::string vtkIGANurbsData::SetAttributeNames(vtkStringArray* names)
+{
+  if (this->GetNumberOfPatches() > 0)
+  {
+    return "attribute names are set before the patches, and there are " +
+           std::to_string(this->GetNumberOfPatches());
+  }
+  auto state = std::make_shared<State>();
+  for (vtkIdType i = 0; names && i < names->GetNumberOfValues(); ++i)
+  {
+    state->Set.attributeNames.push_back(names->GetValue(i));
+  }
+  this->Contents = state;
+  this->Modified();
+  return std::string();
+}
+
+std::string vtkIGANurbsData::AddVolume(const int degrees[3], vtkDataArray* knotsU,
+  vtkDataArray* knotsV, vtkDataArray* knotsW, vtkDataArray* net)
+{
+  vtkDataArray* const knots[3] = { knotsU, knotsV, knotsW };
+  iga::BSplinePatch<double, 3> volume;
+  const std::string problem =
+    patchFromArrays<3>(degrees, knots, net, this->Contents->Set.channels(), volume);
+  return problem.empty()
+           ? this->AddPatch([&](iga::NurbsSet<double>& set) { set.volumes.push_back(volume); })
+           : "volume " + std::to_string(this->Contents->Set.volumes.size()) + ": " + problem;
+}
+
+std::string vtkIGANurbsData::AddSurface(
+  const int degrees[2], vtkDataArray* knotsU, vtkDataArray* knotsV, vtkDataArray* net)
+{
+  vtkDataArray* const knots[2] = { knotsU, knotsV };
+  iga::BSplinePatch<double, 2> surface;
+  const std::string problem =
+    patchFromArrays<2>(degrees, knots, net, this->Contents->Set.channels(), surface);
+  return problem.empty()
+           ? this->AddPatch([&](iga::NurbsSet<double>& set) { set.surfaces.push_back(surface); })
+           : "surface " + std::to_string(this->Contents->Set.surfaces.size()) + ": " + problem;
+}
+
+std::string vtkIGANurbsData::AddPatch(const std::function<void(iga::NurbsSet<double>&)>& add)
+{
+  const std::shared_ptr<const State> before = this->Contents;
+  if (before->Times.size() > 1)
+  {
+    return "patches are added while there is one time step, there are " +
+           std::to_string(before->Times.size());
+  }
+  // The patches as given: volumes turned right-handed are turned back, so that SetPatches
+  // finds (and reports) them again.
+  iga::NurbsSet<double> set = this->GetPatches(0);
+  for (size_t v = 0; v < set.volumes.size(); ++v)
+  {
+    if (this->IsVolumeReversed(int(v)))
+    {
+      iga::reverseDirection(set.volumes[v], 0);
+    }
+  }
+  add(set);
+  const std::string problem = this->SetPatches(set, before->Times.empty() ? 0.0 : before->Times[0]);
+  if (!problem.empty())
+  {
+    this->Contents = before;
+  }
+  return problem;
+}
+
+std::string vtkIGANurbsData::AddTimeStepNets(double time, vtkDataArrayCollection* nets)
+{
+  std::vector<std::vector<double>> values;
+  for (int i = 0; nets && i < nets->GetNumberOfItems(); ++i)
+  {
+    values.push_back(valuesOf(nets->GetItem(i)));
+  }
+  return this->AddTimeStep(time, values);
 }
 
 vtkIdType vtkIGANurbsData::GetNumberOfBezierCells() const

@@ -37,16 +37,23 @@
 #define vtkIGANurbsData_h
 
 #include "IGAViewFiltersModule.h" // for export macro
-#include "iga/NurbsSet.h"         // for NurbsSet
 #include "vtkObject.h"
-#include "vtkSmartPointer.h"  // for return value
-#include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
+#include "vtkSmartPointer.h" // for return value
 
-#include <memory> // for shared_ptr
-#include <string> // for error messages
-#include <vector> // for time steps
+#include <functional> // for AddPatch
+#include <memory>     // for shared_ptr
+#include <string>     // for error messages
+#include <vector>     // for time steps
 
+#ifndef __VTK_WRAP__
+#include "iga/NurbsSet.h" // for NurbsSet
+#endif
+
+class vtkDataArray;
+class vtkDataArrayCollection;
+class vtkDoubleArray;
 class vtkInformation;
+class vtkStringArray;
 class vtkUnstructuredGrid;
 
 class IGAVIEWFILTERS_EXPORT vtkIGANurbsData : public vtkObject
@@ -56,6 +63,7 @@ public:
   vtkTypeMacro(vtkIGANurbsData, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+#ifndef __VTK_WRAP__
   /// Replaces the contents by `set` as the only time step, at `time`. Returns an empty string,
   /// or one sentence naming the patch and the problem (bad knots, net size, non-finite values,
   /// non-positive weights); the object is then left empty.
@@ -68,17 +76,53 @@ public:
 
   /// The patches with the control nets of `step`.
   iga::NurbsSet<double> GetPatches(int step = 0) const;
+  std::vector<double> GetTimeSteps() const;
+  /// Control net of one patch at one step (empty when out of range).
+  const std::vector<double>& GetControlNet(int step, int patch) const;
+  /// The Bézier extraction of volume `volume` (null when out of range), shared, immutable.
+  std::shared_ptr<const iga::BezierExtraction<double, 3>> GetVolumeExtraction(int volume) const;
+#endif
+
   int GetNumberOfPatches() const;
   /// Whether SetPatches reversed volume `volume`'s first parametric direction (it was
   /// left-handed).
   bool IsVolumeReversed(int volume) const;
   int GetNumberOfTimeSteps() const;
-  std::vector<double> GetTimeSteps() const;
-  /// Control net of one patch at one step (empty when out of range).
-  const std::vector<double>& GetControlNet(int step, int patch) const;
-  /// The Bézier extraction of volume `volume` (null when out of range), shared, immutable.
-  VTK_WRAPEXCLUDE std::shared_ptr<const iga::BezierExtraction<double, 3>> GetVolumeExtraction(
-    int volume) const;
+  /// The time of step `step` (0 when out of range).
+  double GetTimeStep(int step) const;
+
+  ///@{
+  /// The description in VTK's types (Python). Patch `patch` counts the volumes first, then the
+  /// surfaces: its parametric dimension (3 or 2; 0 when out of range), its degree and control
+  /// net size along each direction (a surface's third 0 and 1), and its knot vector along
+  /// `direction` (left empty when out of range).
+  int GetPatchDimension(int patch) const;
+  void GetPatchDegrees(int patch, int degrees[3]) const;
+  void GetPatchNetSize(int patch, int size[3]) const;
+  void GetPatchKnots(int patch, int direction, vtkDoubleArray* knots) const;
+  int GetNumberOfAttributes() const;
+  const char* GetAttributeName(int index) const;
+  /// Step `step`'s control net of patch `patch`: a tuple per control point, first direction
+  /// fastest, its homogeneous channels as components (w x, w y, w z, w, then w a per attribute).
+  /// As stored: a reversed volume's first direction runs backwards (IsVolumeReversed).
+  void GetPatchControlNet(int step, int patch, vtkDoubleArray* net) const;
+  ///@}
+
+  ///@{
+  /// Building in VTK's types (Python), one time step at time 0: the attribute names (only while
+  /// there are no patches), then the volumes and surfaces, each from its degrees, knot vectors
+  /// and homogeneous control net laid out as GetPatchControlNet gives it (4 + the attributes
+  /// components). Each returns "" or the problem (the object keeps what it had then); a volume
+  /// added after a surface still counts among the volumes.
+  std::string SetAttributeNames(vtkStringArray* names);
+  std::string AddVolume(const int degrees[3], vtkDataArray* knotsU, vtkDataArray* knotsV,
+    vtkDataArray* knotsW, vtkDataArray* net);
+  std::string AddSurface(
+    const int degrees[2], vtkDataArray* knotsU, vtkDataArray* knotsV, vtkDataArray* net);
+  /// AddTimeStep with one net a patch, as GetPatchControlNet lays it out.
+  std::string AddTimeStepNets(double time, vtkDataArrayCollection* nets);
+  ///@}
+
   /// Number of Bézier cells ToUnstructuredGrid() produces.
   vtkIdType GetNumberOfBezierCells() const;
   /// Bytes ToUnstructuredGrid() holds at its peak for one step: the grid (its elements are
@@ -118,6 +162,12 @@ protected:
   ~vtkIGANurbsData() override;
 
 private:
+#ifndef __VTK_WRAP__
+  /// SetPatches with the first step's patches (as given) and what `add` appends; the contents
+  /// stay as they were where that fails.
+  std::string AddPatch(const std::function<void(iga::NurbsSet<double>&)>& add);
+#endif
+
   vtkIGANurbsData(const vtkIGANurbsData&) = delete;
   void operator=(const vtkIGANurbsData&) = delete;
 

@@ -21,7 +21,6 @@
 #include "IGAViewFiltersModule.h" // for export macro
 #include "vtkNew.h"               // for vtkNew
 #include "vtkUnstructuredGridAlgorithm.h"
-#include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
 
 #include <iosfwd> // for std::istream
 #include <string> // for the parse state
@@ -54,7 +53,7 @@ public:
   int CanReadFile(const char* name);
 
   /// The patches read (empty until the reader has been updated or when the file is bad).
-  VTK_WRAPEXCLUDE vtkIGANurbsData* GetNurbsData();
+  vtkIGANurbsData* GetNurbsData();
 
 protected:
   vtkIGANurbsReader();

@@ -14,6 +14,7 @@
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkUnstructuredGridAlgorithm.h"
 
 #include <cmath>
@@ -275,6 +276,70 @@ TEST(NurbsData, LeftHandedVolumesAreStoredRightHandedForVTK)
   shifted.volumes[1].net = nets[1];
   EXPECT_LT(compareWithCoxDeBoor(shifted, moved, rng, 40, { false, true }), 1e-12);
   EXPECT_EQ(validatorStates(moved), std::vector<int>(moved->GetNumberOfCells(), 0));
+}
+
+namespace
+{
+vtkSmartPointer<vtkDoubleArray> arrayOf(const std::vector<double>& values, int components)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetNumberOfComponents(components);
+  for (double value : values)
+    array->InsertNextValue(value);
+  return array;
+}
+} // namespace
+
+// The VTK-typed building (Python's): volumes added one at a time, the second left-handed, give
+// SetPatches' description and cells, and read back through the VTK-typed accessors.
+TEST(NurbsData, VolumesAddedFromArraysEqualSetPatches)
+{
+  iga::NurbsSet<double> set;
+  set.attributeNames = { "f" };
+  set.volumes = { iga::makeNurbsBall<double>(2, 1.0), iga::makeNurbsBall<double>(3, -1.0) };
+  vtkNew<vtkIGANurbsData> whole, added;
+  ASSERT_EQ(whole->SetPatches(set), "");
+  vtkNew<vtkStringArray> names;
+  names->InsertNextValue("f");
+  ASSERT_EQ(added->SetAttributeNames(names), "");
+  for (const auto& volume : set.volumes)
+  {
+    const auto u = arrayOf(volume.knots[0], 1), v = arrayOf(volume.knots[1], 1),
+               w = arrayOf(volume.knots[2], 1);
+    ASSERT_EQ(added->AddVolume(volume.degree, u, v, w, arrayOf(volume.net, set.channels())), "");
+  }
+  ASSERT_EQ(added->GetNumberOfPatches(), 2);
+  EXPECT_FALSE(added->IsVolumeReversed(0));
+  EXPECT_TRUE(added->IsVolumeReversed(1)) << "still known after the second volume came";
+  const auto a = whole->ToUnstructuredGrid(), b = added->ToUnstructuredGrid();
+  ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+    for (int d = 0; d < 3; ++d)
+      ASSERT_EQ(a->GetPoint(p)[d], b->GetPoint(p)[d]);
+  for (int patch = 0; patch < 2; ++patch)
+  {
+    int degrees[3], size[3];
+    added->GetPatchDegrees(patch, degrees);
+    added->GetPatchNetSize(patch, size);
+    vtkNew<vtkDoubleArray> knots, net;
+    added->GetPatchKnots(patch, 2, knots);
+    added->GetPatchControlNet(0, patch, net);
+    const auto stored = whole->GetPatches(0).volumes[size_t(patch)];
+    EXPECT_EQ(added->GetPatchDimension(patch), 3);
+    for (int d = 0; d < 3; ++d)
+    {
+      EXPECT_EQ(degrees[d], stored.degree[d]);
+      EXPECT_EQ(size[d], stored.netSize[d]);
+    }
+    ASSERT_EQ(size_t(knots->GetNumberOfTuples()), stored.knots[2].size());
+    ASSERT_EQ(size_t(net->GetNumberOfValues()), stored.net.size());
+    EXPECT_EQ(net->GetNumberOfComponents(), set.channels());
+    for (size_t k = 0; k < stored.net.size(); ++k)
+      ASSERT_EQ(net->GetValue(vtkIdType(k)), stored.net[k]);
+  }
+  EXPECT_EQ(added->GetPatchDimension(2), 0);
+  EXPECT_STREQ(added->GetAttributeName(0), "f");
+  EXPECT_EQ(added->GetAttributeName(1), nullptr);
 }
 
 TEST(NurbsData, TimeStepsFollowThePipelineRequest)
