@@ -11,7 +11,8 @@
  * <Geometry>. Volumes become VTK_BEZIER_HEXAHEDRON cells, surfaces VTK_BEZIER_QUADRILATERAL.
  *
  * The reader adds attributes that can be contoured (iga::setGeometryNet): "x", "y", "z" (exact
- * everywhere) and "parameter_u/v/w" (exact on polynomial patches). Solutions: G+Smo writes a
+ * everywhere) and "parameter_u/v/w" (exact on polynomial patches, and everywhere with
+ * ExactParameters on, see vtkIGANurbsData). Solutions: G+Smo writes a
  * field as a further MultiPatch whose patches share the geometry's basis (fd << geometry <<
  * solution, fd.addWithLabel for a name); every MultiPatch after the geometry's becomes
  * attributes, named by its label ("field1", "field2", ... without one), a vector field's

@@ -99,14 +99,74 @@ struct PatchDimension<iga::BSplinePatch<double, Dim>> : std::integral_constant<i
 
 /// Control points of each Bézier element of a patch.
 template<int Dim>
-vtkIdType pointsPerElement(const iga::BSplinePatch<double, Dim>& patch)
+vtkIdType pointsPerElement(const iga::BSplinePatch<double, Dim>& patch, bool elevated = false)
 {
   vtkIdType points = 1;
   for (int degree : patch.degree)
   {
-    points *= degree + 1;
+    points *= degree + (elevated ? 2 : 1);
   }
   return points;
+}
+
+/// Per direction the channel of the parameter attribute along it ("parameter_u/v/w"), -1 where
+/// the set has none.
+void parameterChannels(const iga::NurbsSet<double>& set, int* channels)
+{
+  const char* const names[3] = { "parameter_u", "parameter_v", "parameter_w" };
+  for (int d = 0; d < 3; ++d)
+  {
+    const auto& all = set.attributeNames;
+    const auto found = std::find(all.begin(), all.end(), names[d]);
+    channels[d] = found == all.end() ? -1 : iga::kFirstAttributeChannel + int(found - all.begin());
+  }
+}
+
+/// Whether vtkIGANurbsData::ExactParameters elevates the elements of a patch with this net:
+/// exact parameters asked for, a parameter attribute to make exact, and weights that vary.
+bool elevatedForParameters(
+  bool exact, const iga::NurbsSet<double>& set, const std::vector<double>& net)
+{
+  int parameter[3];
+  parameterChannels(set, parameter);
+  if (!exact || (parameter[0] < 0 && parameter[1] < 0 && parameter[2] < 0))
+  {
+    return false;
+  }
+  const size_t channels = size_t(set.channels());
+  for (size_t p = channels; p < net.size(); p += channels)
+  {
+    if (net[p + iga::kWeightChannel] != net[iga::kWeightChannel])
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Element e of a patch with exact parameters (iga::withExactParameters): the parameter runs over
+/// the element's knot spans, against the stored direction where the volume was reversed.
+template<int Dim>
+iga::BezierPatch<double, Dim> exactParameterElement(const iga::BezierPatch<double, Dim>& element,
+  const iga::NurbsSet<double>& set, const iga::BSplinePatch<double, Dim>& patch,
+  const iga::BezierExtraction<double, Dim>& extraction, int e, bool reversed)
+{
+  int parameter[3], span[Dim];
+  parameterChannels(set, parameter);
+  extraction.elementIndex(e, span);
+  double start[Dim], end[Dim];
+  for (int d = 0; d < Dim; ++d)
+  {
+    start[d] = extraction.direction(d).spanStart[size_t(span[d])];
+    end[d] = extraction.direction(d).spanEnd[size_t(span[d])];
+  }
+  if (reversed)
+  {
+    const double sum = patch.knots[0].front() + patch.knots[0].back();
+    start[0] = sum - start[0];
+    end[0] = sum - end[0];
+  }
+  return iga::withExactParameters(element, parameter, start, end);
 }
 
 template<int Dim>
@@ -545,17 +605,20 @@ double vtkIGANurbsData::GetBezierCellBytes() const
   // the elements are made one at a time. The surfaces' points are appended to the volumes'
   // arrays, which may double them while they grow.
   const double perPoint = 8.0 * s.Set.channels() + 8.0;
-  auto points = [](const auto& patches, const auto& extractions)
+  auto points = [&](const auto& patches, const auto& extractions, size_t first)
   {
     double count = 0;
     for (size_t p = 0; p < patches.size(); ++p)
     {
-      count += double(extractions[p]->elementCount()) * double(pointsPerElement(patches[p]));
+      const bool elevated = !s.Nets.empty() && elevatedForParameters(this->ExactParameters, s.Set,
+                                                 *s.Nets[0][first + p]);
+      count +=
+        double(extractions[p]->elementCount()) * double(pointsPerElement(patches[p], elevated));
     }
     return count;
   };
-  const double volumes = points(s.Set.volumes, s.VolumeExtractions);
-  const double surfaces = points(s.Set.surfaces, s.SurfaceExtractions);
+  const double volumes = points(s.Set.volumes, s.VolumeExtractions, 0);
+  const double surfaces = points(s.Set.surfaces, s.SurfaceExtractions, s.Set.volumes.size());
   // And the grid's field-data copy of the step's control nets.
   double netValues = 0;
   for (const auto& net : s.Nets.empty() ? std::vector<Net>() : s.Nets.front())
@@ -589,15 +652,19 @@ struct CellOrigins
 /// element at a time (only the grid and one element held); whole patches were oriented by
 /// SetPatches, so the cells stay the elements as extracted.
 vtkSmartPointer<vtkUnstructuredGrid> volumeCells(const iga::NurbsSet<double>& set,
-  const std::vector<Extraction<3>>& extractions, const std::vector<Net>& nets, CellOrigins& origins)
+  const std::vector<Extraction<3>>& extractions, const std::vector<Net>& nets,
+  const std::vector<bool>& reversed, bool exactParameters, CellOrigins& origins)
 {
   const int channels = set.channels();
   std::vector<vtkIdType> firstCell{ 0 };
+  std::vector<bool> elevated;
   vtkIdType pointCount = 0;
   for (size_t v = 0; v < nets.size() && v < set.volumes.size(); ++v)
   {
     firstCell.push_back(firstCell.back() + extractions[v]->elementCount());
-    pointCount += vtkIdType(extractions[v]->elementCount()) * pointsPerElement(set.volumes[v]);
+    elevated.push_back(elevatedForParameters(exactParameters, set, *nets[v]));
+    pointCount +=
+      vtkIdType(extractions[v]->elementCount()) * pointsPerElement(set.volumes[v], elevated.back());
   }
   iga::BezierVolume<double> element;
   std::vector<double> work;
@@ -613,6 +680,11 @@ vtkSmartPointer<vtkUnstructuredGrid> volumeCells(const iga::NurbsSet<double>& se
     element = iga::BezierVolume<double>(set.volumes[volume].degree, channels);
     work.resize(2 * element.coeffs().size());
     extraction.extract(e, nets[volume]->data(), channels, element.coeffs().data(), work.data());
+    if (elevated[volume])
+    {
+      element =
+        exactParameterElement(element, set, set.volumes[volume], extraction, e, reversed[volume]);
+    }
     int span[3];
     extraction.elementIndex(e, span);
     origins.add(int(volume), span);
@@ -624,7 +696,8 @@ vtkSmartPointer<vtkUnstructuredGrid> volumeCells(const iga::NurbsSet<double>& se
 
 /// Appends the surfaces' Bézier elements to `grid` as quadrilaterals, one element at a time.
 void appendSurfaceCells(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& set,
-  const std::vector<Extraction<2>>& extractions, const std::vector<Net>& nets, CellOrigins& origins)
+  const std::vector<Extraction<2>>& extractions, const std::vector<Net>& nets, bool exactParameters,
+  CellOrigins& origins)
 {
   const int channels = set.channels();
   const size_t volumeCount = set.volumes.size();
@@ -643,7 +716,11 @@ void appendSurfaceCells(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& 
     {
       extraction.extract(
         e, nets[volumeCount + f]->data(), channels, element.coeffs().data(), work.data());
-      vtkIGABezierHexahedra::AppendQuadrilateral(grid, std::as_const(element).view(), attributes);
+      const auto& drawn =
+        elevatedForParameters(exactParameters, set, *nets[volumeCount + f])
+          ? exactParameterElement(element, set, set.surfaces[f], extraction, e, false)
+          : element;
+      vtkIGABezierHexahedra::AppendQuadrilateral(grid, drawn.view(), attributes);
       int span[3] = { 0, 0, 0 };
       extraction.elementIndex(e, span);
       origins.add(static_cast<int>(volumeCount + f), span);
@@ -721,15 +798,17 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
   const std::shared_ptr<const State> contents = this->Contents;
   const State& s = *contents;
   step = std::clamp(step, 0, std::max(0, static_cast<int>(s.Times.size()) - 1));
-  if (this->CachedGrid && this->CachedContents == contents && this->CachedStep == step)
+  if (this->CachedGrid && this->CachedContents == contents && this->CachedStep == step &&
+      this->CachedExactParameters == this->ExactParameters)
   {
     return this->CachedGrid;
   }
   const std::vector<Net> none;
   const std::vector<Net>& nets = s.Nets.empty() ? none : s.Nets[step];
   CellOrigins origins;
-  auto grid = volumeCells(s.Set, s.VolumeExtractions, nets, origins);
-  appendSurfaceCells(grid, s.Set, s.SurfaceExtractions, nets, origins);
+  auto grid = volumeCells(
+    s.Set, s.VolumeExtractions, nets, s.ReversedVolumes, this->ExactParameters, origins);
+  appendSurfaceCells(grid, s.Set, s.SurfaceExtractions, nets, this->ExactParameters, origins);
   grid->GetCellData()->AddArray(origins.patchIds);
   grid->GetCellData()->AddArray(origins.spans);
   describe(grid, s.Set, nets, s.Times.empty() ? 0.0 : s.Times[step]);
@@ -737,6 +816,7 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
   this->CachedGrid = grid;
   this->CachedContents = contents;
   this->CachedStep = step;
+  this->CachedExactParameters = this->ExactParameters;
   return grid;
 }
 

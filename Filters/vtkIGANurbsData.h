@@ -129,6 +129,19 @@ public:
   /// extracted one at a time).
   double GetBezierCellBytes() const;
 
+  ///@{
+  /// Off (default): the attributes "parameter_u/v/w" the readers add hold Greville abscissae,
+  /// exact on polynomial patches and a rational blend of them (off by up to a few percent of the
+  /// span) where weights vary. On: the cells of patches whose weights vary are elevated by one
+  /// degree in every direction, the same geometry and attributes, with parameter channels that
+  /// give the patch's parameter exactly (iga::withExactParameters), at (p + 2)^3 / (p + 1)^3 the
+  /// points (2.4 times for quadratics). The grid's NURBS description is the file's either way;
+  /// a mapper then draws the cells rather than re-extracting the patches.
+  vtkSetMacro(ExactParameters, bool);
+  vtkGetMacro(ExactParameters, bool);
+  vtkBooleanMacro(ExactParameters, bool);
+  ///@}
+
   /// The Bézier cells of `step` with the NURBS description (see the class description). Cached:
   /// asking for the same step again returns the same grid until the contents change.
   vtkSmartPointer<vtkUnstructuredGrid> ToUnstructuredGrid(int step = 0);
@@ -173,8 +186,10 @@ private:
 
   struct State;
   std::shared_ptr<const State> Contents;
+  bool ExactParameters = false;
   vtkSmartPointer<vtkUnstructuredGrid> CachedGrid;
   int CachedStep = -1;
+  bool CachedExactParameters = false;
   std::shared_ptr<const State> CachedContents; // what CachedGrid was made from
 };
 

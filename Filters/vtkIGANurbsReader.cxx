@@ -29,6 +29,7 @@ void vtkIGANurbsReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "MemoryLimitMB: " << this->MemoryLimitMB << "\n";
+  os << indent << "ExactParameters: " << this->ExactParameters << "\n";
   os << indent << "Patches: " << this->Data->GetNumberOfPatches() << "\n";
 }
 
@@ -48,9 +49,11 @@ int vtkIGANurbsReader::RequestInformation(
 {
   // Errors wait for RequestData, so that a bad file gives one message, not one per pass.
   const std::string file = this->FileName ? this->FileName : "";
+  this->Data->SetExactParameters(this->ExactParameters);
   const std::string stamp = file + "\n" +
                             std::to_string(vtksys::SystemTools::ModifiedTime(file.c_str())) + "\n" +
-                            std::to_string(this->MemoryLimitMB) + "\n" + this->InputStamp();
+                            std::to_string(this->MemoryLimitMB) + "\n" +
+                            std::to_string(this->ExactParameters) + "\n" + this->InputStamp();
   if (stamp != this->ParsedFile)
   {
     this->ParsedFile = stamp;

@@ -48,6 +48,14 @@ public:
   vtkGetMacro(MemoryLimitMB, double);
   ///@}
 
+  ///@{
+  /// Exact "parameter_u/v/w" on patches whose weights vary, by cells one degree higher
+  /// (vtkIGANurbsData::ExactParameters); off by default.
+  vtkSetMacro(ExactParameters, bool);
+  vtkGetMacro(ExactParameters, bool);
+  vtkBooleanMacro(ExactParameters, bool);
+  ///@}
+
   /// 1 when the start of `name` is in this reader's format, else 0. ParaView's reader factory
   /// asks it to tell G+Smo XML from other XML and GeoPDEs text from other text.
   int CanReadFile(const char* name);
@@ -88,6 +96,7 @@ private:
   std::string FileSizeProblem(const std::string& file) const;
 
   vtkNew<vtkIGANurbsData> Data;
+  bool ExactParameters = false;
   std::string Error;      // of the last parse, empty when it succeeded
   std::string ParsedFile; // FileName and modification time of the last parse
 };

@@ -92,6 +92,9 @@ INPUT                    VTK XML unstructured grid (.vtu) of VTK_BEZIER_HEXAHEDR
   --field FILE           an MFEM GridFunction (.gf) on the MFEM mesh given as INPUT, an attribute
                          named after the file (repeatable); isosurfaces of the first are drawn
                          unless --surface or --surface-by says otherwise
+  --exact-parameters     a G+Smo, GeoPDEs or MFEM file's parameter_u/v/w exact where weights
+                         vary (those patches' cells one degree higher); else Greville abscissae,
+                         exact on polynomial patches only
   --algebraic EXPR       instead of INPUT, the algebraic surface EXPR = 0: a polynomial in x, y,
                          z (+ - * ^ by whole exponents, / by constants, parentheses, decimal
                          constants; total degree up to 16) over --box, as the exact Bernstein
@@ -179,6 +182,7 @@ struct Options
   std::vector<std::string> keys;
   std::vector<std::array<int, 2>> probes; ///< --probe pixels
   std::vector<std::string> fields;        ///< --field files
+  bool exactParameters = false;           ///< --exact-parameters
   bool hasOutput = false;
   std::string input;
   std::vector<double> isovalues;
@@ -397,6 +401,8 @@ bool parseDrawingOption(const std::string& arg, const OptionValue& value, Option
     options.colorBy = value();
   else if (arg == "--field")
     options.fields.push_back(value());
+  else if (arg == "--exact-parameters")
+    options.exactParameters = true;
   else if (arg == "--time")
     options.time = parseNumber(value(), arg);
   else if (arg == "--series" && !options.view)
@@ -649,10 +655,12 @@ void convertOutput(vtkAlgorithm* producer, const std::string& name,
 }
 
 /// A NURBS reader's output read like the mapper takes it, failing with the reader's message.
-void readGeometry(vtkIGANurbsReader* reader, const std::string& file, Input& input,
+void readGeometry(vtkIGANurbsReader* reader, const Options& options, Input& input,
   std::vector<std::string>& warnings)
 {
+  const std::string& file = options.input;
   reader->SetFileName(file.c_str());
+  reader->SetExactParameters(options.exactParameters);
   requestOrFail("'" + file + "'", [&] { return reader->Update(0, nullptr) != 0; });
   input.producer = reader;
   convertOutput(reader, "'" + file + "'", input.patches, warnings);
@@ -732,17 +740,17 @@ Input loadInput(const Options& options)
   }
   else if (gismo->CanReadFile(options.input.c_str()))
   {
-    readGeometry(gismo, options.input, input, warnings);
+    readGeometry(gismo, options, input, warnings);
   }
   else if (geopdes->CanReadFile(options.input.c_str()))
   {
-    readGeometry(geopdes, options.input, input, warnings);
+    readGeometry(geopdes, options, input, warnings);
   }
   else if (mfem->CanReadFile(options.input.c_str()))
   {
     for (const auto& field : options.fields)
       mfem->AddGridFunctionFileName(field.c_str());
-    readGeometry(mfem, options.input, input, warnings);
+    readGeometry(mfem, options, input, warnings);
   }
   else if (vtkIGABezierSeriesReader::CanReadFile(options.input.c_str()))
   {

@@ -7,6 +7,7 @@
 #include "iga/Validation.h"
 
 #include <algorithm>
+#include <utility>
 
 using namespace igatest;
 
@@ -226,3 +227,63 @@ TEST(BSplineValidation, ElementsAreRefusedForTheirBezierWeightsRatherThanTheirSu
 }
 
 } // namespace
+
+// Exact parameter channels: on random rational elements (volumes and surfaces), the elevated
+// element's parameter attributes equal start + s (end - start) at random s to 1e-13, where the
+// Greville-style blend of the element's own degree is off, and every other channel keeps its
+// rational value (elevation changes no function).
+template<int Dim>
+void checkExactParameters(int seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1), weight(0.3, 3);
+  int degree[Dim];
+  for (int d = 0; d < Dim; ++d)
+    degree[d] = 1 + int(unit(rng) * 3);
+  const int channels = iga::kFirstAttributeChannel + 4; // x y z w, a, u, v, w
+  iga::BezierPatch<double, Dim> element(degree, channels);
+  for (size_t p = 0; p < element.coeffs().size() / size_t(channels); ++p)
+  {
+    double* cp = element.coeffs().data() + p * channels;
+    cp[iga::kWeightChannel] = weight(rng);
+    for (int c = 0; c < channels; ++c)
+      if (c != iga::kWeightChannel)
+        cp[c] = cp[iga::kWeightChannel] * (2 * unit(rng) - 1);
+  }
+  const int parameterChannel[3] = { 5, Dim > 1 ? 6 : -1, Dim > 2 ? 7 : -1 };
+  const double start[3] = { 0.25, 2.0, -1.0 }, end[3] = { 0.75, 1.5, 3.0 };
+  const auto exact = iga::withExactParameters(element, parameterChannel, start, end);
+  double worstBefore = 0;
+  for (int s = 0; s < 50; ++s)
+  {
+    double u[Dim];
+    for (int d = 0; d < Dim; ++d)
+      u[d] = unit(rng);
+    std::vector<double> before(channels), after(channels);
+    iga::evaluateHomogeneous(std::as_const(element).view(), u, before.data(), static_cast<double*>(nullptr));
+    iga::evaluateHomogeneous(std::as_const(exact).view(), u, after.data(), static_cast<double*>(nullptr));
+    for (int d = 0; d < Dim; ++d)
+    {
+      const double expected = start[d] + u[d] * (end[d] - start[d]);
+      const int c = parameterChannel[d];
+      EXPECT_NEAR(after[c] / after[iga::kWeightChannel], expected, 1e-13);
+      worstBefore =
+        std::max(worstBefore, std::abs(before[c] / before[iga::kWeightChannel] - expected));
+    }
+    for (int c : { 0, 1, 2, 4 })
+      EXPECT_NEAR(
+        after[c] / after[iga::kWeightChannel], before[c] / before[iga::kWeightChannel], 1e-13);
+  }
+  EXPECT_GT(worstBefore, 1e-3); // random coefficients are no parameter
+  for (int d = 0; d < Dim; ++d)
+    EXPECT_EQ(exact.degree(d), degree[d] + 1);
+}
+
+TEST(ExactParameters, RationalElementsCarryTheirParameterExactly)
+{
+  for (int seed = 0; seed < 10; ++seed)
+  {
+    checkExactParameters<3>(seed);
+    checkExactParameters<2>(100 + seed);
+  }
+}

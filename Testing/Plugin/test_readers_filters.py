@@ -1,6 +1,7 @@
 """pvpython: the IGAView plugin's readers and deformation filters as ParaView proxies: file
 dialog extensions, Bezier cells out, numbered files as a time series for the animation toolbar,
-deformations that undo each other, and a NURBS file drawn by the "IGA Isosurface" representation.
+deformations that undo each other, exact parameter attributes on a rational file, and a NURBS file
+drawn by the "IGA Isosurface" representation.
 
 Usage: pvpython test_readers_filters.py PLUGIN DATA_DIR WORK_DIR"""
 import builtins  # pvpython scripts see numpy_interface's sum/max in their namespace
@@ -64,6 +65,18 @@ limited.MemoryLimitMB = 1
 limited.UpdatePipeline()
 assert servermanager.Fetch(limited).GetNumberOfCells() > 0
 simple.Delete(limited)
+
+# ExactParameters: the rational ring's cell one degree higher (36 points, not 12), and the field's
+# range of parameter_u its parameter's, 0 .. 1.
+exact = simple.IGAGSmoReader(FileName=os.path.join(data_dir, "gismo_quarter_ring.xml"))
+assert exact.ExactParameters == 0, exact.ExactParameters
+assert servermanager.Fetch(exact).GetNumberOfPoints() == 12
+exact.ExactParameters = 1
+exact.UpdatePipeline()
+assert servermanager.Fetch(exact).GetNumberOfPoints() == 36
+u_range = exact.PointData["parameter_u"].GetRange()
+assert abs(u_range[0]) < 1e-5 and abs(u_range[1] - 1) < 1e-5, u_range
+simple.Delete(exact)
 
 # Drawn by the representation: the isosurface z = 0.5 of the G+Smo file covers pixels.
 view = simple.CreateRenderView(ViewSize=[200, 160])

@@ -217,7 +217,8 @@ inline std::vector<std::string> geometryAttributeNames()
 ///    the geometry, so they reproduce the physical coordinates everywhere.
 ///  - "parameter_u/v/w": the Greville abscissae along each direction (w = 0 on surfaces). Exact
 ///    for polynomial patches; with varying weights they are the rational blend of the abscissae,
-///    which follows the parameter closely but not exactly.
+///    which follows the parameter closely but not exactly (withExactParameters makes an
+///    element's exact, one degree higher).
 /// `knots`, `degree` and `netSize` must be set and valid.
 template<class T, int Dim>
 void setGeometryNet(
@@ -249,6 +250,84 @@ void setGeometryNet(
       rest /= patch.netSize[d];
     }
   }
+}
+
+/// The Bernstein coefficients, one degree higher along `dir`, of (start (1 - s) + end s) W: W the
+/// one-channel patch `weight`, s its parameter along dir. Since (1 - s) B_i^n = (n + 1 - i) /
+/// (n + 1) B_i^(n+1) and s B_(i-1)^n = i / (n + 1) B_i^(n+1), coefficient i is start (1 - i / (n
+/// + 1)) W_i + end i / (n + 1) W_(i-1).
+template<class T, int Dim>
+BezierPatch<T, Dim> parameterTimesWeight(const BezierPatch<T, Dim>& weight, int dir, T start, T end)
+{
+  int degree[Dim];
+  for (int d = 0; d < Dim; ++d)
+  {
+    degree[d] = weight.degree(d) + (d == dir ? 1 : 0);
+  }
+  BezierPatch<T, Dim> product(degree, 1);
+  const auto in = weight.view();
+  const auto out = product.view();
+  const int n = weight.degree(dir);
+  forEachLine(in, dir,
+    [&](int base)
+    {
+      // The line of `product` holding the same points: its base skips the longer lines below.
+      const int below = in.stride(dir);
+      const int outBase = base % below + base / below / (n + 1) * below * (n + 2);
+      for (int i = 0; i <= n + 1; ++i)
+      {
+        const T a = T(i) / T(n + 1);
+        const T previous = i > 0 ? in.coeffs[base + (i - 1) * below] : T(0);
+        const T current = i <= n ? in.coeffs[base + i * below] : T(0);
+        out.coeffs[outBase + i * out.stride(dir)] =
+          start * (T(1) - a) * current + end * a * previous;
+      }
+    });
+  return product;
+}
+
+/// An element of a rational patch (standard layout) elevated by one degree in every direction,
+/// with exact parameter channels: channel parameterChannel[d] (-1: none) holds start[d] (1 - s_d)
+/// + end[d] s_d times the weight, s_d the element's parameter along d, so that the attribute is
+/// the patch's parameter along d everywhere. At the element's own degree no coefficients give
+/// that where its weights vary (the parameter times the weight has one degree more).
+template<class T, int Dim>
+BezierPatch<T, Dim> withExactParameters(
+  const BezierPatch<T, Dim>& element, const int* parameterChannel, const T* start, const T* end)
+{
+  BezierPatch<T, Dim> elevated = element;
+  int degree[Dim];
+  for (int d = 0; d < Dim; ++d)
+  {
+    elevated = elevateDegree(elevated, d);
+    degree[d] = element.degree(d);
+  }
+  const int channels = element.channels();
+  BezierPatch<T, Dim> weight(degree, 1);
+  for (size_t p = 0; p < weight.coeffs().size(); ++p)
+  {
+    weight.coeffs()[p] = element.coeffs()[p * size_t(channels) + kWeightChannel];
+  }
+  for (int d = 0; d < Dim; ++d)
+  {
+    if (parameterChannel[d] < 0)
+    {
+      continue;
+    }
+    BezierPatch<T, Dim> product = parameterTimesWeight(weight, d, start[d], end[d]);
+    for (int other = 0; other < Dim; ++other)
+    {
+      if (other != d)
+      {
+        product = elevateDegree(product, other);
+      }
+    }
+    for (size_t p = 0; p < product.coeffs().size(); ++p)
+    {
+      elevated.coeffs()[p * size_t(channels) + size_t(parameterChannel[d])] = product.coeffs()[p];
+    }
+  }
+  return elevated;
 }
 
 } // namespace iga
