@@ -528,11 +528,10 @@ std::string vtkIGANurbsData::AddVolume(const int degrees[3], vtkDataArray* knots
 {
   vtkDataArray* const knots[3] = { knotsU, knotsV, knotsW };
   iga::BSplinePatch<double, 3> volume;
-  const std::string problem =
-    patchFromArrays<3>(degrees, knots, net, this->Contents->Set.channels(), volume);
-  return problem.empty()
-           ? this->AddPatch([&](iga::NurbsSet<double>& set) { set.volumes.push_back(volume); })
-           : "volume " + std::to_string(this->Contents->Set.volumes.size()) + ": " + problem;
+  return this->AddPatch(
+    patchFromArrays<3>(degrees, knots, net, this->Contents->Set.channels(), volume),
+    "volume " + std::to_string(this->Contents->Set.volumes.size()),
+    [&](iga::NurbsSet<double>& set) { set.volumes.push_back(volume); });
 }
 
 std::string vtkIGANurbsData::AddSurface(
@@ -540,15 +539,19 @@ std::string vtkIGANurbsData::AddSurface(
 {
   vtkDataArray* const knots[2] = { knotsU, knotsV };
   iga::BSplinePatch<double, 2> surface;
-  const std::string problem =
-    patchFromArrays<2>(degrees, knots, net, this->Contents->Set.channels(), surface);
-  return problem.empty()
-           ? this->AddPatch([&](iga::NurbsSet<double>& set) { set.surfaces.push_back(surface); })
-           : "surface " + std::to_string(this->Contents->Set.surfaces.size()) + ": " + problem;
+  return this->AddPatch(
+    patchFromArrays<2>(degrees, knots, net, this->Contents->Set.channels(), surface),
+    "surface " + std::to_string(this->Contents->Set.surfaces.size()),
+    [&](iga::NurbsSet<double>& set) { set.surfaces.push_back(surface); });
 }
 
-std::string vtkIGANurbsData::AddPatch(const std::function<void(iga::NurbsSet<double>&)>& add)
+std::string vtkIGANurbsData::AddPatch(const std::string& problem, const std::string& name,
+  const std::function<void(iga::NurbsSet<double>&)>& add)
 {
+  if (!problem.empty())
+  {
+    return name + ": " + problem;
+  }
   const std::shared_ptr<const State> before = this->Contents;
   if (before->Times.size() > 1)
   {
@@ -566,12 +569,12 @@ std::string vtkIGANurbsData::AddPatch(const std::function<void(iga::NurbsSet<dou
     }
   }
   add(set);
-  const std::string problem = this->SetPatches(set, before->Times.empty() ? 0.0 : before->Times[0]);
-  if (!problem.empty())
+  const std::string refused = this->SetPatches(set, before->Times.empty() ? 0.0 : before->Times[0]);
+  if (!refused.empty())
   {
     this->Contents = before;
   }
-  return problem;
+  return refused;
 }
 
 std::string vtkIGANurbsData::AddTimeStepNets(double time, vtkDataArrayCollection* nets)

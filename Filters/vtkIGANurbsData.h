@@ -176,9 +176,10 @@ protected:
 
 private:
 #ifndef __VTK_WRAP__
-  /// SetPatches with the first step's patches (as given) and what `add` appends; the contents
-  /// stay as they were where that fails.
-  std::string AddPatch(const std::function<void(iga::NurbsSet<double>&)>& add);
+  /// SetPatches with the first step's patches (as given) and what `add` appends, unless the
+  /// patch `name` has a `problem` already; the contents stay as they were where either fails.
+  std::string AddPatch(const std::string& problem, const std::string& name,
+    const std::function<void(iga::NurbsSet<double>&)>& add);
 #endif
 
   vtkIGANurbsData(const vtkIGANurbsData&) = delete;

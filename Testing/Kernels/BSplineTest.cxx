@@ -260,8 +260,10 @@ void checkExactParameters(int seed)
     for (int d = 0; d < Dim; ++d)
       u[d] = unit(rng);
     std::vector<double> before(channels), after(channels);
-    iga::evaluateHomogeneous(std::as_const(element).view(), u, before.data(), static_cast<double*>(nullptr));
-    iga::evaluateHomogeneous(std::as_const(exact).view(), u, after.data(), static_cast<double*>(nullptr));
+    iga::evaluateHomogeneous(
+      std::as_const(element).view(), u, before.data(), static_cast<double*>(nullptr));
+    iga::evaluateHomogeneous(
+      std::as_const(exact).view(), u, after.data(), static_cast<double*>(nullptr));
     for (int d = 0; d < Dim; ++d)
     {
       const double expected = start[d] + u[d] * (end[d] - start[d]);
