@@ -2,9 +2,10 @@
 surface or of an expression over a box, the "IGA Isosurface" representation draws its f = 0 by
 ray composition (the mapper says which path its patches took), the same pixels as the shared
 subdivision tree and every root finder, a bad expression is one error naming its position (and
-a good one draws again), ParaView takes the field's range (not the control values'), colouring
-by curvature_mean colours the sphere by its 1/r, and the representation's Antialiasing blends the
-silhouette's pixels with the background in quarters.
+a good one draws again), ParaView takes the field's range (not the control values'), the IGA
+Probe Line filter finds a segment's exact hits, colouring by curvature_mean colours the sphere by
+its 1/r, and the representation's Antialiasing blends the silhouette's pixels with the background
+in quarters.
 
 Usage: pvpython test_algebraic_source.py PLUGIN WORK_DIR"""
 import os
@@ -68,6 +69,23 @@ range_display.SetRepresentationType("IGA Isosurface")
 assert abs(range_display.IGAIsovalues[0] - 1.16) < 1e-4, range_display.IGAIsovalues
 simple.Delete(range_display)
 simple.Delete(range_view)
+
+# IGA Probe Line: its defaults come from the data (the field's middle 1.16, the bounds' corners);
+# the segment y = 0.3, z = 0.1 meets f = 0 at x = -+sqrt(0.9), where f is 0.
+probe = IGAProbeLine(Input=source)  # noqa: F821 (defined by LoadPlugin)
+assert list(probe.SurfaceArray) == ["POINTS", "f"], probe.SurfaceArray
+assert abs(probe.Isovalue - 1.16) < 1e-4 and list(probe.Point2) == [1.2, 1.2, 1.2]
+probe.Isovalue = 0.0
+probe.Point1 = [-2.0, 0.3, 0.1]
+probe.Point2 = [2.0, 0.3, 0.1]
+probe.UpdatePipeline()
+probed = servermanager.Fetch(probe)
+assert probed.GetNumberOfPoints() == 2, probed.GetNumberOfPoints()
+for k, sign in enumerate((-1, 1)):
+    hit = probed.GetPoint(k)
+    assert abs(hit[0] - sign * 0.9 ** 0.5) < 1e-12 and abs(hit[1] - 0.3) < 1e-12, hit
+    assert abs(probed.GetPointData().GetArray("f").GetValue(k)) < 1e-12
+simple.Delete(probe)
 source.GallerySurface = "kummer"
 
 view = iga_scene.make_view()
