@@ -1,6 +1,7 @@
 #include "vtkIGAIsosurfaceMapper.h"
 
 #include "vtkIGABezierHexahedra.h"
+#include "vtkIGADeepEXR.h"
 #include "vtkIGANurbsCells.h"
 
 #include "vtkActor.h"
@@ -1012,6 +1013,17 @@ bool vtkIGAIsosurfaceMapper::GetAttributeRange(const char* name, double range[2]
   }
   range[0] = extremes.min.value;
   range[1] = extremes.max.value;
+  return true;
+}
+
+bool vtkIGAIsosurfaceMapper::WriteDeepEXR(const char* fileName)
+{
+  std::string error = "no file name given";
+  if (!fileName || !vtkIGADeepEXR::Write(this->GetLastGBuffer(), fileName, error))
+  {
+    vtkErrorMacro(<< "deep OpenEXR: " << error);
+    return false;
+  }
   return true;
 }
 

@@ -390,6 +390,12 @@ public:
   /// computed: nothing to draw, or refused (GetLastRefusal says why).
   bool ComputeImage(vtkRenderer* renderer, vtkActor* actor, int width, int height);
 
+  /// Writes the last frame's G-buffer, every hit it holds (all of a ray's with AllLayers on), as
+  /// a deep OpenEXR image (vtkIGADeepEXR: depth, position, normal, uvw, patch, ... a sample per
+  /// hit), as `igaview --deep-exr` does. False, with an error, where there is no frame or the
+  /// file cannot be written.
+  bool WriteDeepEXR(const char* fileName);
+
   ///@{
   /// The point attributes of the last input drawn (ProbePixel's values), by name.
   int GetNumberOfAttributes() const;

@@ -1,9 +1,10 @@
 """vtkIGAIsosurfaceProbeLine from Python, with no X server: a segment's hits on an isosurface,
 solved exactly, against the analytic sphere (the gallery's f = r^2 - 1 = 0, and the rational
 Marsden sphere's), nearest first, with their distances, normals facing the segment's start and
-attributes evaluated at the hits; MaximumHits; a segment that misses; a segment of no length.
+attributes evaluated at the hits; MaximumHits; a segment that misses; a segment of no length; the
+probe's frame written as a deep OpenEXR file by the mapper.
 
-Usage: python3 test_probe_line.py DATA_DIR"""
+Usage: python3 test_probe_line.py DATA_DIR WORK_DIR"""
 import math
 import os
 import sys
@@ -12,9 +13,10 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 
-from igaview import vtkIGAAlgebraicSource, vtkIGAIsosurfaceProbeLine
+from igaview import vtkIGAAlgebraicSource, vtkIGAIsosurfaceMapper, vtkIGAIsosurfaceProbeLine
 
-data = sys.argv[1]
+data, work_dir = sys.argv[1:3]
+os.makedirs(work_dir, exist_ok=True)
 
 
 def probe(producer, array, start, end, hits=16):
@@ -69,4 +71,19 @@ line.SetPoint2(0, 0, 0)
 line.AddObserver("ErrorEvent", lambda obj, event: errors.append(event))
 line.Update()
 assert errors and line.GetOutput().GetNumberOfPoints() == 0, errors
+# The probe's frame (one pixel, its two hits) as a deep OpenEXR file through the mapper; a mapper
+# with no frame refuses.
+line = vtkIGAIsosurfaceProbeLine()
+line.SetInputConnection(sphere.GetOutputPort())
+line.SetSurfaceArrayName("f")
+line.SetIsovalue(0.0)
+line.SetPoint1(start)
+line.SetPoint2(end)
+line.Update()
+deep = os.path.join(work_dir, "probe-deep.exr")
+assert line.GetMapper().WriteDeepEXR(deep)
+with open(deep, "rb") as f:
+    head = f.read(4096)
+assert head[:4] == b"\x76\x2f\x31\x01" and b"deepscanline" in head, head[:64]
+assert not vtkIGAIsosurfaceMapper().WriteDeepEXR(os.path.join(work_dir, "none.exr"))
 print("probe line: sphere hits at -+%.12f, Marsden sphere hits on r = 1" % x)
