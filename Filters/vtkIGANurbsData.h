@@ -109,11 +109,12 @@ public:
   ///@}
 
   ///@{
-  /// Building in VTK's types (Python), one time step at time 0: the attribute names (only while
-  /// there are no patches), then the volumes and surfaces, each from its degrees, knot vectors
-  /// and homogeneous control net laid out as GetPatchControlNet gives it (4 + the attributes
-  /// components). Each returns "" or the problem (the object keeps what it had then); a volume
-  /// added after a surface still counts among the volumes.
+  /// Building in VTK's types (Python), while there is one time step (at time 0, or SetPatches'
+  /// time): the attribute names (only while there are no patches), then the volumes and
+  /// surfaces, each from its degrees, knot vectors and homogeneous control net laid out as
+  /// GetPatchControlNet gives it (4 components and one per attribute). Each returns "" or the
+  /// problem (the object keeps what it had then); a volume added after a surface still counts among
+  /// the volumes.
   std::string SetAttributeNames(vtkStringArray* names);
   std::string AddVolume(const int degrees[3], vtkDataArray* knotsU, vtkDataArray* knotsV,
     vtkDataArray* knotsW, vtkDataArray* net);
