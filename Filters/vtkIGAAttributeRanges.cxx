@@ -3,7 +3,6 @@
 #include "vtkDataArray.h"
 #include "vtkIGABezierHexahedra.h"
 #include "vtkInformation.h"
-#include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationInformationVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -21,7 +20,8 @@ vtkStandardNewMacro(vtkIGAAttributeRanges);
 
 namespace
 {
-/// Stores `range` as the array's cached range of component 0 and of its norm, plain and finite.
+/// Stores `range` as the one-component array's cached range, plain and finite (VTK reads a
+/// scalar's norm range as its component's).
 void cacheRange(vtkDataArray* array, const double range[2])
 {
   vtkInformation* info = array->GetInformation();
@@ -33,8 +33,6 @@ void cacheRange(vtkDataArray* array, const double range[2])
     components->GetInformationObject(0)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
     info->Set(key, components);
   }
-  info->Set(vtkDataArray::L2_NORM_RANGE(), range, 2);
-  info->Set(vtkDataArray::L2_NORM_FINITE_RANGE(), range, 2);
 }
 }
 
@@ -61,7 +59,13 @@ int vtkIGAAttributeRanges::Attach(vtkUnstructuredGrid* grid)
     const auto extremes = iga::attributeExtremes<double, 3>(
       long(scene.size()), [&](long p) { return scene[size_t(p)]; },
       iga::kFirstAttributeChannel + int(k));
-    if (!extremes.empty())
+    if (!extremes.complete)
+    {
+      vtkWarningWithObjectMacro(array, << "the range of '" << names[k]
+                                       << "' stays its control values': its subdivision budget "
+                                          "ran out before 1e-5 of the spread");
+    }
+    else if (!extremes.empty())
     {
       const double range[2] = { extremes.min.value, extremes.max.value };
       cacheRange(array, range);

@@ -8,9 +8,10 @@
  * values reach -7.75). Attach() finds each one-component point array's range over the grid's
  * hexahedra and quadrilaterals (iga::attributeExtremes, to 1e-5 of its spread) and stores it as
  * the array's cached range and finite range (vtkDataArray::COMPONENT_RANGE under PER_COMPONENT
- * and PER_FINITE_COMPONENT, L2_NORM_RANGE and L2_NORM_FINITE_RANGE), which GetRange and
- * GetFiniteRange return until the array is modified. ParaView's data information, colour maps
- * and the IGA representations' default isovalue (the range's middle) then take the field's
+ * and PER_FINITE_COMPONENT), which GetRange and GetFiniteRange return until the array is
+ * modified. Where the subdivision's budget runs out first (iga::attributeExtremes' `complete`),
+ * the array keeps its control values' range, with a warning. ParaView's data information, colour
+ * maps and the IGA representations' default isovalue (the range's middle) then take the field's
  * range. The IGAView readers and sources attach it to what they put out; VTK's own readers do
  * not (a .vtu opened with ParaView's XML reader shows the control values' range).
  *

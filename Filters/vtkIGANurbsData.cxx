@@ -109,31 +109,9 @@ vtkIdType pointsPerElement(const iga::BSplinePatch<double, Dim>& patch, bool ele
   return points;
 }
 
-/// Per direction the channel of the parameter attribute along it ("parameter_u/v/w"), -1 where
-/// the set has none.
-void parameterChannels(const iga::NurbsSet<double>& set, int* channels)
+/// Whether a net's weights vary (a rational patch).
+bool weightsVary(const std::vector<double>& net, size_t channels)
 {
-  const char* const names[3] = { "parameter_u", "parameter_v", "parameter_w" };
-  for (int d = 0; d < 3; ++d)
-  {
-    const auto& all = set.attributeNames;
-    const auto found = std::find(all.begin(), all.end(), names[d]);
-    channels[d] = found == all.end() ? -1 : iga::kFirstAttributeChannel + int(found - all.begin());
-  }
-}
-
-/// Whether vtkIGANurbsData::ExactParameters elevates the elements of a patch with this net:
-/// exact parameters asked for, a parameter attribute to make exact, and weights that vary.
-bool elevatedForParameters(
-  bool exact, const iga::NurbsSet<double>& set, const std::vector<double>& net)
-{
-  int parameter[3];
-  parameterChannels(set, parameter);
-  if (!exact || (parameter[0] < 0 && parameter[1] < 0 && parameter[2] < 0))
-  {
-    return false;
-  }
-  const size_t channels = size_t(set.channels());
   for (size_t p = channels; p < net.size(); p += channels)
   {
     if (net[p + iga::kWeightChannel] != net[iga::kWeightChannel])
@@ -144,15 +122,57 @@ bool elevatedForParameters(
   return false;
 }
 
+/// What vtkIGANurbsData::ExactParameters changes: the channel of each parameter attribute
+/// ("parameter_u/v/w", -1 where the set has none), and per patch (volumes, then surfaces) whether
+/// its cells rise by one degree: exact parameters asked for, a parameter attribute to make exact,
+/// every degree below kMaxDegree, and weights that vary in some time step (so that every step's
+/// cells are alike).
+struct ExactParameterCells
+{
+  int channel[3] = { -1, -1, -1 };
+  std::vector<bool> elevated;
+
+  ExactParameterCells(
+    bool exact, const iga::NurbsSet<double>& set, const std::vector<std::vector<Net>>& steps)
+    : elevated(size_t(set.patchCount()), false)
+  {
+    const char* const names[3] = { "parameter_u", "parameter_v", "parameter_w" };
+    const auto& all = set.attributeNames;
+    for (int d = 0; d < 3; ++d)
+    {
+      const auto found = std::find(all.begin(), all.end(), names[d]);
+      this->channel[d] =
+        found == all.end() ? -1 : iga::kFirstAttributeChannel + int(found - all.begin());
+    }
+    if (!exact || *std::max_element(this->channel, this->channel + 3) < 0)
+    {
+      return;
+    }
+    const auto below = [](const auto& patch) {
+      return *std::max_element(std::begin(patch.degree), std::end(patch.degree)) < iga::kMaxDegree;
+    };
+    for (size_t p = 0; p < this->elevated.size(); ++p)
+    {
+      const bool volume = p < set.volumes.size();
+      bool raised = volume ? below(set.volumes[p]) : below(set.surfaces[p - set.volumes.size()]);
+      bool varies = false;
+      for (size_t step = 0; raised && !varies && step < steps.size(); ++step)
+      {
+        varies = weightsVary(*steps[step][p], size_t(set.channels()));
+      }
+      this->elevated[p] = raised && varies;
+    }
+  }
+};
+
 /// Element e of a patch with exact parameters (iga::withExactParameters): the parameter runs over
 /// the element's knot spans, against the stored direction where the volume was reversed.
 template<int Dim>
 iga::BezierPatch<double, Dim> exactParameterElement(const iga::BezierPatch<double, Dim>& element,
-  const iga::NurbsSet<double>& set, const iga::BSplinePatch<double, Dim>& patch,
+  const int* channel, const iga::BSplinePatch<double, Dim>& patch,
   const iga::BezierExtraction<double, Dim>& extraction, int e, bool reversed)
 {
-  int parameter[3], span[Dim];
-  parameterChannels(set, parameter);
+  int span[Dim];
   extraction.elementIndex(e, span);
   double start[Dim], end[Dim];
   for (int d = 0; d < Dim; ++d)
@@ -166,7 +186,7 @@ iga::BezierPatch<double, Dim> exactParameterElement(const iga::BezierPatch<doubl
     start[0] = sum - start[0];
     end[0] = sum - end[0];
   }
-  return iga::withExactParameters(element, parameter, start, end);
+  return iga::withExactParameters(element, channel, start, end);
 }
 
 template<int Dim>
@@ -471,15 +491,23 @@ void vtkIGANurbsData::GetPatchNetSize(int patch, int size[3]) const
 
 void vtkIGANurbsData::GetPatchKnots(int patch, int direction, vtkDoubleArray* knots) const
 {
+  if (!knots)
+  {
+    return;
+  }
   knots->SetNumberOfTuples(0);
+  // A turned volume's first knots back as given: t -> a + b - t, in reverse order.
+  const bool turned = direction == 0 && this->IsVolumeReversed(patch);
   withPatch(this->Contents->Set, patch,
     [&](const auto& p)
     {
       if (direction >= 0 && direction < PatchDimension<std::decay_t<decltype(p)>>::value)
       {
-        for (double knot : p.knots[direction])
+        const auto& stored = p.knots[direction];
+        const double sum = stored.front() + stored.back();
+        for (size_t k = 0; k < stored.size(); ++k)
         {
-          knots->InsertNextValue(knot);
+          knots->InsertNextValue(turned ? sum - stored[stored.size() - 1 - k] : stored[k]);
         }
       }
     });
@@ -499,11 +527,20 @@ const char* vtkIGANurbsData::GetAttributeName(int index) const
 
 void vtkIGANurbsData::GetPatchControlNet(int step, int patch, vtkDoubleArray* net) const
 {
+  if (!net)
+  {
+    return;
+  }
   const int channels = this->Contents->Set.channels();
   const std::vector<double>& values = this->GetControlNet(step, patch);
   net->SetNumberOfComponents(channels);
   net->SetNumberOfTuples(vtkIdType(values.size() / size_t(channels)));
   std::copy(values.begin(), values.end(), net->GetPointer(0));
+  if (!values.empty() && this->IsVolumeReversed(patch))
+  {
+    iga::reverseNetDirection(
+      net->GetPointer(0), this->Contents->Set.volumes[size_t(patch)].netSize, 3, channels, 0);
+  }
 }
 
 std::string vtkIGANurbsData::SetAttributeNames(vtkStringArray* names)
@@ -580,9 +617,17 @@ std::string vtkIGANurbsData::AddPatch(const std::string& problem, const std::str
 std::string vtkIGANurbsData::AddTimeStepNets(double time, vtkDataArrayCollection* nets)
 {
   std::vector<std::vector<double>> values;
+  const int channels = this->Contents->Set.channels();
   for (int i = 0; nets && i < nets->GetNumberOfItems(); ++i)
   {
-    values.push_back(valuesOf(nets->GetItem(i)));
+    vtkDataArray* net = nets->GetItem(i);
+    if (!net || net->GetNumberOfComponents() != channels)
+    {
+      return "time " + std::to_string(time) + ", patch " + std::to_string(i) +
+             ": the control net needs " + std::to_string(channels) + " components, it has " +
+             std::to_string(net ? net->GetNumberOfComponents() : 0);
+    }
+    values.push_back(valuesOf(net));
   }
   return this->AddTimeStep(time, values);
 }
@@ -608,15 +653,14 @@ double vtkIGANurbsData::GetBezierCellBytes() const
   // the elements are made one at a time. The surfaces' points are appended to the volumes'
   // arrays, which may double them while they grow.
   const double perPoint = 8.0 * s.Set.channels() + 8.0;
+  const ExactParameterCells exact(this->ExactParameters, s.Set, s.Nets);
   auto points = [&](const auto& patches, const auto& extractions, size_t first)
   {
     double count = 0;
     for (size_t p = 0; p < patches.size(); ++p)
     {
-      const bool elevated = !s.Nets.empty() && elevatedForParameters(this->ExactParameters, s.Set,
-                                                 *s.Nets[0][first + p]);
-      count +=
-        double(extractions[p]->elementCount()) * double(pointsPerElement(patches[p], elevated));
+      count += double(extractions[p]->elementCount()) *
+               double(pointsPerElement(patches[p], exact.elevated[first + p]));
     }
     return count;
   };
@@ -628,7 +672,11 @@ double vtkIGANurbsData::GetBezierCellBytes() const
   {
     netValues += double(net->size());
   }
-  return perPoint * (surfaces > 0 ? 2 * (volumes + surfaces) : volumes) + 8.0 * netValues;
+  // vtkIGAAttributeRanges::Attach reads the finished grid back as patches: its coefficients once
+  // more.
+  const double attachCopy = 8.0 * s.Set.channels() * (volumes + surfaces);
+  return perPoint * (surfaces > 0 ? 2 * (volumes + surfaces) : volumes) + attachCopy +
+         8.0 * netValues;
 }
 
 namespace
@@ -656,18 +704,16 @@ struct CellOrigins
 /// SetPatches, so the cells stay the elements as extracted.
 vtkSmartPointer<vtkUnstructuredGrid> volumeCells(const iga::NurbsSet<double>& set,
   const std::vector<Extraction<3>>& extractions, const std::vector<Net>& nets,
-  const std::vector<bool>& reversed, bool exactParameters, CellOrigins& origins)
+  const std::vector<bool>& reversed, const ExactParameterCells& exact, CellOrigins& origins)
 {
   const int channels = set.channels();
   std::vector<vtkIdType> firstCell{ 0 };
-  std::vector<bool> elevated;
   vtkIdType pointCount = 0;
   for (size_t v = 0; v < nets.size() && v < set.volumes.size(); ++v)
   {
     firstCell.push_back(firstCell.back() + extractions[v]->elementCount());
-    elevated.push_back(elevatedForParameters(exactParameters, set, *nets[v]));
-    pointCount +=
-      vtkIdType(extractions[v]->elementCount()) * pointsPerElement(set.volumes[v], elevated.back());
+    pointCount += vtkIdType(extractions[v]->elementCount()) *
+                  pointsPerElement(set.volumes[v], exact.elevated[v]);
   }
   iga::BezierVolume<double> element;
   std::vector<double> work;
@@ -683,10 +729,10 @@ vtkSmartPointer<vtkUnstructuredGrid> volumeCells(const iga::NurbsSet<double>& se
     element = iga::BezierVolume<double>(set.volumes[volume].degree, channels);
     work.resize(2 * element.coeffs().size());
     extraction.extract(e, nets[volume]->data(), channels, element.coeffs().data(), work.data());
-    if (elevated[volume])
+    if (exact.elevated[volume])
     {
-      element =
-        exactParameterElement(element, set, set.volumes[volume], extraction, e, reversed[volume]);
+      element = exactParameterElement(
+        element, exact.channel, set.volumes[volume], extraction, e, reversed[volume]);
     }
     int span[3];
     extraction.elementIndex(e, span);
@@ -699,8 +745,8 @@ vtkSmartPointer<vtkUnstructuredGrid> volumeCells(const iga::NurbsSet<double>& se
 
 /// Appends the surfaces' Bézier elements to `grid` as quadrilaterals, one element at a time.
 void appendSurfaceCells(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& set,
-  const std::vector<Extraction<2>>& extractions, const std::vector<Net>& nets, bool exactParameters,
-  CellOrigins& origins)
+  const std::vector<Extraction<2>>& extractions, const std::vector<Net>& nets,
+  const ExactParameterCells& exact, CellOrigins& origins)
 {
   const int channels = set.channels();
   const size_t volumeCount = set.volumes.size();
@@ -719,11 +765,16 @@ void appendSurfaceCells(vtkUnstructuredGrid* grid, const iga::NurbsSet<double>& 
     {
       extraction.extract(
         e, nets[volumeCount + f]->data(), channels, element.coeffs().data(), work.data());
-      const auto& drawn =
-        elevatedForParameters(exactParameters, set, *nets[volumeCount + f])
-          ? exactParameterElement(element, set, set.surfaces[f], extraction, e, false)
-          : element;
-      vtkIGABezierHexahedra::AppendQuadrilateral(grid, drawn.view(), attributes);
+      if (exact.elevated[volumeCount + f])
+      {
+        const auto raised =
+          exactParameterElement(element, exact.channel, set.surfaces[f], extraction, e, false);
+        vtkIGABezierHexahedra::AppendQuadrilateral(grid, raised.view(), attributes);
+      }
+      else
+      {
+        vtkIGABezierHexahedra::AppendQuadrilateral(grid, std::as_const(element).view(), attributes);
+      }
       int span[3] = { 0, 0, 0 };
       extraction.elementIndex(e, span);
       origins.add(static_cast<int>(volumeCount + f), span);
@@ -809,9 +860,9 @@ vtkSmartPointer<vtkUnstructuredGrid> vtkIGANurbsData::ToUnstructuredGrid(int ste
   const std::vector<Net> none;
   const std::vector<Net>& nets = s.Nets.empty() ? none : s.Nets[step];
   CellOrigins origins;
-  auto grid = volumeCells(
-    s.Set, s.VolumeExtractions, nets, s.ReversedVolumes, this->ExactParameters, origins);
-  appendSurfaceCells(grid, s.Set, s.SurfaceExtractions, nets, this->ExactParameters, origins);
+  const ExactParameterCells exact(this->ExactParameters, s.Set, s.Nets);
+  auto grid = volumeCells(s.Set, s.VolumeExtractions, nets, s.ReversedVolumes, exact, origins);
+  appendSurfaceCells(grid, s.Set, s.SurfaceExtractions, nets, exact, origins);
   grid->GetCellData()->AddArray(origins.patchIds);
   grid->GetCellData()->AddArray(origins.spans);
   describe(grid, s.Set, nets, s.Times.empty() ? 0.0 : s.Times[step]);
@@ -975,6 +1026,7 @@ void vtkIGANurbsData::ShallowCopy(vtkIGANurbsData* other)
   if (other && other != this)
   {
     this->Contents = other->Contents;
+    this->ExactParameters = other->ExactParameters;
     this->Modified();
   }
 }
@@ -985,6 +1037,7 @@ void vtkIGANurbsData::DeepCopy(vtkIGANurbsData* other)
   {
     return;
   }
+  this->ExactParameters = other->ExactParameters;
   auto state = std::make_shared<State>(*other->Contents);
   for (auto& step : state->Nets)
   {

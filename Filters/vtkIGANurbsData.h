@@ -114,7 +114,8 @@ public:
   /// surfaces, each from its degrees, knot vectors and homogeneous control net laid out as
   /// GetPatchControlNet gives it (4 components and one per attribute). Each returns "" or the
   /// problem (the object keeps what it had then); a volume added after a surface still counts among
-  /// the volumes.
+  /// the volumes. Each add checks every patch again: thousands of patches go in faster at once,
+  /// through C++'s SetPatches.
   std::string SetAttributeNames(vtkStringArray* names);
   std::string AddVolume(const int degrees[3], vtkDataArray* knotsU, vtkDataArray* knotsV,
     vtkDataArray* knotsW, vtkDataArray* net);
@@ -127,7 +128,7 @@ public:
   /// Number of Bézier cells ToUnstructuredGrid() produces.
   vtkIdType GetNumberOfBezierCells() const;
   /// Bytes ToUnstructuredGrid() holds at its peak for one step: the grid (its elements are
-  /// extracted one at a time).
+  /// extracted one at a time) and the copy of its cells the attribute ranges are found on.
   double GetBezierCellBytes() const;
 
   ///@{

@@ -133,14 +133,14 @@ int vtkIGAIsosurfaceProbeLine::RequestData(
   const std::vector<std::string> names = layerNames(pixel, this->MaximumHits);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  vtkPointData* hits = output->GetPointData();
+  std::vector<vtkSmartPointer<vtkDataArray>> columns;
   for (const std::string& name : names)
   {
     vtkSmartPointer<vtkDataArray> array;
     array.TakeReference(pixel->GetArray(name.c_str())->NewInstance());
     array->SetName(name == "Depth" ? "Distance" : name.c_str());
     array->SetNumberOfComponents(pixel->GetArray(name.c_str())->GetNumberOfComponents());
-    hits->AddArray(array);
+    columns.push_back(array);
   }
   for (int layer = 0; layer < this->MaximumHits; ++layer)
   {
@@ -153,8 +153,15 @@ int vtkIGAIsosurfaceProbeLine::RequestData(
     points->InsertNextPoint(pixel->GetArray(("Position" + suffix).c_str())->GetTuple3(0));
     for (size_t a = 0; a < names.size(); ++a)
     {
-      hits->GetArray(int(a))->InsertNextTuple(
-        pixel->GetArray((names[a] + suffix).c_str())->GetTuple(0));
+      columns[a]->InsertNextTuple(pixel->GetArray((names[a] + suffix).c_str())->GetTuple(0));
+    }
+  }
+  // An attribute named as a fixed array (Distance, Normal, ...) yields to it, which comes first.
+  for (const auto& column : columns)
+  {
+    if (!output->GetPointData()->HasArray(column->GetName()))
+    {
+      output->GetPointData()->AddArray(column);
     }
   }
   output->SetPoints(points);

@@ -8,12 +8,14 @@
  * Point1 to Point2 is the ray of the one pixel of a parallel view whose clipping range is the
  * segment (vtkIGAIsosurfaceImage, 1 x 1 pixels), so its hits are the engine's, each solved on
  * that ray as a pixel's is: the first MaximumHits of them from Point1 (MaximumHits above 1
- * turns the mapper's AllLayers on). No OpenGL and no X server are needed.
+ * turns the mapper's AllLayers on). The near clipping plane lies 1e-9 of the segment's length
+ * past Point1: a hit closer to it is not reported. No OpenGL and no X server are needed.
  *
  * Output: a vtkPolyData of one vertex per hit, nearest Point1 first, at the hit's world
  * position, with point arrays Distance (from Point1 along the segment), Normal (facing Point1),
  * UVW (the parameter in the cell), Cell (its id in its grid), Block (composite input) and every
- * point attribute of the input evaluated at the hit from its cell (not interpolated). A segment
+ * point attribute of the input evaluated at the hit from its cell (not interpolated; one named
+ * as a fixed array yields to it). A segment
  * that meets nothing gives no points; Point1 equal to Point2 is refused.
  */
 #ifndef vtkIGAIsosurfaceProbeLine_h

@@ -27,7 +27,7 @@ using AffineForms = std::shared_ptr<const std::vector<AffinePatch>>;
 
 /// Per affine patch and isovalue, the pixels whose rays may meet its isosurface: those the window
 /// boxes of its isosurfaceCells cover, or every pixel where the patch has no cells (a box under
-/// kCellPixels across, a degree above kCellDegree, a corner behind the eye, or
+/// twice kCellPixels across, a degree above kCellDegree, a corner behind the eye, or
 /// Settings::isosurfaceCells off).
 class CellCoverage
 {
@@ -297,13 +297,13 @@ private:
     const std::vector<double>& isovalues, const std::vector<int>& levels, int threads)
   {
     static std::mutex keptMutex;
-    static AffineForms keptForms;
+    static std::weak_ptr<const std::vector<AffinePatch>> keptForms; // not kept alive by it
     static std::vector<double> keptIsovalues;
     static std::vector<int> keptLevels;
     static std::shared_ptr<const MaskCells> kept;
     {
       std::lock_guard<std::mutex> lock(keptMutex);
-      if (keptForms == affine && keptIsovalues == isovalues && keptLevels == levels)
+      if (keptForms.lock() == affine && keptIsovalues == isovalues && keptLevels == levels)
       {
         return kept;
       }

@@ -118,11 +118,11 @@ struct PowerShadingTable
 inline std::shared_ptr<const PowerShadingTable> powerShadingOf(const AffineForms& affine)
 {
   static std::mutex keptMutex;
-  static AffineForms keptForms;
+  static std::weak_ptr<const std::vector<AffinePatch>> keptForms; // not kept alive by it
   static std::shared_ptr<const PowerShadingTable> kept;
   {
     std::lock_guard<std::mutex> lock(keptMutex);
-    if (keptForms == affine)
+    if (keptForms.lock() == affine)
     {
       return kept;
     }

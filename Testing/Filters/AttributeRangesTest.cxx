@@ -62,7 +62,7 @@ void expectRange(vtkDataArray* array, double lo, double hi, double tolerance)
   EXPECT_NEAR(range[1], hi, tolerance) << array->GetName();
   EXPECT_EQ(finite[0], range[0]) << array->GetName();
   EXPECT_EQ(finite[1], range[1]) << array->GetName();
-  EXPECT_EQ(array->GetRange(-1)[0], range[0]) << array->GetName(); // a scalar's norm range
+  EXPECT_EQ(array->GetRange(-1)[0], range[0]) << array->GetName(); // VTK: a scalar's own
 }
 } // namespace
 

@@ -753,6 +753,61 @@ TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
   }
 }
 
+// Many small patches (an ABS field of 16^3 cubic elements, 8-16 pixels each at 256^2): with
+// the cells, a patch's nodes take its cells' window box (the sweep pairs them with those pixels
+// only) and a pixel's patches come in their cells' depth order. First and all hits equal the
+// frame without the cells: the same hits per pixel, positions within 1e-9 of the box.
+TEST(RayComposition, IsosurfaceCellsNarrowManyPatchesWithoutChangingHits)
+{
+  const iga::AlgebraicSurface* kummer = iga::findAlgebraicSurface("kummer");
+  const auto f = iga::parsePolynomial(kummer->expression);
+  const int cells[3] = { 16, 16, 16 };
+  const iga::AbsField field = iga::makeAbsField(
+    [&](double x, double y, double z) { return f.evaluate(x, y, z); }, kummer->box, 3, cells);
+  double bounds[6];
+  iga::sst::patchBounds(iga::sst::Scene(field.set.patches), bounds);
+  const iga::Camera camera = iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+  const double size = kummer->box[1] - kummer->box[0];
+  for (bool firstHit : { true, false })
+  {
+    GBuffer frames[2];
+    iga::sst::FrameReport reports[2];
+    for (int culled = 0; culled < 2; ++culled)
+    {
+      iga::sst::Settings settings;
+      settings.width = settings.height = 256;
+      settings.isovalues = { 0.0 };
+      settings.threads = 2;
+      settings.firstHitOnly = firstHit;
+      settings.isosurfaceCells = culled == 1;
+      reports[culled] = iga::sst::render(
+        iga::sst::Scene(field.set.patches), camera, settings, Method::Automatic, frames[culled]);
+    }
+    const std::string what = firstHit ? "first hit" : "all hits";
+    EXPECT_GT(reports[1].isosurfaceCells, 0u) << what;
+    EXPECT_LT(reports[1].composedRays, reports[0].composedRays * 3 / 4) << what;
+    ASSERT_GT(frames[0].hits.size(), 10000u) << what;
+    size_t differing = 0;
+    double worst = 0;
+    for (int j = 0; j < 256; ++j)
+      for (int i = 0; i < 256; ++i)
+      {
+        const size_t p = size_t(j) * 256 + i;
+        const int count = frames[0].hitCount(i, j);
+        if (count != frames[1].hitCount(i, j))
+        {
+          ++differing;
+          continue;
+        }
+        for (int k = 0; k < count; ++k)
+          worst = std::max(worst, glm::length(frames[0].hits[frames[0].offsets[p] + k].position -
+                                              frames[1].hits[frames[1].offsets[p] + k].position));
+      }
+    EXPECT_LE(differing, 2u) << what;
+    EXPECT_LT(worst, 1e-9 * size) << what;
+  }
+}
+
 TEST(RayComposition, CellCoverageBoundsEveryHit)
 {
   // Every hit of a frame drawn without the cells (all hits, perspective and parallel views) lies
