@@ -20,6 +20,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <random>
 
 namespace
@@ -691,6 +692,59 @@ TEST(IsosurfaceCells, HoldEveryRootOfTheFieldAndOnlyCellsThatMay)
   }
 }
 
+/// The frames of `patches` with the isosurface cells off ([0]) and on ([1]), at 256^2.
+void framesWithAndWithoutCells(const std::vector<iga::BezierVolume<double>>& patches,
+  const iga::Camera& camera, bool firstHit, GBuffer (&frames)[2],
+  iga::sst::FrameReport (&reports)[2])
+{
+  for (int culled = 0; culled < 2; ++culled)
+  {
+    iga::sst::Settings settings;
+    settings.width = settings.height = 256;
+    settings.isovalues = { 0.0 };
+    settings.threads = 2;
+    settings.firstHitOnly = firstHit;
+    settings.isosurfaceCells = culled == 1;
+    reports[culled] = iga::sst::render(
+      iga::sst::Scene(patches), camera, settings, Method::Automatic, frames[culled]);
+  }
+}
+
+/// How two 256^2 frames' hits compare: pixels whose hit counts differ; of the others' hits, those
+/// `trusted` (well conditioned) and the largest distance between them.
+struct CellFramesCompared
+{
+  size_t differing = 0, compared = 0;
+  double worst = 0;
+};
+CellFramesCompared compareCellFrames(
+  const GBuffer (&frames)[2], const std::function<bool(const glm::dvec3&)>& trusted)
+{
+  CellFramesCompared result;
+  for (int j = 0; j < 256; ++j)
+    for (int i = 0; i < 256; ++i)
+    {
+      const size_t p = size_t(j) * 256 + i;
+      const int count = frames[0].hitCount(i, j);
+      if (count != frames[1].hitCount(i, j))
+      {
+        ++result.differing;
+        continue;
+      }
+      for (int k = 0; k < count; ++k)
+      {
+        const auto& a = frames[0].hits[frames[0].offsets[p] + k];
+        const auto& b = frames[1].hits[frames[1].offsets[p] + k];
+        if (trusted(a.position))
+        {
+          result.worst = std::max(result.worst, glm::length(a.position - b.position));
+          ++result.compared;
+        }
+      }
+    }
+  return result;
+}
+
 TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
 {
   // The same frames with and without the cells, first and all hits: fewer rays composed and
@@ -706,49 +760,18 @@ TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
     {
       GBuffer frames[2];
       iga::sst::FrameReport reports[2];
-      for (int culled = 0; culled < 2; ++culled)
-      {
-        iga::sst::Settings settings;
-        settings.width = settings.height = 256;
-        settings.isovalues = { 0.0 };
-        settings.threads = 2;
-        settings.firstHitOnly = firstHit;
-        settings.isosurfaceCells = culled == 1;
-        reports[culled] = iga::sst::render(
-          iga::sst::Scene(v.patches), cameraOf(v), settings, Method::Automatic, frames[culled]);
-      }
+      framesWithAndWithoutCells(v.patches, cameraOf(v), firstHit, frames, reports);
       const std::string what = std::string(name) + (firstHit ? " first hit" : " all hits");
       EXPECT_EQ(reports[0].isosurfaceCells, 0u) << what;
       EXPECT_GT(reports[1].isosurfaceCells, 0u) << what;
       EXPECT_LT(reports[1].composedRays, reports[0].composedRays * 3 / 4) << what;
       EXPECT_LT(reports[1].rootFinderSteps, reports[0].rootFinderSteps) << what;
       ASSERT_GT(frames[0].hits.size(), 1000u) << what;
-      size_t differing = 0, compared = 0;
-      for (int j = 0; j < 256; ++j)
-      {
-        for (int i = 0; i < 256; ++i)
-        {
-          const size_t p = size_t(j) * 256 + i;
-          const int count = frames[0].hitCount(i, j);
-          if (count != frames[1].hitCount(i, j))
-          {
-            ++differing;
-            continue;
-          }
-          for (int k = 0; k < count; ++k)
-          {
-            const auto& a = frames[0].hits[frames[0].offsets[p] + k];
-            const auto& b = frames[1].hits[frames[1].offsets[p] + k];
-            if (wellConditioned(v, size, cameraOf(v).position, a.position))
-            {
-              EXPECT_LT(glm::length(a.position - b.position), 1e-9 * size) << what;
-              ++compared;
-            }
-          }
-        }
-      }
-      EXPECT_LE(differing, 2u) << what;
-      EXPECT_GT(compared, frames[0].hits.size() * 9 / 10) << what;
+      const CellFramesCompared compared = compareCellFrames(frames,
+        [&](const glm::dvec3& x) { return wellConditioned(v, size, cameraOf(v).position, x); });
+      EXPECT_LT(compared.worst, 1e-9 * size) << what;
+      EXPECT_LE(compared.differing, 2u) << what;
+      EXPECT_GT(compared.compared, frames[0].hits.size() * 9 / 10) << what;
     }
   }
 }
@@ -772,39 +795,15 @@ TEST(RayComposition, IsosurfaceCellsNarrowManyPatchesWithoutChangingHits)
   {
     GBuffer frames[2];
     iga::sst::FrameReport reports[2];
-    for (int culled = 0; culled < 2; ++culled)
-    {
-      iga::sst::Settings settings;
-      settings.width = settings.height = 256;
-      settings.isovalues = { 0.0 };
-      settings.threads = 2;
-      settings.firstHitOnly = firstHit;
-      settings.isosurfaceCells = culled == 1;
-      reports[culled] = iga::sst::render(
-        iga::sst::Scene(field.set.patches), camera, settings, Method::Automatic, frames[culled]);
-    }
+    framesWithAndWithoutCells(field.set.patches, camera, firstHit, frames, reports);
     const std::string what = firstHit ? "first hit" : "all hits";
     EXPECT_GT(reports[1].isosurfaceCells, 0u) << what;
     EXPECT_LT(reports[1].composedRays, reports[0].composedRays * 3 / 4) << what;
     ASSERT_GT(frames[0].hits.size(), 10000u) << what;
-    size_t differing = 0;
-    double worst = 0;
-    for (int j = 0; j < 256; ++j)
-      for (int i = 0; i < 256; ++i)
-      {
-        const size_t p = size_t(j) * 256 + i;
-        const int count = frames[0].hitCount(i, j);
-        if (count != frames[1].hitCount(i, j))
-        {
-          ++differing;
-          continue;
-        }
-        for (int k = 0; k < count; ++k)
-          worst = std::max(worst, glm::length(frames[0].hits[frames[0].offsets[p] + k].position -
-                                              frames[1].hits[frames[1].offsets[p] + k].position));
-      }
-    EXPECT_LE(differing, 2u) << what;
-    EXPECT_LT(worst, 1e-9 * size) << what;
+    const CellFramesCompared compared =
+      compareCellFrames(frames, [](const glm::dvec3&) { return true; });
+    EXPECT_LE(compared.differing, 2u) << what;
+    EXPECT_LT(compared.worst, 1e-9 * size) << what;
   }
 }
 
