@@ -4,6 +4,7 @@
 #pragma once
 
 #include "ParallelFor.h"
+#include "iga/FrustumForm.h"
 #include "iga/IsosurfaceCells.h"
 #include "iga/sst/Engine.h"
 #include "iga/sst/Tree.h"
@@ -46,6 +47,7 @@ public:
     , Width(size_t(settings.width))
     , ClipToWorld(glm::inverse(view.worldToClip))
     , Middle(ClipToWorld)
+    , Drawn(settings.width, settings.height, settings.farDepths)
     , Masks(affine->size() * settings.isovalues.size())
   {
     const double wScale = std::fabs(this->ClipToWorld[3][3]) + std::fabs(this->ClipToWorld[2][3]);
@@ -53,17 +55,23 @@ public:
                          std::fabs(this->ClipToWorld[1][3]) <= 1e-14 * wScale;
     const glm::dmat4 window = windowFromWorld(view, settings.width, settings.height);
     std::vector<int> levels(this->Masks.size(), 0);
+    std::vector<char> undrawn(affine->size(), 0);
     parallelFor(settings.isosurfaceCells ? affine->size() : 0, threads,
       [&](size_t begin, size_t end)
       {
         for (size_t p = begin; p < end; ++p)
         {
+          Box3<double> box;
+          const int level = cellLevels((*affine)[p], window, box);
+          undrawn[p] = level > 0 && !this->drawsIn(box, settings);
           for (size_t iso = 0; iso < this->Isovalues; ++iso)
           {
-            levels[p * this->Isovalues + iso] = cellLevels((*affine)[p], window);
+            levels[p * this->Isovalues + iso] = level;
           }
         }
       });
+    // The cells are kept with their levels, the same for the view's every frame; a patch that
+    // draws no pixel (a supersampling pass draws few) takes no time to cover.
     const auto cells = cellsOf(affine, settings.isovalues, levels, threads);
     parallelFor(cells->size(), threads,
       [&](size_t begin, size_t end)
@@ -71,8 +79,15 @@ public:
         for (size_t k = begin; k < end; ++k)
         {
           const size_t m = (*cells)[k].first;
-          this->cover((*affine)[m / this->Isovalues], (*cells)[k].second.data(), window, settings,
-            this->Masks[m]);
+          if (undrawn[m / this->Isovalues])
+          {
+            this->Masks[m].whole = false; // no pixel: no ray, and an empty node box
+          }
+          else
+          {
+            this->cover((*affine)[m / this->Isovalues], (*cells)[k].second.data(), window, settings,
+              this->Masks[m]);
+          }
         }
       });
     for (const auto& mask : *cells)
@@ -158,6 +173,9 @@ public:
 
   /// Cells kept over all patches and isovalues.
   size_t cells() const { return this->Cells; }
+
+  /// The pixels the frame draws (all, or those its far depths leave).
+  const DrawnPixels& drawn() const { return this->Drawn; }
 
 private:
   /// Segments are kept per tile of kTile x kTile pixels: per pixel they would cost a frame more
@@ -336,9 +354,8 @@ private:
 
   /// The octree levels of the patch's cells: about kCellPixels across in the window, none (0)
   /// where the patch gets no cells.
-  static int cellLevels(const AffinePatch& patch, const glm::dmat4& window)
+  static int cellLevels(const AffinePatch& patch, const glm::dmat4& window, Box3<double>& box)
   {
-    Box3<double> box;
     if (patch.rayDegree < 0 || *std::max_element(patch.degree, patch.degree + 3) > kCellDegree ||
         !windowBox(WindowMap(patch, window), glm::dvec3(0.0), 1.0, box))
     {
@@ -346,6 +363,16 @@ private:
     }
     const double extent = std::max(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1]);
     return std::max(0, std::min(kCellLevels, int(std::floor(std::log2(extent / kCellPixels)))));
+  }
+
+  /// Whether the frame draws a pixel whose centre a window box covers.
+  bool drawsIn(const Box3<double>& box, const Settings& settings) const
+  {
+    const double lo[2] = { 2 * box.lo[0] / settings.width - 1,
+      2 * box.lo[1] / settings.height - 1 };
+    const double hi[2] = { 2 * box.hi[0] / settings.width - 1,
+      2 * box.hi[1] / settings.height - 1 };
+    return this->Drawn.in(lo, hi) > 0;
   }
 
   /// Sets `mask` to the pixels the cells of its 8 octants cover and their tiles' segments, or
@@ -445,6 +472,7 @@ private:
   const size_t Isovalues, Width;
   const glm::dmat4 ClipToWorld;
   const MiddleRay Middle;
+  const DrawnPixels Drawn;
   bool SharedDepths;       ///< the view's pixel rays share their depths' parameters (MiddleRay)
   std::vector<Mask> Masks; ///< patch * isovalues + iso
   size_t Cells = 0;

@@ -553,7 +553,7 @@ private:
     this->Coverage =
       std::make_unique<CellCoverage>(this->Affine, this->TheView, this->Config, this->Plan.threads);
     this->Forms = std::make_unique<FrustumForms>(
-      *this->Affine, this->TheView, this->Config, this->Plan.threads, *this->Coverage);
+      *this->Affine, this->TheView, this->Plan.threads, *this->Coverage);
     this->Report.isosurfaceCells = this->Coverage->cells();
     this->Coverage->narrowNodes(this->Plan.initialNodes.data(), this->Plan.initialNodes.size());
     this->Shading = powerShadingOf(this->Affine);

@@ -178,13 +178,12 @@ inline AffineForms affinePatches(
 class FrustumForms
 {
 public:
-  FrustumForms(const std::vector<AffinePatch>& affine, const View& view, const Settings& settings,
-    int threads, const CellCoverage& coverage)
+  FrustumForms(const std::vector<AffinePatch>& affine, const View& view, int threads,
+    const CellCoverage& coverage)
     : Affine(affine)
     , Coverage(coverage)
     , WorldToClip(view.worldToClip)
     , ClipToWorld(glm::inverse(view.worldToClip))
-    , Drawn(settings.width, settings.height, settings.farDepths)
     , Forms(affine.size())
     , Once(new std::once_flag[affine.size()])
   {
@@ -216,7 +215,7 @@ private:
       [&]
       {
         const bool made = makeFrustumForm(this->Affine[p], this->WorldToClip, this->ClipToWorld,
-          this->Drawn, this->Coverage.pixels(p), this->Forms[p],
+          this->Coverage.drawn(), this->Coverage.pixels(p), this->Forms[p],
           [&](size_t count, const auto& fn) { parallelFor(count, threads, fn); });
         this->Made += made ? 1 : 0;
         this->Blossoms += !made && !this->Affine[p].terms.empty() ? 1 : 0;
@@ -226,7 +225,6 @@ private:
   const std::vector<AffinePatch>& Affine;
   const CellCoverage& Coverage;
   const glm::dmat4 WorldToClip, ClipToWorld;
-  const DrawnPixels Drawn;
   std::vector<FrustumForm> Forms;
   std::unique_ptr<std::once_flag[]> Once;
   std::atomic<size_t> Made{ 0 }, Blossoms{ 0 };
