@@ -496,18 +496,16 @@ void vtkIGANurbsData::GetPatchKnots(int patch, int direction, vtkDoubleArray* kn
     return;
   }
   knots->SetNumberOfTuples(0);
-  // A turned volume's first knots back as given: t -> a + b - t, in reverse order.
+  // A turned volume's first knots back as given.
   const bool turned = direction == 0 && this->IsVolumeReversed(patch);
   withPatch(this->Contents->Set, patch,
     [&](const auto& p)
     {
       if (direction >= 0 && direction < PatchDimension<std::decay_t<decltype(p)>>::value)
       {
-        const auto& stored = p.knots[direction];
-        const double sum = stored.front() + stored.back();
-        for (size_t k = 0; k < stored.size(); ++k)
+        for (double knot : turned ? iga::mirroredKnots(p.knots[0]) : p.knots[direction])
         {
-          knots->InsertNextValue(turned ? sum - stored[stored.size() - 1 - k] : stored[k]);
+          knots->InsertNextValue(knot);
         }
       }
     });

@@ -108,19 +108,24 @@ void reverseDirection(const PatchView<T, Dim>& patch, int dir)
   reverseNetDirection(patch.coeffs, orders, Dim, patch.channels, dir);
 }
 
-/// The same B-spline patch with direction `dir` reversed: knots t -> a + b - t in reverse
-/// order (a, b the first and last knot) and the net reversed along `dir`.
-template<class T, int Dim>
-void reverseDirection(BSplinePatch<T, Dim>& patch, int dir)
+/// A knot vector reversed: t -> a + b - t in reverse order (a, b the first and last knot).
+template<class T>
+std::vector<T> mirroredKnots(const std::vector<T>& knots)
 {
-  std::vector<T>& knots = patch.knots[dir];
-  const T ends = knots.front() + knots.back();
   std::vector<T> mirrored(knots.rbegin(), knots.rend());
   for (T& knot : mirrored)
   {
-    knot = ends - knot;
+    knot = knots.front() + knots.back() - knot;
   }
-  knots = std::move(mirrored);
+  return mirrored;
+}
+
+/// The same B-spline patch with direction `dir` reversed: its knots mirrored (mirroredKnots) and
+/// the net reversed along `dir`.
+template<class T, int Dim>
+void reverseDirection(BSplinePatch<T, Dim>& patch, int dir)
+{
+  patch.knots[dir] = mirroredKnots(patch.knots[dir]);
   reverseNetDirection(patch.net.data(), patch.netSize, Dim, patch.channels, dir);
 }
 
