@@ -13,6 +13,7 @@
 #include "iga/AlgebraicGallery.h"
 #include "iga/Datasets.h"
 #include "iga/PolynomialExpression.h"
+#include "iga/sst/Engine.h"
 
 #include <stdexcept>
 #include <string>
@@ -135,7 +136,7 @@ int vtkIGAAlgebraicSource::RequestData(
     this->SetErrorCode(vtkErrorCode::UserError);
   }
   const auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(set);
-  vtkIGAAttributeRanges::Attach(grid);
+  vtkIGAAttributeRanges::Attach(grid, iga::sst::Scene(set.patches), set.attributeNames);
   vtkUnstructuredGrid::GetData(outInfo)->ShallowCopy(grid);
   return 1;
 }

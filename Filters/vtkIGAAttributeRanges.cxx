@@ -46,8 +46,13 @@ int vtkIGAAttributeRanges::Attach(vtkUnstructuredGrid* grid)
   {
     return 0;
   }
-  const iga::sst::Scene scene(patches.volumes.patches, patches.surfaces);
-  const auto& names = patches.volumes.attributeNames;
+  return Attach(grid, iga::sst::Scene(patches.volumes.patches, patches.surfaces),
+    patches.volumes.attributeNames);
+}
+
+int vtkIGAAttributeRanges::Attach(
+  vtkUnstructuredGrid* grid, const iga::sst::Scene& scene, const std::vector<std::string>& names)
+{
   int attached = 0;
   for (size_t k = 0; k < names.size(); ++k)
   {

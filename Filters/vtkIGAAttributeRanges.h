@@ -26,6 +26,18 @@
 
 class vtkUnstructuredGrid;
 
+#ifndef __VTK_WRAP__
+#include <string> // for attribute names
+#include <vector> // for attribute names
+namespace iga
+{
+namespace sst
+{
+class Scene;
+}
+}
+#endif
+
 class IGAVIEWFILTERS_EXPORT vtkIGAAttributeRanges : public vtkObject
 {
 public:
@@ -36,6 +48,14 @@ public:
   /// Bézier cells' attributes. Returns the number of arrays given a range; 0 for a grid that is
   /// not one of Bézier cells (nothing is changed then).
   static int Attach(vtkUnstructuredGrid* grid);
+
+#ifndef __VTK_WRAP__
+  /// The same from the patches the grid was made of, whose attribute k (channel
+  /// kFirstAttributeChannel + k) is the grid's point array names[k]: for the readers and
+  /// sources that hold them, so that the grid is not read back.
+  static int Attach(vtkUnstructuredGrid* grid, const iga::sst::Scene& patches,
+    const std::vector<std::string>& names);
+#endif
 
 protected:
   vtkIGAAttributeRanges() = default;

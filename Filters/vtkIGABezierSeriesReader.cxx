@@ -13,6 +13,8 @@
 #include "vtkXMLDataElement.h"
 #include "vtksys/SystemTools.hxx"
 
+#include "iga/sst/Engine.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -203,7 +205,8 @@ int vtkIGABezierSeriesReader::RequestData(
                   << "': " << error);
     return 0;
   }
-  vtkIGAAttributeRanges::Attach(grid);
+  vtkIGAAttributeRanges::Attach(grid, iga::sst::Scene(patches.volumes.patches, patches.surfaces),
+    patches.volumes.attributeNames);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
   output->ShallowCopy(grid);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), this->Times[step]);

@@ -9,6 +9,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "iga/Datasets.h"
+#include "iga/sst/Engine.h"
 
 #include <algorithm>
 
@@ -64,7 +65,7 @@ int vtkIGADefaultVolumeSource::RequestData(
     set.patches = std::move(mine);
   }
   auto grid = vtkIGABezierHexahedra::ToUnstructuredGrid(set);
-  vtkIGAAttributeRanges::Attach(grid);
+  vtkIGAAttributeRanges::Attach(grid, iga::sst::Scene(set.patches), set.attributeNames);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outInfo);
   output->ShallowCopy(grid);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
