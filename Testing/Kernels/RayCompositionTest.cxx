@@ -572,19 +572,32 @@ TEST(RayComposition, SeededFramesEqualColdFrames)
   }
 }
 
+/// The Kummer surface's f fitted on n^3 cubic elements, those it crosses kept (Wei and Feng's
+/// scenes).
+iga::AbsField kummerAbsField(int n)
+{
+  const iga::AlgebraicSurface* kummer = iga::findAlgebraicSurface("kummer");
+  const auto f = iga::parsePolynomial(kummer->expression);
+  const int cells[3] = { n, n, n };
+  return iga::makeAbsField(
+    [&](double x, double y, double z) { return f.evaluate(x, y, z); }, kummer->box, 3, cells);
+}
+
+/// igaBenchmark's view of an ABS field: its bounds framed from (-0.55, 0.65, -0.5), 30 degrees.
+iga::Camera absCamera(const iga::AbsField& field)
+{
+  double bounds[6];
+  iga::sst::patchBounds(iga::sst::Scene(field.set.patches), bounds);
+  return iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+}
+
 TEST(RayComposition, AbsFieldsAgreeWithTheTree)
 {
   // Wei and Feng's scenes: the Kummer surface fitted on 12^3 cubic elements, the elements it
   // crosses kept (hundreds of patches, each seen by few pixels: composed directly).
-  const iga::AlgebraicSurface* kummer = iga::findAlgebraicSurface("kummer");
-  const auto f = iga::parsePolynomial(kummer->expression);
-  const int cells[3] = { 12, 12, 12 };
-  const iga::AbsField field = iga::makeAbsField(
-    [&](double x, double y, double z) { return f.evaluate(x, y, z); }, kummer->box, 3, cells);
+  const iga::AbsField field = kummerAbsField(12);
   ASSERT_GT(field.set.patches.size(), 300u);
-  double bounds[6];
-  iga::sst::patchBounds(iga::sst::Scene(field.set.patches), bounds);
-  const iga::Camera camera = iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
+  const iga::Camera camera = absCamera(field);
   iga::sst::Settings settings;
   settings.width = settings.height = 96;
   settings.isovalues = { 0.0 };
@@ -782,14 +795,9 @@ TEST(RayComposition, IsosurfaceCellsSkipRaysWithoutRoots)
 // frame without the cells: the same hits per pixel, positions within 1e-9 of the box.
 TEST(RayComposition, IsosurfaceCellsNarrowManyPatchesWithoutChangingHits)
 {
+  const iga::AbsField field = kummerAbsField(16);
+  const iga::Camera camera = absCamera(field);
   const iga::AlgebraicSurface* kummer = iga::findAlgebraicSurface("kummer");
-  const auto f = iga::parsePolynomial(kummer->expression);
-  const int cells[3] = { 16, 16, 16 };
-  const iga::AbsField field = iga::makeAbsField(
-    [&](double x, double y, double z) { return f.evaluate(x, y, z); }, kummer->box, 3, cells);
-  double bounds[6];
-  iga::sst::patchBounds(iga::sst::Scene(field.set.patches), bounds);
-  const iga::Camera camera = iga::frameBounds(bounds, { -0.55, 0.65, -0.5 }, { 0, 0, 1 }, 30);
   const double size = kummer->box[1] - kummer->box[0];
   for (bool firstHit : { true, false })
   {
