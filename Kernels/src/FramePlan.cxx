@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -156,13 +157,15 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
   }
 }
 
-/// Room for the roots of patches [begin, end) that lie in front of the eye (most do).
-void reserveRoots(FramePlan& part, const Scene& scene, size_t begin, size_t end, const Settings& s)
+/// Room for the roots of the `drawn` patches of [begin, end) that lie in front of the eye (most
+/// do).
+void reserveRoots(FramePlan& part, const Scene& scene, size_t begin, size_t end,
+  const std::vector<uint8_t>& drawn, const Settings& s)
 {
   size_t roots = 0, values = 0;
   for (size_t p = begin; p < end; ++p)
   {
-    const size_t count = size_t(rootsOf(scene[p].degree, s));
+    const size_t count = drawn[p] ? size_t(rootsOf(scene[p].degree, s)) : 0;
     roots += count;
     values += count * size_t(scene[p].pointCount()) * kScreenChannels;
   }
@@ -241,8 +244,10 @@ void checkAttributes(int channels, const Settings& s, const std::string& name)
   }
 }
 
-AttributeRange checkPatches(const Scene& scene, const Settings& s)
+CheckedPatches checkPatchRanges(const Scene& scene, const Settings& s)
 {
+  CheckedPatches checked;
+  checked.patches.resize(scene.size());
   const int attribute = kFirstAttributeChannel + s.surfaceAttribute;
   // Per part: the attribute's range, or the first bad patch and its problem. Parts are joined in
   // order, so the message names the first bad patch whatever the thread count.
@@ -278,23 +283,58 @@ AttributeRange checkPatches(const Scene& scene, const Settings& s)
         {
           continue;
         }
-        double lo, hi;
-        rationalRange(patch, attribute, kWeightChannel, lo, hi);
-        part.lo = std::min(part.lo, lo);
-        part.hi = std::max(part.hi, hi);
+        PatchRange& range = checked.patches[p];
+        range.known = rationalRange(patch, attribute, kWeightChannel, range.lo, range.hi);
+        part.lo = std::min(part.lo, range.lo);
+        part.hi = std::max(part.hi, range.hi);
       }
     });
-  AttributeRange range;
   for (const Part& part : found)
   {
     if (!part.problem.empty())
     {
       throw std::invalid_argument(part.problem);
     }
-    range.lo = std::min(range.lo, part.lo);
-    range.hi = std::max(range.hi, part.hi);
+    checked.range.lo = std::min(checked.range.lo, part.lo);
+    checked.range.hi = std::max(checked.range.hi, part.hi);
   }
-  return range;
+  return checked;
+}
+
+std::shared_ptr<const CheckedPatches> checkedPatches(const Scene& scene, const Settings& s)
+{
+  struct Key
+  {
+    uint64_t version;
+    size_t patches, volumes;
+    int surfaceAttribute, colorAttribute;
+    bool operator==(const Key& o) const
+    {
+      return version == o.version && patches == o.patches && volumes == o.volumes &&
+             surfaceAttribute == o.surfaceAttribute && colorAttribute == o.colorAttribute;
+    }
+  };
+  static std::mutex keptMutex;
+  static Key keptKey{};
+  static std::shared_ptr<const CheckedPatches> kept;
+  const Key key{ s.dataVersion, scene.size(), scene.volumeCount(), s.surfaceAttribute,
+    s.colorAttribute };
+  if (s.dataVersion != 0)
+  {
+    std::lock_guard<std::mutex> lock(keptMutex);
+    if (kept && keptKey == key)
+    {
+      return kept;
+    }
+  }
+  auto checked = std::make_shared<const CheckedPatches>(checkPatchRanges(scene, s));
+  if (s.dataVersion != 0)
+  {
+    std::lock_guard<std::mutex> lock(keptMutex);
+    keptKey = key;
+    kept = checked;
+  }
+  return checked;
 }
 
 void checkIndexable(size_t count, const char* what)
@@ -476,28 +516,70 @@ FramePlan planView(const View& view, const Settings& s, const AttributeRange& at
   return plan;
 }
 
+namespace
+{
+
+/// Whether root `root` of patch p may show surface, by the patch's attribute range (the verdict
+/// its analysis in addRoot would take); counts a constant attribute at the isovalue.
+bool rootMayShow(const PatchRange& range, const Settings& s, int root, size_t& constantRoots)
+{
+  if (root < 0)
+  {
+    return true; // a surface
+  }
+  bool constant = false, may = true;
+  attributeVerdict(range.known, range.lo, range.hi, s.isovalues[root], constant, may);
+  constantRoots += constant ? 1 : 0;
+  return may;
+}
+
+/// Root `root` of patch p: the isovalue's index for a volume, -1 for a surface.
+int rootIndex(const VolumeView<const double>& patch, int root)
+{
+  return isSurface(patch) ? -1 : root;
+}
+
+} // namespace
+
 FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, FrameReport& report)
 {
   const auto start = std::chrono::steady_clock::now();
-  const AttributeRange range = checkPatches(scene, s);
+  const auto checked = checkedPatches(scene, s);
   report.msInput =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  FramePlan plan = planView(view, s, range, scene.volumeCount() > 0, report);
+  FramePlan plan = planView(view, s, checked->range, scene.volumeCount() > 0, report);
   const int colour = s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1;
+  // Only patches a root of which may show surface are projected and shaded: an isovalue outside
+  // most patches' ranges (a large set) leaves the others untouched.
+  const size_t parts = partsFor(scene.size(), plan.threads);
+  std::vector<uint8_t> drawn(scene.size());
+  std::vector<size_t> constantRoots(parts, 0);
+  parallelParts(scene.size(), parts, plan.threads,
+    [&](size_t k, size_t begin, size_t end)
+    {
+      for (size_t p = begin; p < end; ++p)
+      {
+        const int roots = rootsOf(scene[p].degree, s);
+        for (int root = 0; root < roots; ++root)
+        {
+          drawn[p] |=
+            rootMayShow(checked->patches[p], s, rootIndex(scene[p], root), constantRoots[k]);
+        }
+      }
+    });
   // Shading patches go where their sizes put them.
-  plan.shadingOffsets.resize(scene.size());
+  plan.shadingOffsets.assign(scene.size(), 0);
   size_t shadingValues = 0;
   for (size_t p = 0; p < scene.size(); ++p)
   {
     plan.shadingOffsets[p] = shadingValues;
-    shadingValues += size_t(scene[p].pointCount()) * kShadeChannels;
+    shadingValues += drawn[p] ? size_t(scene[p].pointCount()) * kShadeChannels : 0;
   }
   plan.shadingPool.resize(shadingValues);
   // Screen patches, then the subdivision-tree roots: one per (patch, isovalue) with a possible
   // sign change; roots straddling the eye plane are split until their parts lie in front of or
   // behind it. Found per part of the patches and joined in order: the same plan for any thread
   // count.
-  const size_t parts = partsFor(scene.size(), plan.threads);
   std::vector<FramePlan> found(parts);
   std::vector<FrameReport> partReports(parts);
   parallelParts(scene.size(), parts, plan.threads,
@@ -506,10 +588,15 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
       FramePlan& part = found[k];
       part.frame = plan.frame;
       FrameReport& partReport = partReports[k];
-      reserveRoots(part, scene, begin, end, s);
+      reserveRoots(part, scene, begin, end, drawn, s);
       std::vector<double> screen;
+      size_t counted = 0; // constant roots, counted above
       for (size_t p = begin; p < end; ++p)
       {
+        if (!drawn[p])
+        {
+          continue;
+        }
         const auto world = scene[p];
         const int attribute = surfaceChannelOf(world.degree, s);
         screen.resize(size_t(world.pointCount()) * kScreenChannels);
@@ -519,16 +606,19 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
         const int roots = rootsOf(world.degree, s);
         for (int root = 0; root < roots; ++root)
         {
-          addRoot(part, world.degree, rootNode(int(p), isSurface(world) ? -1 : root), screen.data(),
-            s, partReport);
+          const int index = rootIndex(world, root);
+          if (rootMayShow(checked->patches[p], s, index, counted))
+          {
+            addRoot(part, world.degree, rootNode(int(p), index), screen.data(), s, partReport);
+          }
         }
       }
     });
   joinRoots(plan, found);
-  for (const FrameReport& partReport : partReports)
+  for (size_t k = 0; k < parts; ++k)
   {
-    report.droppedAtEyePlane += partReport.droppedAtEyePlane;
-    report.constantAttributeRoots += partReport.constantAttributeRoots;
+    report.droppedAtEyePlane += partReports[k].droppedAtEyePlane;
+    report.constantAttributeRoots += partReports[k].constantAttributeRoots + constantRoots[k];
   }
   return plan;
 }

@@ -7,6 +7,7 @@
 #include "iga/sst/Tree.h"
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,10 +46,38 @@ struct AttributeRange
   double width() const { return hi > lo ? hi - lo : 1.0; }
 };
 
+/// A patch's surface attribute range (rationalRange over its control points, which its screen
+/// patch carries unchanged): known false for a surface, which has none.
+struct PatchRange
+{
+  double lo = 0, hi = 0;
+  bool known = false;
+};
+
+/// What checking the patches finds: the surface attribute's range over the volumes, and each
+/// patch's own.
+struct CheckedPatches
+{
+  AttributeRange range;
+  std::vector<PatchRange> patches;
+};
+
 /// Checks every patch against the settings (degrees, values, weights, attribute indices) and
-/// returns the surface attribute's range over the volumes. Throws std::invalid_argument naming
-/// the first bad patch and its problem. Runs on threadCount(settings) threads.
-AttributeRange checkPatches(const Scene& scene, const Settings& settings);
+/// returns the surface attribute's range over the volumes, and over each patch. Throws
+/// std::invalid_argument naming the first bad patch and its problem. Runs on
+/// threadCount(settings) threads.
+CheckedPatches checkPatchRanges(const Scene& scene, const Settings& settings);
+
+/// checkPatchRanges' range over the volumes.
+inline AttributeRange checkPatches(const Scene& scene, const Settings& settings)
+{
+  return checkPatchRanges(scene, settings).range;
+}
+
+/// checkPatchRanges, or what it found for the frame before when that had the same non-zero data
+/// version (Settings::dataVersion: the same patches), as many patches and the same attributes:
+/// a camera move or a new isovalue does not check the patches again.
+std::shared_ptr<const CheckedPatches> checkedPatches(const Scene& scene, const Settings& settings);
 
 /// Whether patches of these degrees (a surface's third 0, flatVolume) and channels suit the
 /// settings: what checkPatches tests besides control point values, for drivers that test those

@@ -419,6 +419,49 @@ TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
   EXPECT_TRUE(igatest::identicalGBuffers(one, two));
 }
 
+// A non-zero data version names the patches (the mapper's, for a camera move or a new isovalue):
+// their checks and attribute ranges are kept from the frame before, and the frames equal those
+// of a set checked afresh (version 0) whatever changes with the version kept: the camera, the
+// isovalues, the threads. What the version does not name is checked again: the attributes used,
+// and a set of another size.
+TEST(Engine, AFrameOfTheSameDataVersionEqualsAFreshOne)
+{
+  const auto set = iga::makeTwistedTube<double>(0.7);
+  const auto near = igatest::lookAt(set, { 3, -3.5, 3 }, { 0.2, 0, 1 }, 35);
+  const auto far = igatest::lookAt(set, { -4, -3, 2 }, { 0, 0, 1 }, 30);
+  Settings settings;
+  settings.width = settings.height = 64;
+  settings.colorAttribute = 1;
+  const std::vector<std::vector<double>> isovalues = { { 0.0 }, { 0.3, -0.2 }, { 5.0 } };
+  for (int frame = 0; frame < 6; ++frame)
+  {
+    Settings fresh = settings;
+    fresh.isovalues = isovalues[frame % 3];
+    fresh.threads = 1 + frame % 2;
+    Settings kept = fresh;
+    kept.dataVersion = 41;
+    const auto& camera = frame < 3 ? near : far;
+    const GBuffer expected = renderSet(set, camera, fresh);
+    EXPECT_TRUE(igatest::identicalGBuffers(renderSet(set, camera, kept), expected)) << frame;
+    EXPECT_EQ(expected.coveredPixels() == 0, frame % 3 == 2) << frame;
+  }
+  Settings kept = settings;
+  kept.isovalues = { 0.0 };
+  kept.dataVersion = 41;
+  Settings badAttribute = kept;
+  badAttribute.surfaceAttribute = 7;
+  GBuffer g;
+  EXPECT_THROW(iga::sst::render(set.patches, near, badAttribute, Method::SharedSubdivisionTree, g),
+    std::invalid_argument);
+  auto fewer = set;
+  fewer.patches.erase(fewer.patches.begin() + 3, fewer.patches.end());
+  Settings fresh = kept;
+  fresh.dataVersion = 0;
+  const GBuffer expected = renderSet(fewer, near, fresh);
+  ASSERT_GT(expected.coveredPixels(), 0u);
+  EXPECT_TRUE(igatest::identicalGBuffers(renderSet(fewer, near, kept), expected));
+}
+
 // The floor of igaBenchmark rests on these counts: every hit is a Newton root, Newton runs only
 // on certified tuples, each run evaluates at least once and at most its iteration limit plus
 // one, and a pixel's work does not depend on the threads sharing the image.

@@ -213,6 +213,20 @@ struct NodeInfo
   T centreHessians[3][6];
 };
 
+/// What a volume's attribute range says of its isosurface at `isovalue`: `known` false (no
+/// range) or the range holding the isovalue may contain surface, unless the attribute is constant
+/// there (within rounding), a region that no subdivision would settle. A node's analysis and the
+/// frame's test of whole patches before they are projected (FramePlan) take the same verdict.
+template<class T>
+IGA_HD void attributeVerdict(
+  bool known, T lo, T hi, T isovalue, bool& constantAttribute, bool& mayContainSurface)
+{
+  const bool containsIsovalue = lo <= isovalue && isovalue <= hi;
+  constantAttribute = known && containsIsovalue &&
+                      hi - lo <= T(16) * Epsilon<T>::value * maxValue(absValue(lo), absValue(hi));
+  mayContainSurface = !known || (containsIsovalue && !constantAttribute);
+}
+
 /// The cheap part of a node's analysis: window box, eye-plane status, sign change (volumes),
 /// clip depth and clipping planes.
 template<class T>
@@ -224,11 +238,7 @@ IGA_HD void analyzeNodeBounds(
   T lo = T(0), hi = T(0);
   const bool known =
     !isSurface(node) && rationalRange(node, kScreenAttribute, kScreenWeight, lo, hi);
-  const bool containsIsovalue = lo <= isovalue && isovalue <= hi;
-  info.constantAttribute =
-    known && containsIsovalue &&
-    hi - lo <= T(16) * Epsilon<T>::value * maxValue(absValue(lo), absValue(hi));
-  info.mayContainSurface = !known || (containsIsovalue && !info.constantAttribute);
+  attributeVerdict(known, lo, hi, isovalue, info.constantAttribute, info.mayContainSurface);
   // Z + W < 0 in front of the near plane, Z - W > 0 beyond the far one; both are linear in the
   // homogeneous coefficients, so all coefficients on one side put the whole node there (parts
   // behind the eye are invisible anyway). Valid whatever the signs of W.
