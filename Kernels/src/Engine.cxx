@@ -550,16 +550,22 @@ private:
   {
     const Clock::time_point start = Clock::now();
     this->Affine = analyze(this->Patches, this->Config, this->Plan.threads, this->Report);
-    this->Coverage =
-      std::make_unique<CellCoverage>(this->Affine, this->TheView, this->Config, this->Plan.threads);
-    this->Forms = std::make_unique<FrustumForms>(
-      *this->Affine, this->TheView, this->Plan.threads, *this->Coverage);
-    this->Report.isosurfaceCells = this->Coverage->cells();
-    this->Coverage->narrowNodes(this->Plan.initialNodes.data(), this->Plan.initialNodes.size());
-    this->Shading = powerShadingOf(this->Affine);
-    this->Loop.powerShading =
-      this->Shading->terms.empty() ? nullptr : this->Shading->patches.data();
-    this->Loop.powerTerms = this->Shading->terms.data();
+    // Curved patches alone (drawn automatically): nothing to compose, the SST draws them all,
+    // and the per-patch tables below would cost a large set more than its frame.
+    const bool composed = this->Report.rayCompositionPatches > 0 || this->Report.sstPatches == 0;
+    if (composed)
+    {
+      this->Coverage = std::make_unique<CellCoverage>(
+        this->Affine, this->TheView, this->Config, this->Plan.threads);
+      this->Forms = std::make_unique<FrustumForms>(
+        *this->Affine, this->TheView, this->Plan.threads, *this->Coverage);
+      this->Report.isosurfaceCells = this->Coverage->cells();
+      this->Coverage->narrowNodes(this->Plan.initialNodes.data(), this->Plan.initialNodes.size());
+      this->Shading = powerShadingOf(this->Affine);
+      this->Loop.powerShading =
+        this->Shading->terms.empty() ? nullptr : this->Shading->patches.data();
+      this->Loop.powerTerms = this->Shading->terms.data();
+    }
     this->Report.msSetup += millisecondsSince(start);
   }
 

@@ -301,37 +301,45 @@ CheckedPatches checkPatchRanges(const Scene& scene, const Settings& s)
   return checked;
 }
 
+DataKey::DataKey(const Scene& scene, const Settings& settings)
+  : version(settings.dataVersion)
+  , surfaceAttribute(settings.surfaceAttribute)
+  , colorAttribute(settings.colorAttribute)
+{
+  const size_t sampled = std::min(scene.size(), kSampledPatches);
+  fingerprint.reserve(4 * sampled + 2);
+  fingerprint.push_back(double(scene.size()));
+  fingerprint.push_back(double(scene.volumeCount()));
+  for (size_t k = 0; k < sampled; ++k)
+  {
+    const auto v = scene[k * scene.size() / sampled];
+    fingerprint.push_back(v.degree[0] + 32.0 * (v.degree[1] + 32.0 * v.degree[2]));
+    fingerprint.push_back(v.channels);
+    fingerprint.push_back(v.coeffs[0]);
+    fingerprint.push_back(v.coeffs[v.valueCount() - 1]);
+  }
+}
+
 std::shared_ptr<const CheckedPatches> checkedPatches(const Scene& scene, const Settings& s)
 {
-  struct Key
-  {
-    uint64_t version;
-    size_t patches, volumes;
-    int surfaceAttribute, colorAttribute;
-    bool operator==(const Key& o) const
-    {
-      return version == o.version && patches == o.patches && volumes == o.volumes &&
-             surfaceAttribute == o.surfaceAttribute && colorAttribute == o.colorAttribute;
-    }
-  };
   static std::mutex keptMutex;
-  static Key keptKey{};
+  static std::unique_ptr<DataKey> keptKey;
   static std::shared_ptr<const CheckedPatches> kept;
-  const Key key{ s.dataVersion, scene.size(), scene.volumeCount(), s.surfaceAttribute,
-    s.colorAttribute };
+  std::unique_ptr<DataKey> key;
   if (s.dataVersion != 0)
   {
+    key = std::make_unique<DataKey>(scene, s);
     std::lock_guard<std::mutex> lock(keptMutex);
-    if (kept && keptKey == key)
+    if (keptKey && *keptKey == *key)
     {
       return kept;
     }
   }
   auto checked = std::make_shared<const CheckedPatches>(checkPatchRanges(scene, s));
-  if (s.dataVersion != 0)
+  if (key)
   {
     std::lock_guard<std::mutex> lock(keptMutex);
-    keptKey = key;
+    keptKey = std::move(key);
     kept = checked;
   }
   return checked;

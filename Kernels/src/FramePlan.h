@@ -74,9 +74,28 @@ inline AttributeRange checkPatches(const Scene& scene, const Settings& settings)
   return checkPatchRanges(scene, settings).range;
 }
 
-/// checkPatchRanges, or what it found for the frame before when that had the same non-zero data
-/// version (Settings::dataVersion: the same patches), as many patches and the same attributes:
-/// a camera move or a new isovalue does not check the patches again.
+/// What names a scene's patches between frames, for what is kept from one frame to the next:
+/// Settings::dataVersion (the same non-zero version, the same patches, as for the CUDA driver's
+/// copy of them) and the attributes a frame reads; as a check against a version reused for other
+/// patches (a caller's mistake), the patch counts and the shapes and first and last values of up
+/// to kSampledPatches patches spread over the scene (a bounded cost however many there are).
+struct DataKey
+{
+  static constexpr size_t kSampledPatches = 64;
+  uint64_t version = 0;
+  int surfaceAttribute = 0, colorAttribute = -1;
+  std::vector<double> fingerprint;
+
+  DataKey(const Scene& scene, const Settings& settings);
+  bool operator==(const DataKey& other) const
+  {
+    return version == other.version && surfaceAttribute == other.surfaceAttribute &&
+           colorAttribute == other.colorAttribute && fingerprint == other.fingerprint;
+  }
+};
+
+/// checkPatchRanges, or what it found for the frame before when that had the same DataKey (a
+/// non-zero data version): a camera move or a new isovalue does not check the patches again.
 std::shared_ptr<const CheckedPatches> checkedPatches(const Scene& scene, const Settings& settings);
 
 /// Whether patches of these degrees (a surface's third 0, flatVolume) and channels suit the

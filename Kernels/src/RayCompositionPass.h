@@ -5,6 +5,7 @@
 #pragma once
 
 #include "CellCoverage.h"
+#include "FramePlan.h"
 #include "ParallelFor.h"
 #include "iga/FrustumForm.h"
 #include "iga/RayComposition.h"
@@ -23,37 +24,6 @@ namespace iga
 namespace sst
 {
 
-/// What names a scene's affine analysis between frames: Settings::dataVersion (the same
-/// non-zero version, the same patches, as for the CUDA driver's copy of them) and the surface
-/// attribute, and as a check the patches' shapes and first and last values.
-struct AffineKey
-{
-  uint64_t version = 0;
-  int attribute = 0;
-  std::vector<double> fingerprint;
-
-  AffineKey(const Scene& scene, const Settings& settings)
-    : version(settings.dataVersion)
-    , attribute(settings.surfaceAttribute)
-  {
-    fingerprint.reserve(4 * scene.size() + 1);
-    fingerprint.push_back(double(scene.volumeCount()));
-    for (size_t p = 0; p < scene.size(); ++p)
-    {
-      const auto v = scene[p];
-      fingerprint.push_back(v.degree[0] + 32.0 * (v.degree[1] + 32.0 * v.degree[2]));
-      fingerprint.push_back(v.channels);
-      fingerprint.push_back(v.coeffs[0]);
-      fingerprint.push_back(v.coeffs[v.valueCount() - 1]);
-    }
-  }
-  bool operator==(const AffineKey& other) const
-  {
-    return version == other.version && attribute == other.attribute &&
-           fingerprint == other.fingerprint;
-  }
-};
-
 /// Each patch's affine form, rayDegree -1 for the surfaces and the volumes without one (which
 /// the SST draws), on `threads` threads; sets the report's counts of patches per path. The
 /// analysis of the last scene with a non-zero data version is kept for the next frame of that
@@ -62,13 +32,13 @@ inline AffineForms affineWherePossible(
   const Scene& scene, const Settings& settings, int threads, FrameReport& report)
 {
   static std::mutex keptMutex;
-  static std::unique_ptr<AffineKey> keptKey;
+  static std::unique_ptr<DataKey> keptKey;
   static AffineForms kept;
-  std::unique_ptr<AffineKey> key;
+  std::unique_ptr<DataKey> key;
   AffineForms forms;
   if (settings.dataVersion != 0)
   {
-    key = std::make_unique<AffineKey>(scene, settings);
+    key = std::make_unique<DataKey>(scene, settings);
     std::lock_guard<std::mutex> lock(keptMutex);
     forms = keptKey && *keptKey == *key ? kept : nullptr;
   }

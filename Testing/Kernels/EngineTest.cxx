@@ -423,7 +423,8 @@ TEST(Engine, ImageIsIdenticalForOneAndTwoThreads)
 // their checks and attribute ranges are kept from the frame before, and the frames equal those
 // of a set checked afresh (version 0) whatever changes with the version kept: the camera, the
 // isovalues, the threads. What the version does not name is checked again: the attributes used,
-// and a set of another size.
+// a set of another size, and (a caller's mistake the patches' sampled fingerprint catches) other
+// patches under the same version.
 TEST(Engine, AFrameOfTheSameDataVersionEqualsAFreshOne)
 {
   const auto set = iga::makeTwistedTube<double>(0.7);
@@ -460,6 +461,13 @@ TEST(Engine, AFrameOfTheSameDataVersionEqualsAFreshOne)
   const GBuffer expected = renderSet(fewer, near, fresh);
   ASSERT_GT(expected.coveredPixels(), 0u);
   EXPECT_TRUE(igatest::identicalGBuffers(renderSet(fewer, near, kept), expected));
+  // The tube at another time: the same shapes, other values, whose attribute ranges differ.
+  const auto later = iga::makeTwistedTube<double>(0.1);
+  kept.isovalues = fresh.isovalues = { 0.45 };
+  renderSet(set, near, kept);
+  const GBuffer laterExpected = renderSet(later, near, fresh);
+  EXPECT_FALSE(igatest::identicalGBuffers(laterExpected, renderSet(set, near, fresh)));
+  EXPECT_TRUE(igatest::identicalGBuffers(renderSet(later, near, kept), laterExpected));
 }
 
 // The floor of igaBenchmark rests on these counts: every hit is a Newton root, Newton runs only
