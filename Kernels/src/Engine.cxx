@@ -221,8 +221,9 @@ private:
   void setup()
   {
     this->Plan = planFrame(this->Patches, this->TheView, this->Config, this->Report);
+    // Read only for the drawn patches' nodes and hits.
     this->Shapes.resize(this->Patches.size());
-    for (size_t p = 0; p < this->Patches.size(); ++p)
+    for (size_t p : this->Plan.drawnPatches)
     {
       const auto v = this->Patches[p];
       PatchShape& shape = this->Shapes[p];
@@ -635,7 +636,7 @@ private:
   const Settings& Config;
   FrameReport& Report;
   FramePlan Plan;
-  std::vector<PatchShape> Shapes;
+  Buffer<PatchShape> Shapes;
   AffineForms Affine;                               // ray composition: each patch's affine form
   std::unique_ptr<FrustumForms> Forms;              // and its frustum form where one pays
   std::unique_ptr<CellCoverage> Coverage;           // and the pixels its isosurface's cells cover

@@ -157,15 +157,15 @@ void addRoot(FramePlan& plan, const int* degree, Node root, const double* coeffs
   }
 }
 
-/// Room for the roots of the `drawn` patches of [begin, end) that lie in front of the eye (most
-/// do).
-void reserveRoots(FramePlan& part, const Scene& scene, size_t begin, size_t end,
-  const std::vector<uint8_t>& drawn, const Settings& s)
+/// Room for the roots of patches [first, last) of a list that lie in front of the eye (most do).
+void reserveRoots(
+  FramePlan& part, const Scene& scene, const size_t* first, const size_t* last, const Settings& s)
 {
   size_t roots = 0, values = 0;
-  for (size_t p = begin; p < end; ++p)
+  for (const size_t* patch = first; patch != last; ++patch)
   {
-    const size_t count = drawn[p] ? size_t(rootsOf(scene[p].degree, s)) : 0;
+    const size_t p = *patch;
+    const size_t count = size_t(rootsOf(scene[p].degree, s));
     roots += count;
     values += count * size_t(scene[p].pointCount()) * kScreenChannels;
   }
@@ -560,51 +560,57 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
   // Only patches a root of which may show surface are projected and shaded: an isovalue outside
   // most patches' ranges (a large set) leaves the others untouched.
   const size_t parts = partsFor(scene.size(), plan.threads);
-  std::vector<uint8_t> drawn(scene.size());
+  std::vector<std::vector<size_t>> drawnParts(parts);
   std::vector<size_t> constantRoots(parts, 0);
   parallelParts(scene.size(), parts, plan.threads,
     [&](size_t k, size_t begin, size_t end)
     {
       for (size_t p = begin; p < end; ++p)
       {
-        const int roots = rootsOf(scene[p].degree, s);
-        for (int root = 0; root < roots; ++root)
+        bool drawn = false;
+        for (int root = 0; root < rootsOf(scene[p].degree, s); ++root)
         {
-          drawn[p] |=
-            rootMayShow(checked->patches[p], s, rootIndex(scene[p], root), constantRoots[k]);
+          drawn |= rootMayShow(checked->patches[p], s, rootIndex(scene[p], root), constantRoots[k]);
+        }
+        if (drawn)
+        {
+          drawnParts[k].push_back(p);
         }
       }
     });
-  // Shading patches go where their sizes put them.
-  plan.shadingOffsets.assign(scene.size(), 0);
+  for (const auto& part : drawnParts)
+  {
+    plan.drawnPatches.insert(plan.drawnPatches.end(), part.begin(), part.end());
+  }
+  const std::vector<size_t>& drawn = plan.drawnPatches;
+  // Shading patches go where their sizes put them (only drawn patches' offsets are set).
+  plan.shadingOffsets.resize(scene.size());
   size_t shadingValues = 0;
-  for (size_t p = 0; p < scene.size(); ++p)
+  for (size_t p : drawn)
   {
     plan.shadingOffsets[p] = shadingValues;
-    shadingValues += drawn[p] ? size_t(scene[p].pointCount()) * kShadeChannels : 0;
+    shadingValues += size_t(scene[p].pointCount()) * kShadeChannels;
   }
   plan.shadingPool.resize(shadingValues);
   // Screen patches, then the subdivision-tree roots: one per (patch, isovalue) with a possible
   // sign change; roots straddling the eye plane are split until their parts lie in front of or
-  // behind it. Found per part of the patches and joined in order: the same plan for any thread
-  // count.
-  std::vector<FramePlan> found(parts);
-  std::vector<FrameReport> partReports(parts);
-  parallelParts(scene.size(), parts, plan.threads,
+  // behind it. Found per part of the drawn patches and joined in order: the same plan for any
+  // thread count.
+  const size_t rootParts = partsFor(drawn.size(), plan.threads);
+  std::vector<FramePlan> found(rootParts);
+  std::vector<FrameReport> partReports(rootParts);
+  parallelParts(drawn.size(), rootParts, plan.threads,
     [&](size_t k, size_t begin, size_t end)
     {
       FramePlan& part = found[k];
       part.frame = plan.frame;
       FrameReport& partReport = partReports[k];
-      reserveRoots(part, scene, begin, end, drawn, s);
+      reserveRoots(part, scene, drawn.data() + begin, drawn.data() + end, s);
       std::vector<double> screen;
       size_t counted = 0; // constant roots, counted above
-      for (size_t p = begin; p < end; ++p)
+      for (size_t d = begin; d < end; ++d)
       {
-        if (!drawn[p])
-        {
-          continue;
-        }
+        const size_t p = drawn[d];
         const auto world = scene[p];
         const int attribute = surfaceChannelOf(world.degree, s);
         screen.resize(size_t(world.pointCount()) * kScreenChannels);
@@ -623,10 +629,14 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
       }
     });
   joinRoots(plan, found);
-  for (size_t k = 0; k < parts; ++k)
+  for (const FrameReport& partReport : partReports)
   {
-    report.droppedAtEyePlane += partReports[k].droppedAtEyePlane;
-    report.constantAttributeRoots += partReports[k].constantAttributeRoots + constantRoots[k];
+    report.droppedAtEyePlane += partReport.droppedAtEyePlane;
+    report.constantAttributeRoots += partReport.constantAttributeRoots;
+  }
+  for (size_t constant : constantRoots)
+  {
+    report.constantAttributeRoots += constant;
   }
   return plan;
 }

@@ -25,7 +25,10 @@ struct FramePlan
   /// their screen coefficients.
   Buffer<Node> initialNodes;
   Buffer<double> initialPool;
-  /// Shading patches of the input patches, kShadeChannels per control point.
+  /// The patches a root of which may show surface (planFrame), ascending: only they have screen
+  /// and shading patches, and only their entries of shadingOffsets are set.
+  std::vector<size_t> drawnPatches;
+  /// Shading patches of the drawn patches, kShadeChannels per control point.
   Buffer<double> shadingPool;
   Buffer<size_t> shadingOffsets;
 };

@@ -34,13 +34,16 @@ inline AffineForms affineWherePossible(
   static std::mutex keptMutex;
   static std::unique_ptr<DataKey> keptKey;
   static AffineForms kept;
+  static size_t keptAffine = 0; // its affine patches, counted once (a large set's are many)
   std::unique_ptr<DataKey> key;
   AffineForms forms;
+  size_t affinePatches = 0;
   if (settings.dataVersion != 0)
   {
     key = std::make_unique<DataKey>(scene, settings);
     std::lock_guard<std::mutex> lock(keptMutex);
     forms = keptKey && *keptKey == *key ? kept : nullptr;
+    affinePatches = keptAffine;
   }
   if (!forms)
   {
@@ -60,17 +63,17 @@ inline AffineForms affineWherePossible(
         }
       });
     forms = affine;
+    affinePatches = size_t(std::count_if(affine->begin(), affine->end(),
+      [](const AffinePatch& patch) { return patch.rayDegree >= 0; }));
   }
   if (key)
   {
     std::lock_guard<std::mutex> lock(keptMutex);
     keptKey = std::move(key);
     kept = forms;
+    keptAffine = affinePatches;
   }
-  for (const AffinePatch& patch : *forms)
-  {
-    report.rayCompositionPatches += patch.rayDegree >= 0 ? 1 : 0;
-  }
+  report.rayCompositionPatches += affinePatches;
   report.sstPatches = scene.size() - report.rayCompositionPatches;
   return forms;
 }

@@ -867,9 +867,11 @@ TEST(RayComposition, CellCoverageBoundsEveryHit)
 
 TEST(RayComposition, AffineFormsAreKeptForTheSameDataVersionOnly)
 {
-  // A camera move under one data version reuses the analysis; another scene, even under a
-  // reused version (a caller's mistake the patches' fingerprint catches), gets its own.
-  const auto frame = [](const char* name, uint64_t version, double turn)
+  // A camera move under one data version reuses the analysis (and its count of affine patches);
+  // another scene, even under a reused version (a caller's mistake the patches' fingerprint
+  // catches), gets its own.
+  iga::sst::FrameReport report;
+  const auto frame = [&report](const char* name, uint64_t version, double turn)
   {
     const iga::AlgebraicSurface* surface = iga::findAlgebraicSurface(name);
     const Volume v = algebraicVolume(surface->expression, surface->box);
@@ -883,7 +885,7 @@ TEST(RayComposition, AffineFormsAreKeptForTheSameDataVersionOnly)
     settings.threads = 2;
     settings.dataVersion = version;
     GBuffer out;
-    iga::sst::render(iga::sst::Scene(v.patches), camera, settings, Method::Automatic, out);
+    report = iga::sst::render(iga::sst::Scene(v.patches), camera, settings, Method::Automatic, out);
     return out;
   };
   const auto same = [](const GBuffer& a, const GBuffer& b)
@@ -897,6 +899,9 @@ TEST(RayComposition, AffineFormsAreKeptForTheSameDataVersionOnly)
   };
   frame("kiss", 9, 0.0);
   EXPECT_TRUE(same(frame("kiss", 9, 0.3), frame("kiss", 0, 0.3)));
+  frame("kiss", 9, 0.3);
+  EXPECT_EQ(report.rayCompositionPatches, 1u);
+  EXPECT_EQ(report.sstPatches, 0u);
   frame("kiss", 9, 0.0);
   const GBuffer heart = frame("heart", 9, 0.0);
   EXPECT_TRUE(same(heart, frame("heart", 0, 0.0)));
