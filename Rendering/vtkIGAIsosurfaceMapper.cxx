@@ -56,6 +56,7 @@
 #include <cstdio>
 #include <mutex>
 #include <set>
+#include <string>
 
 vtkStandardNewMacro(vtkIGAIsosurfaceMapper);
 
@@ -676,12 +677,38 @@ void addLight(const ShadingLight& light, const iga::sst::Hit& hit, const double*
   }
 }
 
-/// Phong shading of one hit with VTK's property and the renderer's lights. With no light
-/// switched on, or lighting off in the property, the hit is unlit: ambient plus diffuse times
-/// its colour, as vtkOpenGLPolyDataMapper draws (ParaView's view with its light kit off).
-void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* property,
-  const std::vector<ShadingLight>& lights, const glm::dvec3& toEye, float* rgba)
+/// vtkSMPTools::For over [0, count) on `threads` threads (0: all), on the application's SMP
+/// backend, or on VTK's STDThread where that is Sequential (ParaView's VTK's default), as the
+/// engine's own threads are.
+template<class Fn>
+void smpFor(vtkIdType count, int threads, Fn&& fn)
 {
+  const std::string backend = vtkSMPTools::GetBackend();
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ threads, backend == "Sequential" ? "STDThread" : backend, false },
+    [&] { vtkSMPTools::For(0, count, fn); });
+}
+
+/// A hit's colour before shading: its colour mapped through the table (`mapped`, RGBA bytes),
+/// or without one the property's diffuse colour.
+void baseColour(vtkProperty* property, const unsigned char* mapped, double* base)
+{
+  property->GetDiffuseColor(base);
+  for (int c = 0; mapped && c < 3; ++c)
+  {
+    base[c] = mapped[c] / 255.0;
+  }
+}
+
+/// Phong shading of one hit with VTK's property and the renderer's lights, seen from `view`.
+/// With no light switched on, or lighting off in the property, the hit is unlit: ambient plus
+/// diffuse times its colour, as vtkOpenGLPolyDataMapper draws (ParaView's view with its light
+/// kit off).
+void shadeHit(const iga::sst::Hit& hit, const double* base, vtkProperty* property,
+  const std::vector<ShadingLight>& lights, const iga::sst::View& view, float* rgba)
+{
+  const glm::dvec3 toEye =
+    iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit.position);
   const bool unlit = lights.empty() || !property->GetLighting();
   const double ambient = property->GetAmbient();
   double colour[3];
@@ -1367,7 +1394,7 @@ void vtkIGAIsosurfaceMapper::ColourByCurvature(const Frame& frame, iga::sst::GBu
   const int channel = iga::kFirstAttributeChannel + frame.Settings.surfaceAttribute;
   const bool mean = frame.Curvature == 1;
   std::vector<iga::sst::Hit>& hits = gbuffer.hits;
-  vtkSMPTools::For(0, vtkIdType(hits.size()),
+  smpFor(vtkIdType(hits.size()), this->NumberOfThreads,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType h = begin; h < end; ++h)
@@ -1540,21 +1567,42 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
   in.Size[0] = width;
   in.Size[1] = height;
   this->AllocateLayers(frame);
-  for (int j = 0; j < height; ++j)
+  // Every hit's colour through the table at once, before the rows are shaded side by side: a
+  // table's MapValue keeps its answer in the table.
+  const iga::sst::GBuffer& gbuffer = in.GBuffer;
+  std::vector<unsigned char> mapped(frame.ByScalars ? 4 * gbuffer.hits.size() : 0);
+  if (frame.ByScalars && !gbuffer.hits.empty())
   {
-    for (int i = 0; i < width; ++i)
+    vtkNew<vtkDoubleArray> colours;
+    colours->SetNumberOfTuples(vtkIdType(gbuffer.hits.size()));
+    for (size_t h = 0; h < gbuffer.hits.size(); ++h)
     {
-      const size_t p = size_t(j) * width + i;
-      const iga::sst::Hit* hits = in.GBuffer.firstHit(i, j);
-      const int count = std::min(in.GBuffer.hitCount(i, j), in.LayerCount);
-      for (int k = 0; k < count; ++k)
-      {
-        LayerImage& layer = *in.Layers[size_t(k)];
-        this->ShadeHit(frame, property, hits[k], &layer.Colour[4 * p]);
-        layer.Depth[p] = windowDepth(hits[k]);
-      }
+      colours->SetValue(vtkIdType(h), gbuffer.hits[h].color);
     }
+    lut->MapScalarsThroughTable(colours, mapped.data(), VTK_RGBA);
   }
+  smpFor(height, this->NumberOfThreads,
+    [&](vtkIdType firstRow, vtkIdType endRow)
+    {
+      for (vtkIdType j = firstRow; j < endRow; ++j)
+      {
+        for (int i = 0; i < width; ++i)
+        {
+          const size_t p = size_t(j) * width + i;
+          const int count = std::min(gbuffer.hitCount(i, int(j)), in.LayerCount);
+          for (int k = 0; k < count; ++k)
+          {
+            const size_t h = gbuffer.offsets[p] + size_t(k);
+            LayerImage& layer = *in.Layers[size_t(k)];
+            double base[3];
+            baseColour(property, frame.ByScalars ? &mapped[4 * h] : nullptr, base);
+            shadeHit(
+              gbuffer.hits[h], base, property, frame.Lights, frame.View, &layer.Colour[4 * p]);
+            layer.Depth[p] = windowDepth(gbuffer.hits[h]);
+          }
+        }
+      }
+    });
   this->LastAntialiasedPixels = 0;
   if (this->Antialiasing)
   {
@@ -1571,19 +1619,9 @@ void vtkIGAIsosurfaceMapper::ShadeHit(
   const Frame& frame, vtkProperty* property, const iga::sst::Hit& hit, float* rgba)
 {
   double base[3];
-  property->GetDiffuseColor(base);
-  if (frame.ByScalars)
-  {
-    const unsigned char* mapped = this->GetLookupTable()->MapValue(hit.color);
-    for (int c = 0; c < 3; ++c)
-    {
-      base[c] = mapped[c] / 255.0;
-    }
-  }
-  const iga::sst::View& view = frame.View;
-  const glm::dvec3 toEye =
-    iga::normalizedOrZero(view.parallel ? -view.forward : view.eye - hit.position);
-  shadeHit(hit, base, property, frame.Lights, toEye, rgba);
+  baseColour(
+    property, frame.ByScalars ? this->GetLookupTable()->MapValue(hit.color) : nullptr, base);
+  shadeHit(hit, base, property, frame.Lights, frame.View, rgba);
 }
 
 void vtkIGAIsosurfaceMapper::SmoothSilhouettes(vtkActor* actor, const Frame& frame)
