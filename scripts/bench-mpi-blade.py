@@ -5,12 +5,16 @@ with the ranks' images composited by IceT. Run it with 1 rank and with several.
 
 Per frame (wall time of the render call on the client): the first (reading, the mapper's
 extraction of the patches and the engine's checks), a sweep of isovalues, and small camera moves.
-Per rank: peak resident memory (VmHWM of every pvbatch process of this run). With
+Per rank: peak resident memory (VmHWM of every pvbatch process of this run); the pixels the
+composited image covers (a run that drew nothing fails). With
 PARAVIEW_LOG_RENDERING_VERBOSITY=INFO set by the caller, ParaView's render-pass log on stderr
 holds IceT's compositing time per rank.
 
 Usage: mpiexec -np N pvbatch bench-mpi-blade.py PLUGIN GENERATOR WORK_DIR [PATCHES [JSON]]
 (PATCHES: 800000 by default; the blade's files are made once in WORK_DIR and kept.)"""
+# Spelled builtins.*: pvbatch's script namespace gets numpy_interface's sum/max/min, which are
+# MPI reductions that only rank 0 would enter here.
+import builtins
 import json
 import os
 import statistics
@@ -83,12 +87,30 @@ moves = []
 for step in range(5):
     camera.Azimuth(2.0)
     moves.append(timed_render(view))
+
+def covered_pixels():
+    """Pixels of the composited image that differ from the background: the blade was drawn."""
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    shot = os.path.join(work_dir, f"blade-{patches}-{ranks}.png")
+    simple.SaveScreenshot(shot, view, ImageResolution=SIZE, TransparentBackground=0)
+    png = vtkPNGReader()
+    png.SetFileName(shot)
+    png.Update()
+    pixels = png.GetOutput().GetPointData().GetScalars()
+    corner = pixels.GetTuple(0)
+    return builtins.sum(1 for p in range(pixels.GetNumberOfTuples()) if pixels.GetTuple(p) != corner)
+
+
 result = {
     "ranks": ranks, "patches": patches, "width": SIZE[0], "height": SIZE[1],
+    "coveredPixels": covered_pixels(),
     "firstFrameMs": first, "isovalueFramesMs": sweep, "cameraFramesMs": moves,
     "isovalueMedianMs": statistics.median(sweep), "cameraMedianMs": statistics.median(moves),
     "peakMBPerRank": sorted(peak_memory_per_rank().values()),
 }
+# Every rank's memory found, and an image that shows the blade: else the figures mean nothing.
+assert len(result["peakMBPerRank"]) == ranks, result
+assert result["coveredPixels"] > 0, result
 print(json.dumps(result))
 if json_file:
     with open(json_file, "w") as out:
