@@ -657,8 +657,6 @@ std::vector<Measurement> screenFillingStudy(const std::string& study, iga::sst::
   using iga::sst::Method;
   const int width = 1920, height = 1080;
   std::vector<Measurement> all;
-  const auto sphere = iga::makeMarsdenSphere<double>(2);
-  const iga::Camera closeUp = zoomed(frame(sphere.patches), 2.5);
   // On the CPU each frame is set against its floor, Newton's evaluations costed on its first patch.
   auto measured =
     [&](const Measurement& m, const iga::VolumeView<const double>& patch, const iga::Camera& camera)
@@ -667,14 +665,21 @@ std::vector<Measurement> screenFillingStudy(const std::string& study, iga::sst::
                     ? withFloor(m, newtonEvaluationMs(patch, camera, width, height))
                     : m);
   };
-  if (wanted("marsden-sphere-p2-close"))
+  // A tri-quadratic volume's isosurface at 0, framed whole and zoomed by `zoom`.
+  auto volumeCloseUp = [&](const std::string& name, const iga::VolumeSet<double>& set, double zoom)
   {
-    measured(measureFrames(study, "marsden-sphere-p2-close", 0.0, 2, width, height, threads,
+    if (!wanted(name))
+    {
+      return;
+    }
+    const iga::Camera camera = zoomed(frame(set.patches), zoom);
+    measured(measureFrames(study, name, 0.0, 2, width, height, threads,
                Method::SharedSubdivisionTree, reps, backend, false,
                [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
-               { return iga::sst::render(sphere.patches, closeUp, settings, m, out); }),
-      sphere.patches[0].view(), closeUp);
-  }
+               { return iga::sst::render(set.patches, camera, settings, m, out); }),
+      set.patches[0].view(), camera);
+  };
+  volumeCloseUp("marsden-sphere-p2-close", iga::makeMarsdenSphere<double>(2), 2.5);
   const auto teapot = iga::makeTeapot<double>().patches;
   const auto teapotCloseUp = [](const iga::Camera& whole) { return zoomed(whole, 2.0); };
   if (wanted("teapot-close"))
@@ -698,16 +703,7 @@ std::vector<Measurement> screenFillingStudy(const std::string& study, iga::sst::
                Method::SharedSubdivisionTree, reps, boundary, backend, study, alongTheWidth),
       iga::flatVolume(faces[0].view()), alongTheWidth(frameSurfaces(faces)));
   }
-  const auto tube = iga::makeTwistedTube<double>(0.5);
-  const iga::Camera tubeCloseUp = zoomed(frame(tube.patches), 3.5);
-  if (wanted("twisted-tube-close"))
-  {
-    measured(measureFrames(study, "twisted-tube-close", 0.0, 2, width, height, threads,
-               Method::SharedSubdivisionTree, reps, backend, false,
-               [&](int, const iga::sst::Settings& settings, Method m, iga::sst::GBuffer& out)
-               { return iga::sst::render(tube.patches, tubeCloseUp, settings, m, out); }),
-      tube.patches[0].view(), tubeCloseUp);
-  }
+  volumeCloseUp("twisted-tube-close", iga::makeTwistedTube<double>(0.5), 3.5);
   if (wanted("dice-cube-minus-pips-close"))
   {
     const auto dice = iga::makeDice<double>();
