@@ -547,22 +547,16 @@ int rootIndex(const VolumeView<const double>& patch, int root)
   return isSurface(patch) ? -1 : root;
 }
 
-} // namespace
-
-FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, FrameReport& report)
+/// The patches a root of which may show surface, ascending (counting the constant attributes at
+/// an isovalue): only they are projected and shaded, so an isovalue outside most patches' ranges
+/// (a large set) leaves the others untouched.
+std::vector<size_t> drawnPatches(const Scene& scene, const Settings& s,
+  const CheckedPatches& checked, int threads, FrameReport& report)
 {
-  const auto start = std::chrono::steady_clock::now();
-  const auto checked = checkedPatches(scene, s);
-  report.msInput =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  FramePlan plan = planView(view, s, checked->range, scene.volumeCount() > 0, report);
-  const int colour = s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1;
-  // Only patches a root of which may show surface are projected and shaded: an isovalue outside
-  // most patches' ranges (a large set) leaves the others untouched.
-  const size_t parts = partsFor(scene.size(), plan.threads);
+  const size_t parts = partsFor(scene.size(), threads);
   std::vector<std::vector<size_t>> drawnParts(parts);
   std::vector<size_t> constantRoots(parts, 0);
-  parallelParts(scene.size(), parts, plan.threads,
+  parallelParts(scene.size(), parts, threads,
     [&](size_t k, size_t begin, size_t end)
     {
       for (size_t p = begin; p < end; ++p)
@@ -570,7 +564,7 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
         bool drawn = false;
         for (int root = 0; root < rootsOf(scene[p].degree, s); ++root)
         {
-          drawn |= rootMayShow(checked->patches[p], s, rootIndex(scene[p], root), constantRoots[k]);
+          drawn |= rootMayShow(checked.patches[p], s, rootIndex(scene[p], root), constantRoots[k]);
         }
         if (drawn)
         {
@@ -578,28 +572,42 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
         }
       }
     });
-  for (const auto& part : drawnParts)
+  std::vector<size_t> drawn;
+  for (size_t k = 0; k < parts; ++k)
   {
-    plan.drawnPatches.insert(plan.drawnPatches.end(), part.begin(), part.end());
+    drawn.insert(drawn.end(), drawnParts[k].begin(), drawnParts[k].end());
+    report.constantAttributeRoots += constantRoots[k];
   }
-  const std::vector<size_t>& drawn = plan.drawnPatches;
-  // Shading patches go where their sizes put them (only drawn patches' offsets are set).
+  return drawn;
+}
+
+/// The drawn patches' shading patches go where their sizes put them (only their offsets are
+/// set).
+void placeShadingPatches(FramePlan& plan, const Scene& scene)
+{
   plan.shadingOffsets.resize(scene.size());
   size_t shadingValues = 0;
-  for (size_t p : drawn)
+  for (size_t p : plan.drawnPatches)
   {
     plan.shadingOffsets[p] = shadingValues;
     shadingValues += size_t(scene[p].pointCount()) * kShadeChannels;
   }
   plan.shadingPool.resize(shadingValues);
-  // Screen patches, then the subdivision-tree roots: one per (patch, isovalue) with a possible
-  // sign change; roots straddling the eye plane are split until their parts lie in front of or
-  // behind it. Found per part of the drawn patches and joined in order: the same plan for any
-  // thread count.
-  const size_t rootParts = partsFor(drawn.size(), plan.threads);
-  std::vector<FramePlan> found(rootParts);
-  std::vector<FrameReport> partReports(rootParts);
-  parallelParts(drawn.size(), rootParts, plan.threads,
+}
+
+/// The drawn patches' screen and shading patches, then their subdivision-tree roots: one per
+/// (patch, isovalue) with a possible sign change; roots straddling the eye plane are split
+/// until their parts lie in front of or behind it. Found per part of the drawn patches and
+/// joined in order: the same plan for any thread count.
+void addDrawnRoots(FramePlan& plan, const Scene& scene, const Settings& s,
+  const CheckedPatches& checked, FrameReport& report)
+{
+  const int colour = s.colorAttribute >= 0 ? kFirstAttributeChannel + s.colorAttribute : -1;
+  const std::vector<size_t>& drawn = plan.drawnPatches;
+  const size_t parts = partsFor(drawn.size(), plan.threads);
+  std::vector<FramePlan> found(parts);
+  std::vector<FrameReport> partReports(parts);
+  parallelParts(drawn.size(), parts, plan.threads,
     [&](size_t k, size_t begin, size_t end)
     {
       FramePlan& part = found[k];
@@ -607,7 +615,7 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
       FrameReport& partReport = partReports[k];
       reserveRoots(part, scene, drawn.data() + begin, drawn.data() + end, s);
       std::vector<double> screen;
-      size_t counted = 0; // constant roots, counted above
+      size_t counted = 0; // constant roots, counted by drawnPatches
       for (size_t d = begin; d < end; ++d)
       {
         const size_t p = drawn[d];
@@ -617,11 +625,10 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
         makeScreenPatch<double>(world, plan.windowFromWorld, attribute, screen.data());
         makeShadingPatch(
           world, attribute, colour, plan.shadingPool.data() + plan.shadingOffsets[p]);
-        const int roots = rootsOf(world.degree, s);
-        for (int root = 0; root < roots; ++root)
+        for (int root = 0; root < rootsOf(world.degree, s); ++root)
         {
           const int index = rootIndex(world, root);
-          if (rootMayShow(checked->patches[p], s, index, counted))
+          if (rootMayShow(checked.patches[p], s, index, counted))
           {
             addRoot(part, world.degree, rootNode(int(p), index), screen.data(), s, partReport);
           }
@@ -634,10 +641,20 @@ FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, Fra
     report.droppedAtEyePlane += partReport.droppedAtEyePlane;
     report.constantAttributeRoots += partReport.constantAttributeRoots;
   }
-  for (size_t constant : constantRoots)
-  {
-    report.constantAttributeRoots += constant;
-  }
+}
+
+} // namespace
+
+FramePlan planFrame(const Scene& scene, const View& view, const Settings& s, FrameReport& report)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const auto checked = checkedPatches(scene, s);
+  report.msInput =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  FramePlan plan = planView(view, s, checked->range, scene.volumeCount() > 0, report);
+  plan.drawnPatches = drawnPatches(scene, s, *checked, plan.threads, report);
+  placeShadingPatches(plan, scene);
+  addDrawnRoots(plan, scene, s, *checked, report);
   return plan;
 }
 
