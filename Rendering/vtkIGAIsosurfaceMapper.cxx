@@ -700,6 +700,25 @@ void baseColour(vtkProperty* property, const unsigned char* mapped, double* base
   }
 }
 
+/// Every hit's colour through the table (RGBA bytes, a hit's four at 4 * its index), at once
+/// before the rows are shaded side by side: a table's MapValue keeps its answer in the table.
+std::vector<unsigned char> mappedColours(vtkScalarsToColors* lut, const iga::sst::GBuffer& gbuffer)
+{
+  std::vector<unsigned char> mapped(4 * gbuffer.hits.size());
+  if (gbuffer.hits.empty())
+  {
+    return mapped;
+  }
+  vtkNew<vtkDoubleArray> colours;
+  colours->SetNumberOfTuples(vtkIdType(gbuffer.hits.size()));
+  for (size_t h = 0; h < gbuffer.hits.size(); ++h)
+  {
+    colours->SetValue(vtkIdType(h), gbuffer.hits[h].color);
+  }
+  lut->MapScalarsThroughTable(colours, mapped.data(), VTK_RGBA);
+  return mapped;
+}
+
 /// Phong shading of one hit with VTK's property and the renderer's lights, seen from `view`.
 /// With no light switched on, or lighting off in the property, the hit is unlit: ambient plus
 /// diffuse times its colour, as vtkOpenGLPolyDataMapper draws (ParaView's view with its light
@@ -1567,20 +1586,9 @@ void vtkIGAIsosurfaceMapper::ShadeFrame(vtkActor* actor, const Frame& frame)
   in.Size[0] = width;
   in.Size[1] = height;
   this->AllocateLayers(frame);
-  // Every hit's colour through the table at once, before the rows are shaded side by side: a
-  // table's MapValue keeps its answer in the table.
   const iga::sst::GBuffer& gbuffer = in.GBuffer;
-  std::vector<unsigned char> mapped(frame.ByScalars ? 4 * gbuffer.hits.size() : 0);
-  if (frame.ByScalars && !gbuffer.hits.empty())
-  {
-    vtkNew<vtkDoubleArray> colours;
-    colours->SetNumberOfTuples(vtkIdType(gbuffer.hits.size()));
-    for (size_t h = 0; h < gbuffer.hits.size(); ++h)
-    {
-      colours->SetValue(vtkIdType(h), gbuffer.hits[h].color);
-    }
-    lut->MapScalarsThroughTable(colours, mapped.data(), VTK_RGBA);
-  }
+  const std::vector<unsigned char> mapped =
+    frame.ByScalars ? mappedColours(lut, gbuffer) : std::vector<unsigned char>();
   smpFor(height, this->NumberOfThreads,
     [&](vtkIdType firstRow, vtkIdType endRow)
     {
