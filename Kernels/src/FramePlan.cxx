@@ -10,7 +10,6 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -322,27 +321,9 @@ DataKey::DataKey(const Scene& scene, const Settings& settings)
 
 std::shared_ptr<const CheckedPatches> checkedPatches(const Scene& scene, const Settings& s)
 {
-  static std::mutex keptMutex;
-  static std::unique_ptr<DataKey> keptKey;
-  static std::shared_ptr<const CheckedPatches> kept;
-  std::unique_ptr<DataKey> key;
-  if (s.dataVersion != 0)
-  {
-    key = std::make_unique<DataKey>(scene, s);
-    std::lock_guard<std::mutex> lock(keptMutex);
-    if (keptKey && *keptKey == *key)
-    {
-      return kept;
-    }
-  }
-  auto checked = std::make_shared<const CheckedPatches>(checkPatchRanges(scene, s));
-  if (key)
-  {
-    std::lock_guard<std::mutex> lock(keptMutex);
-    keptKey = std::move(key);
-    kept = checked;
-  }
-  return checked;
+  static KeptByDataKey<std::shared_ptr<const CheckedPatches>> kept;
+  return kept.get(
+    scene, s, [&] { return std::make_shared<const CheckedPatches>(checkPatchRanges(scene, s)); });
 }
 
 void checkIndexable(size_t count, const char* what)

@@ -8,6 +8,7 @@
 
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,42 @@ struct DataKey
     return version == other.version && surfaceAttribute == other.surfaceAttribute &&
            colorAttribute == other.colorAttribute && fingerprint == other.fingerprint;
   }
+};
+
+/// One value a frame makes from its patches, kept for the next frame with the same DataKey (a
+/// non-zero data version); frames without a version make their own and keep nothing.
+template<class T>
+class KeptByDataKey
+{
+public:
+  /// The kept value where the key is the last one's, else make()'s (kept for the next frame).
+  template<class Make>
+  T get(const Scene& scene, const Settings& settings, Make make)
+  {
+    std::unique_ptr<DataKey> key;
+    if (settings.dataVersion != 0)
+    {
+      key = std::make_unique<DataKey>(scene, settings);
+      std::lock_guard<std::mutex> lock(this->Mutex);
+      if (this->Key && *this->Key == *key)
+      {
+        return this->Value;
+      }
+    }
+    T value = make();
+    if (key)
+    {
+      std::lock_guard<std::mutex> lock(this->Mutex);
+      this->Key = std::move(key);
+      this->Value = value;
+    }
+    return value;
+  }
+
+private:
+  std::mutex Mutex;
+  std::unique_ptr<DataKey> Key;
+  T Value{};
 };
 
 /// checkPatchRanges, or what it found for the frame before when that had the same DataKey (a

@@ -26,56 +26,43 @@ namespace sst
 
 /// Each patch's affine form, rayDegree -1 for the surfaces and the volumes without one (which
 /// the SST draws), on `threads` threads; sets the report's counts of patches per path. The
-/// analysis of the last scene with a non-zero data version is kept for the next frame of that
-/// version (a camera move: thousands of ABS patches take some 12 ms).
+/// analysis is kept for the next frame with the same DataKey (a camera move: thousands of ABS
+/// patches take some 12 ms).
 inline AffineForms affineWherePossible(
   const Scene& scene, const Settings& settings, int threads, FrameReport& report)
 {
-  static std::mutex keptMutex;
-  static std::unique_ptr<DataKey> keptKey;
-  static AffineForms kept;
-  static size_t keptAffine = 0; // its affine patches, counted once (a large set's are many)
-  std::unique_ptr<DataKey> key;
-  AffineForms forms;
-  size_t affinePatches = 0;
-  if (settings.dataVersion != 0)
+  // With its count of affine patches, counted once (a large set's are many).
+  struct Analysis
   {
-    key = std::make_unique<DataKey>(scene, settings);
-    std::lock_guard<std::mutex> lock(keptMutex);
-    forms = keptKey && *keptKey == *key ? kept : nullptr;
-    affinePatches = keptAffine;
-  }
-  if (!forms)
-  {
-    auto affine = std::make_shared<std::vector<AffinePatch>>(scene.size());
-    parallelFor(scene.size(), threads,
-      [&](size_t begin, size_t end)
-      {
-        for (size_t p = begin; p < end; ++p)
+    AffineForms forms;
+    size_t affinePatches = 0;
+  };
+  static KeptByDataKey<Analysis> kept;
+  const Analysis analysis = kept.get(scene, settings,
+    [&]
+    {
+      auto affine = std::make_shared<std::vector<AffinePatch>>(scene.size());
+      parallelFor(scene.size(), threads,
+        [&](size_t begin, size_t end)
         {
-          AffinePatch& patch = (*affine)[p];
-          if (p >= scene.volumeCount() ||
-              !affineGeometry(scene[p], kFirstAttributeChannel + settings.surfaceAttribute, patch))
+          for (size_t p = begin; p < end; ++p)
           {
-            patch = AffinePatch();
-            patch.rayDegree = -1;
+            AffinePatch& patch = (*affine)[p];
+            if (p >= scene.volumeCount() ||
+                !affineGeometry(
+                  scene[p], kFirstAttributeChannel + settings.surfaceAttribute, patch))
+            {
+              patch = AffinePatch();
+              patch.rayDegree = -1;
+            }
           }
-        }
-      });
-    forms = affine;
-    affinePatches = size_t(std::count_if(affine->begin(), affine->end(),
-      [](const AffinePatch& patch) { return patch.rayDegree >= 0; }));
-  }
-  if (key)
-  {
-    std::lock_guard<std::mutex> lock(keptMutex);
-    keptKey = std::move(key);
-    kept = forms;
-    keptAffine = affinePatches;
-  }
-  report.rayCompositionPatches += affinePatches;
+        });
+      return Analysis{ affine, size_t(std::count_if(affine->begin(), affine->end(),
+                                 [](const AffinePatch& patch) { return patch.rayDegree >= 0; })) };
+    });
+  report.rayCompositionPatches += analysis.affinePatches;
   report.sstPatches = scene.size() - report.rayCompositionPatches;
-  return forms;
+  return analysis.forms;
 }
 
 /// The affine patches' power forms for shading (PowerShading, count 0 for a patch without one)
